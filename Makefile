@@ -1,0 +1,61 @@
+# frictiondisk: set-up, demo, tests, benchmarks and lint.
+#
+#   make demo    create .venv, install, run the built-in pin example, show where the outputs are
+#   make test    create .venv if needed, install with test extras, run the test suite
+#   make bench   kernel benchmark
+#   make lint    ruff check + ruff format --check
+#   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
+
+VENV ?= .venv
+PYTHON ?= python3
+PYTEST_ARGS ?=
+
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.frictiondisk-installed
+LINT_PATHS := frictiondisk tests benchmarks
+
+DEMO_SCENE := campaigns/demo_pin.yaml
+DEMO_DIR := out/demo
+DEMO_NC := $(DEMO_DIR)/trajectory.nc
+DEMO_PNG := $(DEMO_DIR)/orbit.png
+DEMO_JSON := $(DEMO_DIR)/summary.json
+
+.PHONY: all install demo test bench lint clean distclean
+
+all: test
+
+# (Re)install whenever pyproject.toml changes; an existing .venv is reused, never recreated.
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -e '.[test]'
+	touch $@
+
+install: $(STAMP)
+
+demo: $(STAMP)
+	@mkdir -p $(DEMO_DIR)
+	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)
+	@cat $(DEMO_JSON)
+	@echo ""
+	@echo "Demo finished. Outputs:"
+	@echo "  summary (JSON):       $(abspath $(DEMO_JSON))"
+	@echo "  trajectory (netCDF):  $(abspath $(DEMO_NC))"
+	@echo "  orbit plot (PNG):     $(abspath $(DEMO_PNG))"
+
+test: $(STAMP)
+	$(BIN)/python -m pytest $(PYTEST_ARGS)
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench_kernel.py
+
+lint: $(STAMP)
+	$(BIN)/ruff check $(LINT_PATHS)
+	$(BIN)/ruff format --check $(LINT_PATHS)
+
+clean:
+	rm -rf out .pytest_cache .ruff_cache .hypothesis build dist *.egg-info
+	find frictiondisk tests benchmarks -type d -name __pycache__ -prune -exec rm -rf {} +
+	find frictiondisk -type f \( -name '*.nbi' -o -name '*.nbc' \) -delete
+
+distclean: clean
+	rm -rf $(VENV)

@@ -1,0 +1,204 @@
+"""Command line interface: thin click commands over config, simulate, trajectory and plotting.
+
+Exit codes: 0 on a completed run (whatever its outcome), 2 on a bad command line or a bad
+scene file (the message names the field; no traceback), 1 on any other failure.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any, NoReturn
+
+import click
+
+from frictiondisk import __version__
+
+EXIT_USAGE = 2
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, "--version", prog_name="frictiondisk")
+def main() -> None:
+    """frictiondisk: stick-slip and permanent sticking of rigid friction disks.
+
+    Simulates a pin or a slave disk on a driven master disk with elasto-visco-plastic
+    friction contacts, and classifies each run as stick, stick_slip, slide or undetermined.
+    """
+
+
+def _fail_config(scene: Path, problems: list[str]) -> NoReturn:
+    """Report a bad scene on stderr and exit with code 2 (no traceback)."""
+    click.echo(f"error: {scene}", err=True)
+    for problem in problems:
+        click.echo(f"  {problem}", err=True)
+    raise SystemExit(EXIT_USAGE)
+
+
+def _check_dt_out(ctx: click.Context, param: click.Parameter, value: float) -> float:
+    if not (math.isfinite(value) and value > 0.0):
+        raise click.BadParameter(f"must be a finite number > 0 (seconds), got {value!r}")
+    return value
+
+
+def _check_plot_suffix(
+    ctx: click.Context, param: click.Parameter, value: Path | None
+) -> Path | None:
+    if value is None:
+        return None
+    from frictiondisk.plotting import FIGURE_FORMATS
+
+    if value.suffix.lower() not in FIGURE_FORMATS:
+        raise click.BadParameter(
+            f"{str(value)!r}: the suffix picks the format; use one of {', '.join(FIGURE_FORMATS)}"
+        )
+    return value
+
+
+def _json_default(value: Any) -> Any:
+    """Serialise numpy scalars (and anything with .item()) in the JSON summary."""
+    item = getattr(value, "item", None)
+    if item is None:
+        raise TypeError(f"not JSON serialisable: {type(value).__name__}")
+    value = item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _fmt(value: float | None, unit: str = "", spec: str = ".6g") -> str:
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "-"
+    return f"{value:{spec}}{' ' + unit if unit else ''}"
+
+
+@main.command()
+@click.argument("scene", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "--set",
+    "overrides",
+    multiple=True,
+    metavar="KEY=VALUE",
+    help="Override one scene value, e.g. --set params.mu=0.2 (repeatable).",
+)
+@click.option(
+    "--json",
+    "as_json",
+    is_flag=True,
+    help="Print exactly one JSON object with the outcome and measures on stdout.",
+)
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, path_type=Path),
+    metavar="PATH",
+    help="Write the trajectory (netCDF4, with units and the full configuration) to PATH.",
+)
+@click.option(
+    "--plot",
+    "plot_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    metavar="PATH",
+    callback=_check_plot_suffix,
+    help="Draw the orbit (sticking dark, sliding light) to PATH (.png, .pdf or .svg).",
+)
+@click.option(
+    "--dt-out",
+    type=float,
+    metavar="SECONDS",
+    default=0.01,
+    show_default=True,
+    callback=_check_dt_out,
+    help="Recording interval for -o/--plot [s].",
+)
+def simulate(
+    scene: Path,
+    overrides: tuple[str, ...],
+    as_json: bool,
+    output: Path | None,
+    plot_path: Path | None,
+    dt_out: float,
+) -> None:
+    """Simulate one SCENE (a YAML file) and report its outcome.
+
+    The outcome is one of stick, stick_slip, slide or undetermined (always with a reason),
+    reported with the first sticking radius R1, the cycle size and a, the number of
+    stick/slide transitions and the stick fraction of the final window.
+    """
+    # Imported here so that `--help` and `--version` stay fast (the kernel compiles with numba).
+    from frictiondisk.config import ConfigError, load_scene
+
+    if not scene.is_file():
+        _fail_config(scene, [f"scene file not found: {scene}"])
+    try:
+        config = load_scene(scene, list(overrides))
+    except ConfigError as exc:
+        _fail_config(scene, list(exc.problems))
+    except OSError as exc:
+        _fail_config(scene, [f"cannot read the scene file: {exc.strerror or exc}"])
+
+    from frictiondisk.simulate import simulate as run_simulation
+
+    record = output is not None or plot_path is not None
+    # With --json, stdout carries the JSON object and nothing else.
+    redirect = contextlib.redirect_stdout(sys.stderr) if as_json else contextlib.nullcontext()
+    with redirect:
+        result = run_simulation(config, record=record, dt_out=dt_out)
+        if record and result.trajectory is None:
+            raise click.ClickException("the simulation returned no trajectory to write or plot")
+
+        outputs: dict[str, str | None] = {"trajectory": None, "plot": None}
+        if output is not None:
+            from frictiondisk.trajectory import write_trajectory
+
+            outputs["trajectory"] = str(write_trajectory(output, result, config).resolve())
+        if plot_path is not None:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            from frictiondisk.plotting import plot_orbit, save_figure
+
+            fig = plot_orbit(result, config)
+            outputs["plot"] = str(save_figure(fig, plot_path).resolve())
+
+    from frictiondisk.trajectory import scene_headline
+
+    head = scene_headline(config)
+    summary = result.summary()
+    if as_json:
+        payload = dict(summary)
+        payload.update(
+            scene=head["scene"],
+            mu=head["mu"],
+            config_hash=str(config.content_hash()),
+            outputs=outputs,
+        )
+        click.echo(json.dumps(payload, default=_json_default, allow_nan=False))
+        return
+
+    lines = [
+        f"scene:        {scene} ({head['scene']}, mu = {head['mu']:g}, x_ms = {head['x_ms']:g} m)",
+        f"outcome:      {summary['outcome']} ({summary['reason']})",
+        f"R1:           {_fmt(summary['R1'], 'm')} at t = {_fmt(summary['t_R1'], 's')}",
+        f"size:         {_fmt(summary['size'], 'm')}    a: {_fmt(summary['a'], 'm')}",
+        f"transitions:  {summary['n_transitions']}"
+        f"    stick fraction: {_fmt(summary['stick_fraction'], spec='.3f')}",
+        f"steps:        {summary['n_steps']} accepted, {summary['n_rejected']} rejected"
+        f" ({summary['method']}), t_end = {_fmt(summary['t_end'], 's')}",
+        f"wall time:    {_fmt(summary['wall_s'], 's', '.3g')}",
+    ]
+    if outputs["trajectory"]:
+        lines.append(f"trajectory:   {outputs['trajectory']}")
+    if outputs["plot"]:
+        lines.append(f"plot:         {outputs['plot']}")
+    click.echo("\n".join(lines))
+
+
+# Later commands (run, resume, status, plot) attach to `main` here.
+
+
+if __name__ == "__main__":  # python -m frictiondisk.cli
+    main()

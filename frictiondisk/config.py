@@ -1,0 +1,425 @@
+"""Validated scene configuration (MODEL.md section 5): models, loading, canonical form, hash.
+
+Defaults, units and allowed ranges live only in the model fields below. Each field's
+`description` ends with its unit in brackets and `json_schema_extra["unit"]` holds the
+unit alone ("1" = dimensionless); error messages read the bounds from the fields.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import json
+import math
+import re
+import reprlib
+import types
+from collections.abc import Iterable, Mapping, Sequence
+from os import PathLike
+from typing import Any, Literal, Union, get_args, get_origin
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic.fields import FieldInfo
+from pydantic_core import ErrorDetails, PydanticCustomError
+
+from frictiondisk.yamlio import ConfigError, dump_yaml, load_yaml_file, load_yaml_text
+
+__all__ = [
+    "ConfigError",
+    "Contact",
+    "Numerics",
+    "Params",
+    "SceneConfig",
+    "Stribeck",
+    "load_scene",
+    "scene_from_dict",
+]
+
+DEFAULT_DISK_POINTS = 12  # contact points of a disk when contact.points is null
+
+# strict: no "0.1" -> 0.1, no true -> 1.0, no 1.5 -> int; allow_inf_nan: reject inf/nan.
+_MODEL_CONFIG = ConfigDict(extra="forbid", frozen=True, strict=True, allow_inf_nan=False)
+
+
+def _field(default: Any, unit: str | None, doc: str, **constraints: Any) -> Any:
+    """Field with default, unit ("1" = dimensionless, None = not a quantity) and bounds."""
+    return Field(
+        default,
+        description=f"{doc} [{unit}]" if unit else doc,
+        json_schema_extra={"unit": unit} if unit else None,
+        **constraints,
+    )
+
+
+class Stribeck(BaseModel):
+    """Stribeck curve mu(v) = mu*[r + (1 - r)*exp(-(v/v_s)**delta)] (MODEL.md section 3)."""
+
+    model_config = _MODEL_CONFIG
+
+    r: float = _field(1.0, "1", "ratio mu_kinetic/mu_static; 1 is Coulomb friction", gt=0, le=1)
+    v_s: float = _field(1.0e-3, "m/s", "Stribeck velocity", gt=0)
+    delta: float = _field(1.0, "1", "Stribeck exponent", gt=0)
+
+
+class Params(BaseModel):
+    """Physical parameters and initial state (paper symbols, MODEL.md sections 2 and 5)."""
+
+    model_config = _MODEL_CONFIG
+
+    mu: float = _field(0.13, "1", "static friction coefficient", gt=0)
+    omega_m: float = _field(1.1, "rad/s", "angular velocity of the master disk", ge=0)
+    c_s: float = _field(1.0, "N/m", "stiffness of the slave's support spring", ge=0)
+    beta_s: float = _field(0.1, "N s/m", "damping of the slave's support", ge=0)
+    m_s: float = _field(1.0, "kg", "slave mass", gt=0)
+    F_n: float = _field(1.0, "N", "total normal force", gt=0)
+    J_s: float = _field(0.02, "kg m^2", "moment of inertia of the slave disk", gt=0)
+    beta_b: float = _field(0.0, "N m s/rad", "brake (rotational viscous) damping", ge=0)
+    x_ms: float = _field(0.1, "m", "axes offset: the slave's rest position is (x_ms, 0)")
+    x0: float = _field(0.0, "m", "initial spring deflection: the slave starts at x_ms + x0")
+    y0: float = _field(0.0, "m", "initial y position of the slave")
+    vx0: float = _field(0.0, "m/s", "initial x velocity of the slave")
+    vy0: float = _field(0.0, "m/s", "initial y velocity of the slave")
+    phidot0: float = _field(0.0, "rad/s", "initial angular velocity of the slave disk")
+
+
+class Contact(BaseModel):
+    """Regularized friction contact (MODEL.md section 3); totals are spread over the points."""
+
+    model_config = _MODEL_CONFIG
+
+    stiffness: float = _field(2.53e5, "N/m", "contact stiffness c", gt=0)
+    damping: float | None = _field(
+        None, "N s/m", "contact damping beta; null: damping_ratio*2*sqrt(stiffness*m_s)", gt=0
+    )
+    damping_ratio: float = _field(
+        1.0,
+        "1",
+        "damping as a fraction of critical 2*sqrt(stiffness*m_s), if damping is null",
+        gt=0,
+    )
+    eps: float = _field(1.0e-9, "m/s", "slip-rate threshold of the slide->stick event", gt=0)
+    points: int | None = _field(
+        None,
+        "1",
+        f"number of contact points; null: 1 (pin), {DEFAULT_DISK_POINTS} (disk)",
+        ge=1,
+        le=1000,
+    )
+    ring_radius: float = _field(0.05, "m", "radius of the ring of disk contact points", gt=0)
+    stribeck: Stribeck = Field(default_factory=Stribeck, description="Stribeck curve")
+
+
+class Numerics(BaseModel):
+    """Integrator, tolerances, horizons and limit-cycle detection."""
+
+    model_config = _MODEL_CONFIG
+
+    method: Literal["rodas4", "rodas4-fixed", "scipy-radau"] = _field(
+        "rodas4", None, "integration method"
+    )
+    rtol: float = _field(1.0e-6, "1", "relative tolerance", gt=0, lt=1)
+    atol: float = _field(1.0e-9, None, "absolute tolerance, in each state's SI unit", gt=0)
+    # dt = 0.01 s resolves the 4 ms initial contact transient (R1 error 4e-10 m on the default pin);
+    # 0.02 s does not (first stick misplaced by 0.2 s).
+    dt: float = _field(1.0e-2, "s", "step of rodas4-fixed", gt=0)
+    h_max: float = _field(0.1, "s", "largest step", gt=0)
+    mode: Literal["decide", "converge"] = _field(
+        "decide", None, "decide: stick or not; converge: run to a converged limit cycle"
+    )
+    # Measured: over 930 pin and disk runs (x_ms 0.02-0.2 m, x0 -0.05-0.05 m, mu 0.5-2 x the
+    # oracle) with a 600 s horizon, every permanent stick began before t = 4.8 s.
+    t_decide: float = _field(30.0, "s", "decision horizon (simulated time) in mode decide", gt=0)
+    t_max: float = _field(3000.0, "s", "simulated-time horizon in mode converge", gt=0)
+    stop_on_stick: bool = _field(True, None, "stop the run at permanent stick")
+    window_revs: float = _field(2.0, "1", "final window, in master revolutions", gt=0)
+    cycle_tol: float = _field(1.0e-6, "m", "limit-cycle section points agreement", gt=0)
+    cycle_count: int = _field(3, "1", "successive section points that must agree", ge=2)
+    max_steps: int = _field(2_000_000, "1", "step budget of one run", ge=1)
+    max_events: int = _field(200_000, "1", "mode-switch event budget of one run", ge=1)
+
+
+class SceneConfig(BaseModel):
+    """One validated scene: build it with `load_scene` or `scene_from_dict`."""
+
+    model_config = _MODEL_CONFIG
+
+    scene: Literal["pin", "disk"] = Field(
+        description="pin: point mass on one contact; disk: slave disk on contact.points"
+    )
+    params: Params = Field(default_factory=Params, description="physical parameters")
+    contact: Contact = Field(default_factory=Contact, description="friction contact")
+    numerics: Numerics = Field(default_factory=Numerics, description="numerical settings")
+
+    @model_validator(mode="after")
+    def _pin_has_one_contact(self) -> SceneConfig:
+        if self.scene == "pin" and self.contact.points not in (None, 1):
+            raise PydanticCustomError(
+                "scene_rule",
+                "a pin has exactly one contact; use 1 or null",
+                {"path": "contact.points", "value": self.contact.points, "scene": self.scene},
+            )
+        return self
+
+    @property
+    def n_contacts(self) -> int:
+        """Number of contact points N: 1 for a pin, `contact.points` or 12 for a disk."""
+        if self.scene == "pin":
+            return 1
+        return self.contact.points or DEFAULT_DISK_POINTS
+
+    @property
+    def contact_damping(self) -> float:
+        """Total contact damping beta [N s/m]: `damping`, else a fraction of critical."""
+        if self.contact.damping is not None:
+            return self.contact.damping
+        critical = 2.0 * math.sqrt(self.contact.stiffness * self.params.m_s)
+        return self.contact.damping_ratio * critical
+
+    def contact_positions(self) -> np.ndarray:
+        """Body-frame contact points p_i [m], shape (N, 2); a disk's lie evenly on the ring."""
+        if self.scene == "pin":
+            return np.zeros((1, 2))
+        angles = 2.0 * np.pi * np.arange(self.n_contacts) / self.n_contacts
+        return self.contact.ring_radius * np.column_stack((np.cos(angles), np.sin(angles)))
+
+    def canonical(self) -> dict[str, Any]:
+        """Plain JSON-able dict, every default filled in, `points` resolved, keys sorted."""
+        data = self.model_dump(mode="json")
+        data["contact"]["points"] = self.n_contacts
+        return _sorted(data)
+
+    def content_hash(self) -> str:
+        """sha256 hex digest of the canonical dict as compact, key-sorted JSON."""
+        text = json.dumps(self.canonical(), sort_keys=True, separators=(",", ":"))
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def to_yaml(self) -> str:
+        """The canonical dict as YAML; `load_scene` reads it back to the same canonical form."""
+        return dump_yaml(self.canonical())
+
+    def with_overrides(self, overrides: Mapping[str, Any]) -> SceneConfig:
+        """New validated config with dotted keys set, e.g. {"params.mu": 0.12}."""
+        origins = {key: f"override {key}" for key in overrides}
+        data = _apply(self.model_dump(), overrides.items(), "<overrides>")
+        return _validate(data, "<overrides>", origins)
+
+
+def scene_from_dict(
+    data: Any, overrides: Sequence[str] = (), source: str = "<dict>"
+) -> SceneConfig:
+    """Validate `data` (e.g. parsed YAML) after applying `KEY=VALUE` override strings.
+
+    Raises ConfigError listing every problem as `dotted.path: message`.
+    """
+    if isinstance(overrides, str):
+        raise TypeError("overrides must be a sequence of 'KEY=VALUE' strings, not one string")
+    pairs, problems = [], []
+    for text in overrides:
+        try:
+            pairs.append(_parse_override(text, source))
+        except ConfigError as err:
+            problems += err.problems
+    if problems:
+        raise ConfigError(problems, source)
+    origins = {key: f"--set {text}" for (key, _), text in zip(pairs, overrides, strict=True)}
+    return _validate(_apply(data, pairs, source), source, origins)
+
+
+def load_scene(path: str | PathLike[str], overrides: Sequence[str] = ()) -> SceneConfig:
+    """Load and validate a scene YAML file; `overrides` are CLI `--set KEY=VALUE` strings."""
+    return scene_from_dict(load_yaml_file(path), overrides, source=str(path))
+
+
+# --- overrides ------------------------------------------------------------------------
+
+_DOTTED_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*")
+
+
+def _parse_override(text: str, source: str) -> tuple[str, Any]:
+    """`"params.mu=0.13"` -> ("params.mu", 0.13); VALUE is read as strict YAML."""
+    key, sep, value = text.partition("=")
+    key = key.strip()
+    if not sep or not _DOTTED_KEY.fullmatch(key):
+        raise ConfigError(
+            f"--set {text!r}: malformed override: expected KEY=VALUE with a dotted KEY, "
+            "e.g. params.mu=0.13",
+            source,
+        )
+    return key, load_yaml_text(value, source=f"--set {text}")
+
+
+def _apply(data: Any, pairs: Iterable[tuple[str, Any]], source: str) -> Any:
+    """Copy of `data` with each dotted key set to its value."""
+    for key, value in pairs:
+        if not isinstance(key, str) or not _DOTTED_KEY.fullmatch(key):
+            raise ConfigError(
+                f"{key!r}: malformed override key: expected a dotted key, e.g. params.mu", source
+            )
+        data = _set_dotted(data, key.split("."), value, (), source)
+    return data
+
+
+def _set_dotted(
+    data: Any, keys: Sequence[str], value: Any, done: tuple[str, ...], source: str
+) -> dict[str, Any]:
+    """Copy of mapping `data` with data[k0][k1]... = value; a null section becomes {}."""
+    data = {} if data is None else data
+    if not isinstance(data, Mapping):
+        target = ".".join((*done, *keys))
+        raise ConfigError(
+            f"{_dotted(done)}: cannot set {target}: expected a mapping, "
+            f"got {_kind(data)} {_show(data)}",
+            source,
+        )
+    head, *rest = keys
+    out = dict(data)
+    out[head] = _set_dotted(out.get(head), rest, value, (*done, head), source) if rest else value
+    return out
+
+
+# --- error messages -------------------------------------------------------------------
+
+_BOUNDS = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
+_TYPE_NOUNS = {
+    "float_type": "a number",
+    "int_type": "an integer",
+    "bool_type": "a boolean",
+    "string_type": "a string",
+}
+_repr = reprlib.Repr()
+_repr.maxstring = _repr.maxother = 40
+
+
+def _validate(data: Any, source: str, origins: Mapping[str, str]) -> SceneConfig:
+    try:
+        return SceneConfig.model_validate(data)
+    except ValidationError as err:
+        problems = [_problem(error, origins) for error in err.errors(include_url=False)]
+        raise ConfigError(problems, source) from None
+
+
+def _problem(error: ErrorDetails, origins: Mapping[str, str]) -> str:
+    """One line `dotted.path: what is wrong; what is allowed` for one pydantic error."""
+    kind, loc, value = error["type"], error["loc"], error.get("input")
+    ctx = error.get("ctx") or {}
+    if kind == "scene_rule":
+        path = ctx["path"]
+        text = f"{_show(ctx['value'])} is not allowed for scene {ctx['scene']!r}: {error['msg']}"
+    elif kind in ("extra_forbidden", "invalid_key"):
+        path = _dotted(loc) if kind == "extra_forbidden" else _dotted(loc[:-1])
+        model = _model_at(loc[:-1])
+        under = f"under {_dotted(loc[:-1])}" if loc[:-1] else "at top level"
+        what = "unknown key" if kind == "extra_forbidden" else f"key {_show(value)} is not text"
+        text = f"{what}; allowed keys {under}: {', '.join(model.model_fields)}"
+        close = difflib.get_close_matches(str(loc[-1]), list(model.model_fields), n=1)
+        text += f" (did you mean {close[0]!r}?)" if close else ""
+    elif kind in ("model_type", "model_attributes_type", "dict_type"):
+        path = _dotted(loc)
+        keys = ", ".join(_model_at(loc).model_fields)
+        got = _kind(value) if value is None else f"{_kind(value)} {_show(value)}"
+        text = f"expected a mapping with keys {keys}; got {got}"
+    else:
+        path = _dotted(loc)
+        text = _field_problem(kind, value, _field_at(loc), error["msg"])
+    for key, origin in origins.items():
+        if path == key or path.startswith(key + "."):
+            text += f" (from {origin})"
+    return f"{path}: {text}"
+
+
+def _field_problem(kind: str, value: Any, field: FieldInfo | None, msg: str) -> str:
+    if field is None:
+        return f"{_show(value)}: {msg}"
+    must = f"must be {_requirement(field)}"
+    if kind == "missing":
+        return f"missing; {must}"
+    if kind == "finite_number" or kind == "literal_error":
+        return f"{_show(value)} is not allowed: {must}"
+    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        return f"{_show(value)} is out of range: must be {_bounds(field)}"
+    if value is None:
+        return f"missing value (null); {must}"
+    if kind in _TYPE_NOUNS:
+        number = kind in ("float_type", "int_type")
+        hint = " (write numbers without quotes)" if number and isinstance(value, str) else ""
+        return f"{_show(value)} is {_kind(value)}, not {_TYPE_NOUNS[kind]}: {must}{hint}"
+    return f"{_show(value)}: {msg}; {must}"
+
+
+def _requirement(field: FieldInfo) -> str:
+    """What a field accepts, e.g. "a finite number > 0 kg", "one of 'a', 'b', 'c'"."""
+    annotation = field.annotation
+    args = get_args(annotation) if get_origin(annotation) in (Union, types.UnionType) else ()
+    nullable = type(None) in args
+    base = next(a for a in args if a is not type(None)) if args else annotation
+    if get_origin(base) is Literal:
+        choices = [repr(choice) for choice in get_args(base)]
+        text = " or ".join(choices) if len(choices) == 2 else "one of " + ", ".join(choices)
+    else:
+        noun = {bool: "true or false", int: "an integer", float: "a finite number"}[base]
+        text = f"{noun} {_bounds(field)}".strip()
+    return f"null or {text}" if nullable else text
+
+
+def _bounds(field: FieldInfo) -> str:
+    """The field's bounds and unit, e.g. "> 0 and < 1", ">= 0 rad/s"; "" if unbounded."""
+    parts = [
+        f"{symbol} {getattr(item, name)}"
+        for item in field.metadata
+        for name, symbol in _BOUNDS.items()
+        if getattr(item, name, None) is not None
+    ]
+    extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
+    unit = extra.get("unit")
+    if not parts:
+        return ""
+    return " and ".join(parts) + (f" {unit}" if unit and unit != "1" else "")
+
+
+def _model_at(loc: tuple[int | str, ...]) -> type[BaseModel]:
+    """The model class that validates the mapping at `loc`."""
+    model: type[BaseModel] = SceneConfig
+    for part in loc:
+        model = model.model_fields[part].annotation
+    return model
+
+
+def _field_at(loc: tuple[int | str, ...]) -> FieldInfo | None:
+    try:
+        return _model_at(loc[:-1]).model_fields[loc[-1]]
+    except (KeyError, AttributeError, IndexError, TypeError):
+        return None
+
+
+def _dotted(loc: tuple[int | str, ...]) -> str:
+    return ".".join(map(str, loc)) or "(top level)"
+
+
+def _show(value: Any) -> str:
+    """A value as the user wrote it: YAML words for true/false/null, else a short repr."""
+    if value is None or isinstance(value, bool):
+        return json.dumps(value)
+    return _repr.repr(value)
+
+
+def _kind(value: Any) -> str:
+    if value is None:
+        return "null"
+    kinds = {
+        bool: "a boolean",
+        int: "an integer",
+        float: "a float",
+        str: "a string",
+        list: "a list",
+        dict: "a mapping",
+    }
+    return next(
+        (text for cls, text in kinds.items() if isinstance(value, cls)), f"a {type(value).__name__}"
+    )
+
+
+def _sorted(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {key: _sorted(value[key]) for key in sorted(value)}
+    return value

@@ -1,0 +1,1 @@
+"""Numerical kernel: numba only. Never imports orchestration (dask, xarray, click)."""

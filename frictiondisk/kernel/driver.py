@@ -1,0 +1,322 @@
+"""The run loop: steps, switching events, budget and stopping rules (numba).
+
+`run` never raises: it returns a status code (kernel/status.py) and fills the monitor
+arrays, from which frictiondisk.simulate builds the outcome.
+"""
+
+import math
+
+import numba as nb
+import numpy as np
+
+from . import monitor as mon
+from . import status as st
+from .events import brent_root, find_graze
+from .model import STICK, SLIDE, n_coords, rhs, switch_rate, switch_value
+from .rodas import N_WORK_ROWS, W_K6, dense_eval, error_norm, next_step_factor, reject_factor, rodas_step
+
+# Integer options (iopt)
+O_METHOD = 0  # 0 = adaptive RODAS4, 1 = fixed-step RODAS4
+O_MAX_STEPS = 1
+O_MAX_EVENTS = 2
+O_CYCLE_COUNT = 3
+O_CONVERGE = 4  # 1 = run until the limit cycle converged (or t_max)
+O_STOP_ON_STICK = 5
+O_RECORD = 6
+N_IOPT = 7
+
+# Float options (fopt)
+O_RTOL = 0
+O_ATOL = 1
+O_DT = 2  # fixed step [s]
+O_HMAX = 3  # largest step [s]
+O_HORIZON = 4  # t_decide or t_max [s]
+O_WINDOW = 5  # final window [s]
+O_CYCLE_TOL = 6  # [m]
+O_HOLD = 7  # uninterrupted sticking that decides `stick` [s]
+O_DT_OUT = 8  # recording interval [s]; 0 = every step
+N_FOPT = 9
+
+# Driver counters (out_i)
+C_STEPS = 0
+C_REJECTED = 1
+C_EVENTS = 2
+C_REFUSED = 3
+C_RECORDED = 4
+C_TRUNCATED = 5
+C_EXTENDED = 6  # 1 if the horizon was extended to finish a sticking phase
+N_OUT_I = 7
+
+SAME_TIME = 1e-12  # [s] events closer than this count as one instant (Zeno guard)
+SIMULTANEOUS = 1e-9  # [s] crossings this close are switched together
+T_TOL_ABS = 1e-11  # [s] time tolerance of the event root finder
+
+
+@nb.njit(cache=True)
+def _record(rec_t, rec_y, rec_m, out_i, t, y, modes):
+    k = out_i[C_RECORDED]
+    if k >= rec_t.shape[0]:
+        out_i[C_TRUNCATED] = 1
+        return
+    rec_t[k] = t
+    rec_y[k, :] = y
+    rec_m[k, :] = modes
+    out_i[C_RECORDED] = k + 1
+
+
+@nb.njit(cache=True)
+def _record_dense(rec_t, rec_y, rec_m, out_i, t0, h, s_end, y0, y1, wk, modes, dt_out, ybuf):
+    """Record dense-output samples at multiples of dt_out in (t0, t0 + s_end h]."""
+    t_end = t0 + s_end * h
+    k = math.floor(t0 / dt_out) + 1
+    while k * dt_out <= t_end:
+        s = (k * dt_out - t0) / h
+        dense_eval(y0, y1, wk, s, ybuf)
+        _record(rec_t, rec_y, rec_m, out_i, k * dt_out, ybuf, modes)
+        k += 1
+
+
+@nb.njit(cache=True)
+def _check_entries(p, pts, modes, y, f, entered, pending, out_i):
+    """Refused-entry check after switches (MODEL.md section 3).
+
+    A contact entering stick is refused (stays in slide, pending) if, with stick dynamics,
+    s = |k| - F_St would increase. A contact entering slide whose s would decrease again
+    in slide is marked pending too: it re-enters stick as soon as that is consistent.
+    Leaves f = rhs(y) in the final modes.
+    """
+    rhs(p, pts, modes, y, f)
+    refused = False
+    for i in range(modes.shape[0]):
+        if entered[i] == 0:
+            continue
+        rate = switch_rate(p, pts, y, f, i)
+        if modes[i] == STICK and rate > 0.0:
+            modes[i] = SLIDE
+            pending[i] = 1
+            out_i[C_REFUSED] += 1
+            refused = True
+        elif modes[i] == SLIDE and rate < 0.0:
+            pending[i] = 1
+    if refused:
+        rhs(p, pts, modes, y, f)
+
+
+@nb.njit(cache=True)
+def _stick_rate(p, pts, modes, y, i, ftmp):
+    """ds_i/dt if contact i were in stick (others unchanged)."""
+    old = modes[i]
+    modes[i] = STICK
+    rhs(p, pts, modes, y, ftmp)
+    rate = switch_rate(p, pts, y, ftmp, i)
+    modes[i] = old
+    return rate
+
+
+@nb.njit(cache=True)
+def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i):
+    """Integrate one scene from t = 0 until a stopping rule fires.
+
+    Returns (status code, final time [s]). y (initial state) and modes (int8, one per
+    contact) are updated in place and hold the final state and modes.
+    """
+    n = y.shape[0]
+    ncon = modes.shape[0]
+    nq = n_coords(p)
+    fixed = iopt[O_METHOD] == 1
+    rtol = fopt[O_RTOL]
+    atol = fopt[O_ATOL]
+    h_max = fopt[O_HMAX]
+    horizon = fopt[O_HORIZON]
+    hold = fopt[O_HOLD]
+    dt_out = fopt[O_DT_OUT]
+    record = iopt[O_RECORD] == 1
+    converge = iopt[O_CONVERGE] == 1
+    stop_on_stick = iopt[O_STOP_ON_STICK] == 1
+
+    y1 = np.empty(n)
+    f = np.empty(n)
+    f1 = np.empty(n)
+    ftmp = np.empty(n)
+    ybuf = np.empty(n)
+    jac = np.empty((n, n))
+    lu = np.empty((n, n))
+    piv = np.empty(n, dtype=np.int64)
+    wk = np.empty((N_WORK_ROWS, n))
+    fresh = np.zeros(ncon, dtype=np.int8)
+    pending = np.zeros(ncon, dtype=np.int8)
+    entered = np.zeros(ncon, dtype=np.int8)
+    root_s = np.empty(ncon)
+    out_i[:] = 0
+
+    t = 0.0
+    rhs(p, pts, modes, y, f)
+    mon.monitor_begin(mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT])
+    if record:
+        _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
+
+    h = fopt[O_DT] if fixed else min(h_max, 1e-4)
+    err = 1.0
+    err_old = 0.0
+    h_old = h
+    first = True
+    t_last_event = -1.0
+    n_same_time = 0
+    t_stop = horizon
+
+    while True:
+        # ---- stopping rules --------------------------------------------------------------
+        if stop_on_stick and mon.stuck_for(mf, mi, t) >= hold:
+            return st.STICK_HELD, t
+        if converge and mon.cycle_converged(mi):
+            return st.CYCLE_CONVERGED, t
+        if t >= t_stop:
+            # Never stop inside a sticking phase that may still decide `stick`.
+            if stop_on_stick and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
+                out_i[C_EXTENDED] = 1
+                t_stop = mf[mon.F_T_ALL] + hold
+                if t < t_stop:
+                    continue
+            return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
+        if out_i[C_EXTENDED] == 1 and mi[mon.I_ALL] == 0:
+            return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
+        if out_i[C_STEPS] >= iopt[O_MAX_STEPS]:
+            return st.MAX_STEPS, t
+        if out_i[C_EVENTS] >= iopt[O_MAX_EVENTS]:
+            return st.MAX_EVENTS, t
+
+        # ---- one step -----------------------------------------------------------------------
+        h = min(h, h_max, t_stop - t)
+        if h <= 1e-14 * max(1.0, t):
+            return st.STEP_TOO_SMALL, t
+        ok = rodas_step(p, pts, modes, y, f, h, jac, lu, piv, wk, y1)
+        if fixed:
+            if not ok:
+                return st.NONFINITE, t
+        else:
+            err = error_norm(y, y1, wk[W_K6], rtol, atol) if ok else math.inf
+            if not (err <= 1.0):
+                out_i[C_REJECTED] += 1
+                h *= reject_factor(err)
+                continue
+        rhs(p, pts, modes, y1, f1)
+        for j in range(n):
+            if not math.isfinite(f1[j]):
+                return st.NONFINITE, t
+        out_i[C_STEPS] += 1
+
+        # ---- events inside the step ------------------------------------------------------
+        stol = (T_TOL_ABS + 4e-16 * abs(t)) / h
+        s_event = 2.0
+        for i in range(ncon):
+            root_s[i] = 2.0
+            if pending[i] == 1:
+                continue
+            sigma = 1.0 if modes[i] == STICK else -1.0
+            w0 = sigma * switch_value(p, pts, y, i)
+            w1 = sigma * switch_value(p, pts, y1, i)
+            if w0 >= 0.0:
+                # just switched (w = 0 to round-off): count only a fresh crossing after a dip
+                w0 = -1e-300
+            s_hi = -1.0
+            w_hi = 0.0
+            if w1 >= 0.0:
+                s_hi = 1.0
+                w_hi = w1
+            else:
+                d0 = sigma * switch_rate(p, pts, y, f, i) * h
+                d1 = sigma * switch_rate(p, pts, y1, f1, i) * h
+                sg = find_graze(p, pts, y, y1, wk, i, sigma, w0, w1, d0, d1, ybuf)
+                if sg > 0.0:
+                    s_hi = sg
+                    dense_eval(y, y1, wk, sg, ybuf)
+                    w_hi = sigma * switch_value(p, pts, ybuf, i)
+            if s_hi > 0.0:
+                sr = brent_root(p, pts, y, y1, wk, i, sigma, 0.0, w0, s_hi, w_hi, stol, ybuf)
+                if fresh[i] == 1 and sr <= stol:
+                    continue  # the switch we just made, seen again through round-off
+                root_s[i] = sr
+                if sr < s_event:
+                    s_event = sr
+
+        if s_event <= 1.0:
+            t_ev = t + s_event * h
+            if record and dt_out > 0.0:
+                _record_dense(rec_t, rec_y, rec_m, out_i, t, h, s_event, y, y1, wk, modes, dt_out, ybuf)
+            dense_eval(y, y1, wk, s_event, ybuf)
+            mon.monitor_step(mf, mi, y, ybuf, s_event * h)
+            if record:
+                _record(rec_t, rec_y, rec_m, out_i, t_ev, ybuf, modes)
+            y[:] = ybuf
+            window = max(SIMULTANEOUS / h, stol)
+            n_sw = 0
+            for i in range(ncon):
+                entered[i] = 0
+                fresh[i] = 0
+                if root_s[i] <= s_event + window:
+                    modes[i] = SLIDE if modes[i] == STICK else STICK
+                    entered[i] = 1
+                    fresh[i] = 1
+                    n_sw += 1
+            _check_entries(p, pts, modes, y, f, entered, pending, out_i)
+            for i in range(ncon):
+                if entered[i] == 1 and pending[i] == 1 and modes[i] == SLIDE:
+                    fresh[i] = 0
+            mon.monitor_switch(mf, mi, ring_all, ring_any, t_ev, y, modes, n_sw)
+            out_i[C_EVENTS] += n_sw
+            if t_ev - t_last_event < SAME_TIME:
+                n_same_time += 1
+                if n_same_time > 4 * ncon + 8:
+                    return st.ZENO, t
+            else:
+                n_same_time = 0
+            t_last_event = t_ev
+            t = t_ev
+            if record:
+                _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
+            first = True  # the dynamics changed: no step-size prediction across the switch
+            if fixed:
+                h = fopt[O_DT]
+            continue
+
+        # ---- accept the whole step ---------------------------------------------------------
+        if record and dt_out > 0.0:
+            _record_dense(rec_t, rec_y, rec_m, out_i, t, h, 1.0, y, y1, wk, modes, dt_out, ybuf)
+        mon.monitor_step(mf, mi, y, y1, h)
+        t += h
+        y[:] = y1
+        f[:] = f1
+        for i in range(ncon):
+            fresh[i] = 0
+        if record and dt_out <= 0.0:
+            _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
+
+        # Pending contacts (slide with plastic rate below eps): re-checked at step ends.
+        n_sw = 0
+        for i in range(ncon):
+            if pending[i] == 0:
+                continue
+            if switch_value(p, pts, y, i) > 0.0:
+                pending[i] = 0
+            elif _stick_rate(p, pts, modes, y, i, ftmp) <= 0.0:
+                modes[i] = STICK
+                pending[i] = 0
+                fresh[i] = 1
+                n_sw += 1
+        if n_sw > 0:
+            rhs(p, pts, modes, y, f)
+            mon.monitor_switch(mf, mi, ring_all, ring_any, t, y, modes, n_sw)
+            out_i[C_EVENTS] += n_sw
+            first = True
+            if record:
+                _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
+
+        if fixed:
+            h = fopt[O_DT]
+        else:
+            err_safe = max(err, 1e-10)
+            fac = next_step_factor(err_safe, err_old, h, h_old, first)
+            h_old = h
+            err_old = max(err_safe, 1e-2)
+            first = False
+            h *= fac

@@ -1,0 +1,284 @@
+"""Equations of motion of the pin and disk scenes (MODEL.md sections 2-4), numba only.
+
+State layout, nq = 2 (pin) or 3 (disk):
+    y[0:nq]        x, y [m] (, phi [rad])
+    y[nq:2nq]      vx, vy [m/s] (, phidot [rad/s])
+    y[2nq+2i:+2]   Z_i = c_i z_i, elastic contact force of contact i in the fixed frame [N]
+
+Every contact law is written as  F_i = -G_i,  dZ_i/dt = (c_i/beta_i) (G_i - Z_i)  with
+    G_i = k_i                      (stick)
+    G_i = F_St,i k_i / |k_i|       (slide, plastic flow of paper eq. 9)
+    k_i = Z_i + beta_i u_i,  u_i = v_i + omega_m e_z x z_i   (objective rate, MODEL.md section 3)
+In stick this is dZ/dt = c u; both forms are the same law.
+
+Switching function of contact i: s_i = |k_i| - F_St,i - beta_i eps.  Stick -> slide when s
+crosses 0 upwards, slide -> stick when it crosses 0 downwards (the plastic rate
+(|k| - F_St)/beta falls through eps).  See kernel/events.py.
+"""
+
+import math
+
+import numba as nb
+import numpy as np
+
+# Indices into the parameter vector p (built by frictiondisk.simulate.pack_parameters).
+P_MU = 0  # static friction coefficient mu
+P_OMEGA = 1  # master speed omega_m [rad/s]
+P_CS = 2  # support stiffness c_s [N/m]
+P_BETAS = 3  # support damping beta_s [N s/m]
+P_MS = 4  # slave mass m_s [kg]
+P_JS = 5  # slave inertia J_s [kg m^2]
+P_BETAB = 6  # brake damping beta_b [N m s/rad]
+P_XMS = 7  # axes offset x_ms [m]
+P_CI = 8  # stiffness per contact c/N [N/m]
+P_BETAI = 9  # damping per contact beta/N [N s/m]
+P_FNI = 10  # normal force per contact F_n/N [N]
+P_EPS = 11  # slide->stick threshold of the plastic rate eps [m/s]
+P_STR_R = 12  # Stribeck ratio r = mu_kinetic / mu_static
+P_STR_VS = 13  # Stribeck speed v_s [m/s]
+P_STR_DELTA = 14  # Stribeck exponent delta
+P_ROT = 15  # 1.0 for the disk (rotation degree of freedom), 0.0 for the pin
+N_PARAMS = 16
+
+STICK = 1
+SLIDE = 0
+
+
+@nb.njit(cache=True)
+def n_coords(p):
+    """Number of generalized coordinates: 2 (pin) or 3 (disk)."""
+    return 3 if p[P_ROT] > 0.5 else 2
+
+
+@nb.njit(cache=True)
+def friction_limit(p, speed):
+    """Stribeck limit F_St = F_n,i mu(|v|) [N] and its derivative with respect to |v|."""
+    fn_mu = p[P_FNI] * p[P_MU]
+    r = p[P_STR_R]
+    if r == 1.0:
+        return fn_mu, 0.0
+    vs = p[P_STR_VS]
+    delta = p[P_STR_DELTA]
+    xi = speed / vs
+    if xi <= 0.0:
+        return fn_mu, 0.0
+    ex = math.exp(-(xi**delta))
+    f = fn_mu * (r + (1.0 - r) * ex)
+    df = -fn_mu * (1.0 - r) * ex * delta * xi ** (delta - 1.0) / vs
+    return f, df
+
+
+@nb.njit(cache=True)
+def contact_arm(p, pts, y, i):
+    """Arm a_i = R(phi) p_i from the slave centre to contact i [m]."""
+    if p[P_ROT] < 0.5:
+        return 0.0, 0.0
+    c = math.cos(y[2])
+    s = math.sin(y[2])
+    return c * pts[i, 0] - s * pts[i, 1], s * pts[i, 0] + c * pts[i, 1]
+
+
+@nb.njit(cache=True)
+def contact_state(p, pts, y, i):
+    """Arm (ax, ay), sliding velocity v_i, vector k_i and limit F_St,i of contact i.
+
+    v_i = (slave velocity at q_i) - omega_m e_z x q_i, q_i = r + a_i  (MODEL.md section 2).
+    """
+    nq = n_coords(p)
+    om = p[P_OMEGA]
+    ax, ay = contact_arm(p, pts, y, i)
+    phid = y[nq + 2] if nq == 3 else 0.0
+    vx = y[nq] - phid * ay + om * (y[1] + ay)
+    vy = y[nq + 1] + phid * ax - om * (y[0] + ax)
+    zi = 2 * nq + 2 * i
+    Zx = y[zi]
+    Zy = y[zi + 1]
+    ci = p[P_CI]
+    bi = p[P_BETAI]
+    # u = v + omega_m e_z x (Z / c): the master point under the contact has moved by -z.
+    kx = Zx + bi * (vx - om * Zy / ci)
+    ky = Zy + bi * (vy + om * Zx / ci)
+    speed = math.sqrt(vx * vx + vy * vy)
+    fst, dfst = friction_limit(p, speed)
+    return ax, ay, vx, vy, kx, ky, fst, dfst
+
+
+@nb.njit(cache=True)
+def switch_value(p, pts, y, i):
+    """Switching function s_i = |k_i| - F_St,i - beta_i eps [N]."""
+    _, _, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
+    return math.sqrt(kx * kx + ky * ky) - fst - p[P_BETAI] * p[P_EPS]
+
+
+@nb.njit(cache=True)
+def switch_rate(p, pts, y, f, i):
+    """Time derivative of s_i along the motion with state rate f = dy/dt [N/s]."""
+    nq = n_coords(p)
+    om = p[P_OMEGA]
+    ci = p[P_CI]
+    bi = p[P_BETAI]
+    ax, ay, vx, vy, kx, ky, fst, dfst = contact_state(p, pts, y, i)
+    xd = y[nq]
+    yd = y[nq + 1]
+    if nq == 3:
+        phid = y[nq + 2]
+        phidd = f[nq + 2]
+    else:
+        phid = 0.0
+        phidd = 0.0
+    # dv/dt = r'' + phi'' e_z x a - phi' (phi' - omega) a - omega e_z x r'
+    vdx = f[nq] - phidd * ay - phid * (phid - om) * ax + om * yd
+    vdy = f[nq + 1] + phidd * ax - phid * (phid - om) * ay - om * xd
+    zi = 2 * nq + 2 * i
+    Zdx = f[zi]
+    Zdy = f[zi + 1]
+    kdx = Zdx + bi * (vdx - om * Zdy / ci)
+    kdy = Zdy + bi * (vdy + om * Zdx / ci)
+    kn = math.sqrt(kx * kx + ky * ky)
+    rate = 0.0
+    if kn > 0.0:
+        rate = (kx * kdx + ky * kdy) / kn
+    speed = math.sqrt(vx * vx + vy * vy)
+    if dfst != 0.0 and speed > 0.0:
+        rate -= dfst * (vx * vdx + vy * vdy) / speed
+    return rate
+
+
+@nb.njit(cache=True)
+def rhs(p, pts, modes, y, f):
+    """dy/dt of the scene in the given contact modes (paper eqs. 3-10, MODEL.md section 4)."""
+    nq = n_coords(p)
+    ncon = modes.shape[0]
+    m = p[P_MS]
+    ci = p[P_CI]
+    bi = p[P_BETAI]
+    fx = -p[P_CS] * (y[0] - p[P_XMS]) - p[P_BETAS] * y[nq]
+    fy = -p[P_CS] * y[1] - p[P_BETAS] * y[nq + 1]
+    torque = 0.0
+    for i in range(ncon):
+        ax, ay, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
+        if modes[i] == STICK:
+            gx = kx
+            gy = ky
+        else:
+            kn = math.sqrt(kx * kx + ky * ky)
+            if kn > 0.0:
+                gx = fst * kx / kn
+                gy = fst * ky / kn
+            else:
+                gx = 0.0
+                gy = 0.0
+        zi = 2 * nq + 2 * i
+        f[zi] = ci / bi * (gx - y[zi])
+        f[zi + 1] = ci / bi * (gy - y[zi + 1])
+        fx -= gx
+        fy -= gy
+        torque -= ax * gy - ay * gx
+    for j in range(nq):
+        f[j] = y[nq + j]
+    f[nq] = fx / m
+    f[nq + 1] = fy / m
+    if nq == 3:
+        f[nq + 2] = (torque - p[P_BETAB] * y[nq + 2]) / p[P_JS]
+
+
+@nb.njit(cache=True)
+def jacobian(p, pts, modes, y, jac):
+    """Analytic Jacobian d(rhs)/dy in the given contact modes."""
+    nq = n_coords(p)
+    ncon = modes.shape[0]
+    m = p[P_MS]
+    om = p[P_OMEGA]
+    ci = p[P_CI]
+    bi = p[P_BETAI]
+    jac[:, :] = 0.0
+    for j in range(nq):
+        jac[j, nq + j] = 1.0
+    jac[nq, 0] = -p[P_CS] / m
+    jac[nq + 1, 1] = -p[P_CS] / m
+    jac[nq, nq] = -p[P_BETAS] / m
+    jac[nq + 1, nq + 1] = -p[P_BETAS] / m
+    if nq == 3:
+        jac[nq + 2, nq + 2] = -p[P_BETAB] / p[P_JS]
+        phid = y[nq + 2]
+    else:
+        phid = 0.0
+    # dv/d(coordinate) columns: x, y, (phi), vx, vy, (phidot)
+    ncol = 2 * nq
+    dv = np.zeros((2, ncol))
+    for i in range(ncon):
+        ax, ay, vx, vy, kx, ky, fst, dfst = contact_state(p, pts, y, i)
+        kn = math.sqrt(kx * kx + ky * ky)
+        # M = dG/dk and g = dG/dF_St
+        if modes[i] == STICK or kn == 0.0:
+            m00 = 1.0
+            m01 = 0.0
+            m10 = 0.0
+            m11 = 1.0
+            gx = kx
+            gy = ky
+            g0 = 0.0
+            g1 = 0.0
+        else:
+            ux = kx / kn
+            uy = ky / kn
+            sc = fst / kn
+            m00 = sc * (1.0 - ux * ux)
+            m01 = -sc * ux * uy
+            m10 = m01
+            m11 = sc * (1.0 - uy * uy)
+            gx = fst * ux
+            gy = fst * uy
+            g0 = ux
+            g1 = uy
+        # dk/dZ = I + (beta omega / c) E,  E = [[0, -1], [1, 0]]
+        w = bi * om / ci
+        p00 = m00 + m01 * w
+        p01 = -m00 * w + m01
+        p10 = m10 + m11 * w
+        p11 = -m10 * w + m11
+        # Q = beta M + g (dF_St/dv)^T
+        speed = math.sqrt(vx * vx + vy * vy)
+        dsx = 0.0
+        dsy = 0.0
+        if dfst != 0.0 and speed > 0.0:
+            dsx = dfst * vx / speed
+            dsy = dfst * vy / speed
+        q00 = bi * m00 + g0 * dsx
+        q01 = bi * m01 + g0 * dsy
+        q10 = bi * m10 + g1 * dsx
+        q11 = bi * m11 + g1 * dsy
+        dv[:, :] = 0.0
+        dv[1, 0] = -om
+        dv[0, 1] = om
+        dv[0, nq] = 1.0
+        dv[1, nq + 1] = 1.0
+        if nq == 3:
+            dv[0, 2] = (om - phid) * ax
+            dv[1, 2] = (om - phid) * ay
+            dv[0, nq + 2] = -ay
+            dv[1, nq + 2] = ax
+        zi = 2 * nq + 2 * i
+        rate = ci / bi
+        for col in range(ncol):
+            dgx = q00 * dv[0, col] + q01 * dv[1, col]
+            dgy = q10 * dv[0, col] + q11 * dv[1, col]
+            jac[nq, col] -= dgx / m
+            jac[nq + 1, col] -= dgy / m
+            jac[zi, col] += rate * dgx
+            jac[zi + 1, col] += rate * dgy
+            if nq == 3:
+                jac[nq + 2, col] -= (ax * dgy - ay * dgx) / p[P_JS]
+        jac[nq, zi] -= p00 / m
+        jac[nq, zi + 1] -= p01 / m
+        jac[nq + 1, zi] -= p10 / m
+        jac[nq + 1, zi + 1] -= p11 / m
+        jac[zi, zi] += rate * (p00 - 1.0)
+        jac[zi, zi + 1] += rate * p01
+        jac[zi + 1, zi] += rate * p10
+        jac[zi + 1, zi + 1] += rate * (p11 - 1.0)
+        if nq == 3:
+            jac[nq + 2, zi] -= (ax * p10 - ay * p00) / p[P_JS]
+            jac[nq + 2, zi + 1] -= (ax * p11 - ay * p01) / p[P_JS]
+            # the arm itself turns with phi: d(a x F)/dphi += -(a . F) with F = -G
+            jac[nq + 2, 2] += (ax * gx + ay * gy) / p[P_JS]

@@ -1,0 +1,136 @@
+"""One RODAS4 step with embedded error estimate and dense output (numba).
+
+The stepper knows nothing of contacts or events: it advances y' = rhs(y) in fixed
+modes. The driver (kernel/driver.py) owns step-size control, events and switching.
+"""
+
+import math
+
+import numba as nb
+
+from . import coefficients as co
+from .linalg import lu_factor, lu_solve
+from .model import jacobian, rhs
+
+# Rows of the work array wk (shape (N_WORK_ROWS, n)).
+W_K1, W_K2, W_K3, W_K4, W_K5, W_K6 = 0, 1, 2, 3, 4, 5
+W_Y, W_F, W_B = 6, 7, 8
+W_Q1, W_Q2 = 9, 10  # dense-output coefficients of the last step
+N_WORK_ROWS = 11
+
+
+@nb.njit(cache=True)
+def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
+    """Advance from y0 (with f0 = rhs(y0)) by h. Writes y1 and the dense output rows.
+
+    Returns (ok, err_vec_row): ok is False if the iteration matrix is singular or a value
+    is not finite. The error estimate is wk[W_K6] (order-4 minus order-3 solution).
+    """
+    n = y0.shape[0]
+    jacobian(p, pts, modes, y0, jac)
+    inv_gh = 1.0 / (co.GAMMA * h)
+    for i in range(n):
+        for j in range(n):
+            lu[i, j] = -jac[i, j]
+        lu[i, i] += inv_gh
+    if not lu_factor(lu, piv):
+        return False
+    ytmp = wk[W_Y]
+    ftmp = wk[W_F]
+    b = wk[W_B]
+    k1 = wk[W_K1]
+    k2 = wk[W_K2]
+    k3 = wk[W_K3]
+    k4 = wk[W_K4]
+    k5 = wk[W_K5]
+    k6 = wk[W_K6]
+    lu_solve(lu, piv, f0, k1)
+
+    for i in range(n):
+        ytmp[i] = y0[i] + co.A21 * k1[i]
+    rhs(p, pts, modes, ytmp, ftmp)
+    for i in range(n):
+        b[i] = ftmp[i] + co.C21 * k1[i] / h
+    lu_solve(lu, piv, b, k2)
+
+    for i in range(n):
+        ytmp[i] = y0[i] + co.A31 * k1[i] + co.A32 * k2[i]
+    rhs(p, pts, modes, ytmp, ftmp)
+    for i in range(n):
+        b[i] = ftmp[i] + (co.C31 * k1[i] + co.C32 * k2[i]) / h
+    lu_solve(lu, piv, b, k3)
+
+    for i in range(n):
+        ytmp[i] = y0[i] + co.A41 * k1[i] + co.A42 * k2[i] + co.A43 * k3[i]
+    rhs(p, pts, modes, ytmp, ftmp)
+    for i in range(n):
+        b[i] = ftmp[i] + (co.C41 * k1[i] + co.C42 * k2[i] + co.C43 * k3[i]) / h
+    lu_solve(lu, piv, b, k4)
+
+    for i in range(n):
+        ytmp[i] = y0[i] + co.A51 * k1[i] + co.A52 * k2[i] + co.A53 * k3[i] + co.A54 * k4[i]
+    rhs(p, pts, modes, ytmp, ftmp)
+    for i in range(n):
+        b[i] = ftmp[i] + (co.C51 * k1[i] + co.C52 * k2[i] + co.C53 * k3[i] + co.C54 * k4[i]) / h
+    lu_solve(lu, piv, b, k5)
+
+    for i in range(n):
+        ytmp[i] += k5[i]
+    rhs(p, pts, modes, ytmp, ftmp)
+    for i in range(n):
+        b[i] = (
+            ftmp[i]
+            + (co.C61 * k1[i] + co.C62 * k2[i] + co.C63 * k3[i] + co.C64 * k4[i] + co.C65 * k5[i])
+            / h
+        )
+    lu_solve(lu, piv, b, k6)
+
+    q1 = wk[W_Q1]
+    q2 = wk[W_Q2]
+    for i in range(n):
+        y1[i] = ytmp[i] + k6[i]
+        q1[i] = co.D21 * k1[i] + co.D22 * k2[i] + co.D23 * k3[i] + co.D24 * k4[i] + co.D25 * k5[i]
+        q2[i] = co.D31 * k1[i] + co.D32 * k2[i] + co.D33 * k3[i] + co.D34 * k4[i] + co.D35 * k5[i]
+        if not math.isfinite(y1[i]):
+            return False
+    return True
+
+
+@nb.njit(cache=True)
+def error_norm(y0, y1, err, rtol, atol):
+    """Scaled RMS norm of the error estimate (Hairer & Wanner IV.8, eq. 4.10 style)."""
+    n = y0.shape[0]
+    acc = 0.0
+    for i in range(n):
+        sk = atol + rtol * max(abs(y0[i]), abs(y1[i]))
+        acc += (err[i] / sk) ** 2
+    return math.sqrt(acc / n)
+
+
+@nb.njit(cache=True)
+def dense_eval(y0, y1, wk, s, out):
+    """Dense output at fraction s in [0, 1] of the last step (order 3)."""
+    q1 = wk[W_Q1]
+    q2 = wk[W_Q2]
+    s1 = 1.0 - s
+    for i in range(y0.shape[0]):
+        out[i] = s1 * y0[i] + s * (y1[i] + s1 * (q1[i] + s * q2[i]))
+
+
+@nb.njit(cache=True)
+def next_step_factor(err, err_old, h, h_old, first):
+    """Step-size factor h_new / h after an accepted step (Gustafsson predictive controller)."""
+    fac = max(co.FAC_MIN, min(co.FAC_MAX, err**co.ERROR_EXPONENT / co.SAFETY))
+    if not first and err_old > 0.0:
+        facpred = (h_old / h) * (err * err / err_old) ** co.ERROR_EXPONENT / co.SAFETY
+        facpred = max(co.FAC_MIN, min(co.FAC_MAX, facpred))
+        fac = max(fac, facpred)
+    return 1.0 / fac
+
+
+@nb.njit(cache=True)
+def reject_factor(err):
+    """Step-size factor after a rejected step."""
+    if not math.isfinite(err):
+        return co.FAC_MIN
+    return 1.0 / max(co.FAC_MIN, min(co.FAC_MAX, err**co.ERROR_EXPONENT / co.SAFETY))

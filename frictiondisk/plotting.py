@@ -1,0 +1,151 @@
+"""Figures from results; nothing here simulates.
+
+`plot_orbit` draws the orbit of the slave like the paper's Figs 4-5: the path of the pin (or
+disk centre) in the fixed frame, sticking phases dark and sliding phases light, with the
+master axis and the spring rest position marked.
+
+This module never selects a matplotlib backend: figures are built with
+`matplotlib.figure.Figure` directly (no pyplot state) unless an existing Axes is passed in.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import uuid
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+
+from frictiondisk.result import SimulationResult
+from frictiondisk.trajectory import scene_headline
+
+STICK_COLOR = "#08306b"  # dark blue
+SLIDE_COLOR = "#9ecae1"  # light blue
+STICK_WIDTH = 2.2
+SLIDE_WIDTH = 1.0
+
+FIGURE_FORMATS = {".png": "png", ".pdf": "pdf", ".svg": "svg"}
+
+
+def plot_orbit(result: SimulationResult, config: Any, ax: Axes | None = None) -> Figure:
+    """Draw the orbit y(x) of the slave position recorded in `result`.
+
+    Segments during which every contact sticks (the slave moves rigidly with the master) are
+    drawn dark and thick, all others light and thin; a segment takes the mode of the sample it
+    starts at. The master axis (origin) is marked with '+', the spring rest position
+    (x_ms, 0) with 'x'. Axes are in metres with equal aspect.
+
+    Parameters
+    ----------
+    result:
+        A run made with recording on (`result.trajectory` is not None).
+    config:
+        The scene configuration of the run (for scene, mu and x_ms).
+    ax:
+        Axes to draw into; a new Figure is made when None.
+
+    Returns
+    -------
+    The Figure holding the plot.
+    """
+    traj = result.trajectory
+    if traj is None:
+        raise ValueError(
+            "the result holds no trajectory: run the simulation with recording on "
+            "(simulate(config, record=True, ...))"
+        )
+    head = scene_headline(config)
+
+    if ax is None:
+        fig = Figure(figsize=(6.4, 6.0), layout="constrained")
+        ax = fig.add_subplot()
+    else:
+        fig = ax.figure
+
+    x = np.asarray(traj.x, dtype=float)
+    y = np.asarray(traj.y, dtype=float)
+    points = np.column_stack([x, y])
+    segments = np.stack([points[:-1], points[1:]], axis=1)  # (n - 1, 2, 2)
+    stick = np.asarray(traj.all_stick, dtype=bool)[:-1]
+
+    ax.add_collection(
+        LineCollection(segments[~stick], colors=SLIDE_COLOR, linewidths=SLIDE_WIDTH, zorder=2)
+    )
+    ax.add_collection(
+        LineCollection(
+            segments[stick],
+            colors=STICK_COLOR,
+            linewidths=STICK_WIDTH,
+            capstyle="round",
+            zorder=3,
+        )
+    )
+    ax.plot([0.0], [0.0], linestyle="none", marker="+", markersize=14, color="black", zorder=4)
+    ax.plot(
+        [head["x_ms"]], [0.0], linestyle="none", marker="x", markersize=9, color="tab:red", zorder=4
+    )
+
+    # Frame the orbit and both markers.
+    xs = np.concatenate([x[np.isfinite(x)], [0.0, head["x_ms"]]])
+    ys = np.concatenate([y[np.isfinite(y)], [0.0]])
+    ax.update_datalim(np.column_stack([[xs.min(), xs.max()], [ys.min(), ys.max()]]))
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.margins(0.05)
+    ax.autoscale_view()
+
+    handles = [
+        Line2D([], [], color=STICK_COLOR, linewidth=STICK_WIDTH, label="sticking"),
+        Line2D([], [], color=SLIDE_COLOR, linewidth=SLIDE_WIDTH, label="sliding"),
+        Line2D(
+            [], [], linestyle="none", marker="+", markersize=10, color="black", label="master axis"
+        ),
+        Line2D(
+            [],
+            [],
+            linestyle="none",
+            marker="x",
+            markersize=8,
+            color="tab:red",
+            label="spring rest position",
+        ),
+    ]
+    ax.legend(handles=handles, loc="best", fontsize="small")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.grid(True, linewidth=0.4, alpha=0.5)
+    ax.set_title(
+        f"{head['scene']}: \u03bc = {head['mu']:g}, x_ms = {head['x_ms']:g} m\n"
+        f"outcome: {result.outcome}"
+    )
+    return fig
+
+
+def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:
+    """Save `fig` to `path`, format chosen by the suffix (.png, .pdf or .svg).
+
+    Missing parent directories are created; the file is written to a temporary name next to
+    `path` and renamed, so a reader never sees a partial image. Returns the path written.
+    """
+    path = Path(path)
+    fmt = FIGURE_FORMATS.get(path.suffix.lower())
+    if fmt is None:
+        raise ValueError(
+            f"cannot tell the figure format from {str(path)!r}: "
+            f"expected a suffix among {', '.join(FIGURE_FORMATS)}"
+        )
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex}.tmp")
+    try:
+        fig.savefig(tmp, format=fmt, dpi=150)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+        raise
+    return path

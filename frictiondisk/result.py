@@ -1,0 +1,79 @@
+"""What one simulation run returns: outcome, measures and (optionally) the trajectory."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+OUTCOMES = ("stick", "stick_slip", "slide", "undetermined")
+
+
+@dataclasses.dataclass(frozen=True)
+class Trajectory:
+    """Recorded samples of one run (SI units).
+
+    t: time [s], shape (n,)
+    x, y: slave (pin or disk centre) position [m], shape (n,)
+    vx, vy: slave velocity [m/s], shape (n,)
+    phi, phidot: disk rotation [rad], [rad/s], shape (n,); None for the pin
+    Zx, Zy: elastic contact force of each contact in the fixed frame [N], shape (n, N)
+    mode: contact mode, 1 = stick, 0 = slide, shape (n, N), int8
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    vx: np.ndarray
+    vy: np.ndarray
+    phi: np.ndarray | None
+    phidot: np.ndarray | None
+    Zx: np.ndarray
+    Zy: np.ndarray
+    mode: np.ndarray
+    truncated: bool = False
+
+    @property
+    def n_contacts(self) -> int:
+        return int(self.mode.shape[1])
+
+    @property
+    def all_stick(self) -> np.ndarray:
+        """True where every contact sticks (the slave moves rigidly with the master)."""
+        return np.all(self.mode == 1, axis=1)
+
+
+@dataclasses.dataclass(frozen=True)
+class SimulationResult:
+    """Outcome and measures of one run (MODEL.md section 6). Lengths in m, times in s."""
+
+    outcome: str  # one of OUTCOMES
+    reason: str  # why this outcome; for `undetermined`, what went wrong
+    R1: float  # first sticking radius |r| [m], NaN if the slave never stuck
+    t_R1: float  # time of first sticking [s], NaN if never
+    size: float  # sticking-circle radius (stick) or sticking-segment radius of the converged cycle [m]
+    a: float  # largest excess |r| - R_stick while sliding on the converged cycle [m]
+    n_transitions: int  # contact mode switches (stick<->slide), all contacts
+    stick_fraction: float  # fraction of the final window with every contact sticking
+    t_end: float  # simulated time reached [s]
+    n_steps: int  # accepted integrator steps
+    n_rejected: int  # rejected integrator steps
+    n_refused: int  # refused slide->stick entries (MODEL.md section 3)
+    cycle_converged: bool  # limit cycle converged (section-point test)
+    wall_s: float  # wall time of the run [s]
+    method: str  # numerics.method used
+    trajectory: Trajectory | None = None
+
+    def summary(self) -> dict[str, Any]:
+        """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
+        out: dict[str, Any] = {}
+        for field in dataclasses.fields(self):
+            if field.name == "trajectory":
+                continue
+            value = getattr(self, field.name)
+            if isinstance(value, float) and not math.isfinite(value):
+                value = None
+            out[field.name] = value
+        return out

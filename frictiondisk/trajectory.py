@@ -1,0 +1,187 @@
+"""Recorded trajectory of one run as an xarray Dataset, and its atomic netCDF file.
+
+`trajectory_dataset` turns the `Trajectory` of a `SimulationResult` into a self-describing
+Dataset (dims `time` and `contact`, SI units and long names on every variable, the full scene
+configuration and the run summary in the attributes). `write_trajectory` writes it as netCDF4,
+atomically: a reader never sees a half-written file.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import uuid
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+import yaml
+
+from frictiondisk import __version__
+from frictiondisk.result import SimulationResult
+
+# name -> (units, long_name) of the per-sample variables (dim `time`).
+_BODY_VARIABLES: dict[str, tuple[str, str]] = {
+    "x": ("m", "slave position x (pin or disk centre), fixed frame"),
+    "y": ("m", "slave position y (pin or disk centre), fixed frame"),
+    "vx": ("m s-1", "slave velocity x, fixed frame"),
+    "vy": ("m s-1", "slave velocity y, fixed frame"),
+    "phi": ("rad", "slave disk rotation angle"),
+    "phidot": ("rad s-1", "slave disk angular velocity"),
+}
+
+# name -> (units, long_name) of the per-contact variables (dims `time`, `contact`).
+_CONTACT_VARIABLES: dict[str, tuple[str, str]] = {
+    "Zx": ("N", "elastic contact force Z = c z, x component, fixed frame"),
+    "Zy": ("N", "elastic contact force Z = c z, y component, fixed frame"),
+}
+
+MODE_SLIDE = 0
+MODE_STICK = 1
+
+
+def scene_headline(config: Any) -> dict[str, Any]:
+    """The scene name, mu and x_ms of a configuration (for titles, summaries and reports)."""
+    try:
+        scene = getattr(config.scene, "value", config.scene)
+        params = config.params
+        mu, x_ms = params.mu, params.x_ms
+    except AttributeError:  # any other layout: read the canonical YAML
+        data = yaml.safe_load(config.to_yaml())
+        scene = data["scene"]
+        mu, x_ms = data["params"]["mu"], data["params"]["x_ms"]
+    return {"scene": str(scene), "mu": float(mu), "x_ms": float(x_ms)}
+
+
+def _attr_value(value: Any) -> Any:
+    """A netCDF-storable attribute value: None -> "none", bool -> int, numpy scalar -> Python."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    if value is None:
+        return "none"
+    if isinstance(value, bool):
+        return int(value)
+    return value
+
+
+def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
+    """Build the Dataset of the trajectory recorded in `result`.
+
+    Parameters
+    ----------
+    result:
+        A run made with recording on (`result.trajectory` is not None).
+    config:
+        The validated scene configuration the run was made from; it must provide
+        `to_yaml()` and `content_hash()`.
+
+    Returns
+    -------
+    xarray.Dataset with coordinates `time` [s] and `contact` (index of the contact point),
+    variables x, y, vx, vy (time), phi, phidot (time; only for scenes with rotation),
+    Zx, Zy (time, contact) and mode (time, contact; int8, 1 = stick, 0 = slide).
+    Attributes: `scene_yaml` (the full configuration), `config_hash`, `frictiondisk_version`
+    and every scalar of `result.summary()` (None stored as "none", booleans as 0/1).
+    """
+    traj = result.trajectory
+    if traj is None:
+        raise ValueError(
+            "the result holds no trajectory: run the simulation with recording on "
+            "(simulate(config, record=True, ...))"
+        )
+
+    t = np.asarray(traj.t, dtype=float)
+    n_time = t.shape[0]
+    mode = np.asarray(traj.mode)
+    if mode.ndim != 2 or mode.shape[0] != n_time:
+        raise ValueError(f"trajectory mode has shape {mode.shape}, expected ({n_time}, N)")
+    n_contact = mode.shape[1]
+
+    data_vars: dict[str, xr.Variable] = {}
+    for name, (units, long_name) in _BODY_VARIABLES.items():
+        values = getattr(traj, name)
+        if values is None:  # phi and phidot exist only for the disk
+            continue
+        data_vars[name] = xr.Variable(
+            ("time",), np.asarray(values, dtype=float), {"units": units, "long_name": long_name}
+        )
+    for name, (units, long_name) in _CONTACT_VARIABLES.items():
+        data_vars[name] = xr.Variable(
+            ("time", "contact"),
+            np.asarray(getattr(traj, name), dtype=float),
+            {"units": units, "long_name": long_name},
+        )
+    data_vars["mode"] = xr.Variable(
+        ("time", "contact"),
+        mode.astype(np.int8),
+        {
+            "units": "1",
+            "long_name": "contact mode",
+            "flag_values": np.array([MODE_SLIDE, MODE_STICK], dtype=np.int8),
+            "flag_meanings": "slide stick",
+        },
+    )
+
+    coords = {
+        "time": ("time", t, {"units": "s", "long_name": "simulated time", "axis": "T"}),
+        "contact": (
+            "contact",
+            np.arange(n_contact, dtype=np.int32),
+            {"units": "1", "long_name": "index of the contact point"},
+        ),
+    }
+
+    attrs: dict[str, Any] = {
+        "title": "frictiondisk trajectory",
+        "frictiondisk_version": __version__,
+        "config_hash": str(config.content_hash()),
+        "scene_yaml": str(config.to_yaml()),
+        "truncated": int(bool(traj.truncated)),
+    }
+    for key, value in result.summary().items():
+        attrs[key] = _attr_value(value)
+
+    return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+
+
+def write_trajectory(path: str | os.PathLike[str], result: SimulationResult, config: Any) -> Path:
+    """Write the trajectory of `result` to `path` as netCDF4, atomically.
+
+    The file is written to a temporary file in the same directory, flushed to disk and then
+    renamed over `path`, so `path` either holds the complete new file or is untouched.
+    Missing parent directories are created. Returns the path written.
+    """
+    ds = trajectory_dataset(result, config)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+
+    encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
+    # A unique name next to the target (same file system, so the rename is atomic); netCDF
+    # creates it with the usual permissions, unlike tempfile.mkstemp's 0600.
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex}.tmp")
+    try:
+        ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4", encoding=encoding)
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+        raise
+    _fsync_directory(path.parent)
+    return path
+
+
+def _fsync_directory(directory: Path) -> None:
+    """Make a rename in `directory` durable (best effort; not every platform allows it)."""
+    try:
+        fd = os.open(directory, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
