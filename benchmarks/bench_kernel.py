@@ -48,9 +48,7 @@ def best_wall(config, repeats):
 def bench_runs():
     print("== one run: numba RODAS4 vs scipy Radau (rtol 1e-6, max_step 0.02 s) ==")
     for name, spec in CASES.items():
-        kernel_cfg = scene_from_dict(
-            {**spec, "numerics": {**spec["numerics"], **KERNEL}}
-        )
+        kernel_cfg = scene_from_dict({**spec, "numerics": {**spec["numerics"], **KERNEL}})
         base_cfg = scene_from_dict({**spec, "numerics": {**spec["numerics"], **BASELINE}})
         simulate(kernel_cfg)  # JIT warm-up (compiles or loads the cache)
         t_kernel, r_kernel = best_wall(kernel_cfg, 20)

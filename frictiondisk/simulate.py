@@ -14,7 +14,14 @@ from .kernel import monitor as mon
 from .result import SimulationResult, Trajectory
 
 METHOD_CODES = {"rodas4": 0, "rodas4-fixed": 1}
-DEFAULT_RECORD_CAPACITY = 400_000
+
+
+def record_capacity(t_span: float, dt_out: float) -> int:
+    """Rows to reserve for a recorded trajectory over t_span [s]: every dt_out sample plus
+    room for the rows written at switches (or 200 000 step ends when dt_out = 0)."""
+    if dt_out <= 0.0:
+        return 200_000
+    return int(min(2_000_000, t_span / dt_out + 50_000))
 
 
 def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
@@ -106,12 +113,11 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     fopt[driver.O_DT] = num.dt
     fopt[driver.O_HMAX] = num.h_max
     fopt[driver.O_HORIZON] = horizon_of(config)
-    fopt[driver.O_WINDOW] = num.window_revs * rev
     fopt[driver.O_CYCLE_TOL] = num.cycle_tol
     fopt[driver.O_HOLD] = rev
     fopt[driver.O_DT_OUT] = dt_out
 
-    cap = DEFAULT_RECORD_CAPACITY if record else 1
+    cap = record_capacity(horizon_of(config) + rev, dt_out) if record else 1
     rec_t = np.empty(cap)
     rec_y = np.empty((cap, y0.shape[0]))
     rec_m = np.empty((cap, pts.shape[0]), dtype=np.int8)
@@ -138,7 +144,16 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
         "n_refused": int(out_i[driver.C_REFUSED]),
     }
     return build_result(
-        config, int(status), float(t_end), y0, mf, mi, ring_all, ring_any, counters, wall,
+        config,
+        int(status),
+        float(t_end),
+        y0,
+        mf,
+        mi,
+        ring_all,
+        ring_any,
+        counters,
+        wall,
         trajectory,
     )
 

@@ -134,7 +134,11 @@ def test_fixed_step_locates_the_first_stick_strictly_inside_a_step():
     dt = 0.01
     res = simulate(
         scene_from_dict(
-            {"scene": "pin", "params": {"mu": 0.13}, "numerics": {"method": "rodas4-fixed", "dt": dt}}
+            {
+                "scene": "pin",
+                "params": {"mu": 0.13},
+                "numerics": {"method": "rodas4-fixed", "dt": dt},
+            }
         )
     )
     assert res.outcome == ref.outcome == "stick"
@@ -200,7 +204,11 @@ def test_adaptive_error_falls_with_the_tolerance():
     errs = []
     for rtol in (1e-4, 1e-6, 1e-8):
         cfg = scene_from_dict(
-            {"scene": "pin", "params": {"mu": 0.13}, "numerics": {"rtol": rtol, "atol": rtol * 1e-3}}
+            {
+                "scene": "pin",
+                "params": {"mu": 0.13},
+                "numerics": {"rtol": rtol, "atol": rtol * 1e-3},
+            }
         )
         errs.append(abs(simulate(cfg).R1 - ref.R1))
     assert errs[0] > errs[1] > errs[2]

@@ -6,14 +6,22 @@ arrays, from which frictiondisk.simulate builds the outcome.
 
 import math
 
-import numba as nb
 import numpy as np
 
 from . import monitor as mon
 from . import status as st
 from .events import brent_root, find_graze
-from .model import STICK, SLIDE, n_coords, rhs, switch_rate, switch_value
-from .rodas import N_WORK_ROWS, W_K6, dense_eval, error_norm, next_step_factor, reject_factor, rodas_step
+from .jit import kernel_jit
+from .model import SLIDE, STICK, n_coords, rhs, switch_rate, switch_value
+from .rodas import (
+    N_WORK_ROWS,
+    W_K6,
+    dense_eval,
+    error_norm,
+    next_step_factor,
+    reject_factor,
+    rodas_step,
+)
 
 # Integer options (iopt)
 O_METHOD = 0  # 0 = adaptive RODAS4, 1 = fixed-step RODAS4
@@ -31,11 +39,10 @@ O_ATOL = 1
 O_DT = 2  # fixed step [s]
 O_HMAX = 3  # largest step [s]
 O_HORIZON = 4  # t_decide or t_max [s]
-O_WINDOW = 5  # final window [s]
-O_CYCLE_TOL = 6  # [m]
-O_HOLD = 7  # uninterrupted sticking that decides `stick` [s]
-O_DT_OUT = 8  # recording interval [s]; 0 = every step
-N_FOPT = 9
+O_CYCLE_TOL = 5  # [m]
+O_HOLD = 6  # uninterrupted sticking that decides `stick` [s]
+O_DT_OUT = 7  # recording interval [s]; 0 = every step
+N_FOPT = 8
 
 # Driver counters (out_i)
 C_STEPS = 0
@@ -52,7 +59,7 @@ SIMULTANEOUS = 1e-9  # [s] crossings this close are switched together
 T_TOL_ABS = 1e-11  # [s] time tolerance of the event root finder
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _record(rec_t, rec_y, rec_m, out_i, t, y, modes):
     k = out_i[C_RECORDED]
     if k >= rec_t.shape[0]:
@@ -64,7 +71,7 @@ def _record(rec_t, rec_y, rec_m, out_i, t, y, modes):
     out_i[C_RECORDED] = k + 1
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _record_dense(rec_t, rec_y, rec_m, out_i, t0, h, s_end, y0, y1, wk, modes, dt_out, ybuf):
     """Record dense-output samples at multiples of dt_out in (t0, t0 + s_end h]."""
     t_end = t0 + s_end * h
@@ -76,7 +83,7 @@ def _record_dense(rec_t, rec_y, rec_m, out_i, t0, h, s_end, y0, y1, wk, modes, d
         k += 1
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _check_entries(p, pts, modes, y, f, entered, pending, out_i):
     """Refused-entry check after switches (MODEL.md section 3).
 
@@ -102,7 +109,7 @@ def _check_entries(p, pts, modes, y, f, entered, pending, out_i):
         rhs(p, pts, modes, y, f)
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _stick_rate(p, pts, modes, y, i, ftmp):
     """ds_i/dt if contact i were in stick (others unchanged)."""
     old = modes[i]
@@ -113,7 +120,7 @@ def _stick_rate(p, pts, modes, y, i, ftmp):
     return rate
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i):
     """Integrate one scene from t = 0 until a stopping rule fires.
 
@@ -151,7 +158,9 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
 
     t = 0.0
     rhs(p, pts, modes, y, f)
-    mon.monitor_begin(mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT])
+    mon.monitor_begin(
+        mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT]
+    )
     if record:
         _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
 
@@ -242,7 +251,9 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
         if s_event <= 1.0:
             t_ev = t + s_event * h
             if record and dt_out > 0.0:
-                _record_dense(rec_t, rec_y, rec_m, out_i, t, h, s_event, y, y1, wk, modes, dt_out, ybuf)
+                _record_dense(
+                    rec_t, rec_y, rec_m, out_i, t, h, s_event, y, y1, wk, modes, dt_out, ybuf
+                )
             dense_eval(y, y1, wk, s_event, ybuf)
             mon.monitor_step(mf, mi, y, ybuf, s_event * h)
             if record:

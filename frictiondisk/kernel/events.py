@@ -15,8 +15,7 @@ The root is then refined by Brent's method on w(y(t)) to a time tolerance.
 
 import math
 
-import numba as nb
-
+from .jit import kernel_jit
 from .model import switch_value
 from .rodas import dense_eval
 
@@ -25,14 +24,14 @@ GRAZE_SCAN = 24  # golden-section iterations when a graze is suspected
 BRENT_MAXITER = 100
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def directed_value(p, pts, y0, y1, wk, s, i, sigma, ybuf):
     """w_i at fraction s of the last step, from the dense output."""
     dense_eval(y0, y1, wk, s, ybuf)
     return sigma * switch_value(p, pts, ybuf, i)
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def hermite_max(w0, w1, d0, d1):
     """Largest value and its position of the cubic Hermite on [0, 1] with end values w0, w1
     and end slopes d0, d1 (slopes per unit of s). Only interior maxima are returned;
@@ -73,7 +72,7 @@ def hermite_max(w0, w1, d0, d1):
     return best, best_s
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def find_graze(p, pts, y0, y1, wk, i, sigma, w0, w1, d0, d1, ybuf):
     """Fraction s in (0, 1] where w >= 0 inside a step whose ends are both negative,
     or -1 if the step holds no crossing. d0, d1 are dw/ds at the ends."""
@@ -117,7 +116,7 @@ def find_graze(p, pts, y0, y1, wk, i, sigma, w0, w1, d0, d1, ybuf):
     return -1.0
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def brent_root(p, pts, y0, y1, wk, i, sigma, a, fa, b, fb, stol, ybuf):
     """Brent's method for w(s) = 0 on [a, b] with fa < 0 <= fb; returns the upper end of the
     final bracket (w >= 0 there), so the event is never placed before the crossing."""

@@ -1,10 +1,11 @@
 """Dense LU with partial pivoting for the small systems of the Rosenbrock stages (numba)."""
 
-import numba as nb
 import numpy as np
 
+from .jit import kernel_jit
 
-@nb.njit(cache=True)
+
+@kernel_jit
 def lu_factor(a, piv):
     """Factor `a` in place (L unit lower, U upper); piv receives row swaps. Returns False if singular."""
     n = a.shape[0]
@@ -33,7 +34,7 @@ def lu_factor(a, piv):
     return True
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def lu_solve(lu, piv, b, x):
     """Solve lu x = b (b is not modified)."""
     n = lu.shape[0]

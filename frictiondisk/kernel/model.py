@@ -18,8 +18,9 @@ crosses 0 upwards, slide -> stick when it crosses 0 downwards (the plastic rate
 
 import math
 
-import numba as nb
 import numpy as np
+
+from .jit import kernel_jit
 
 # Indices into the parameter vector p (built by frictiondisk.simulate.pack_parameters).
 P_MU = 0  # static friction coefficient mu
@@ -44,13 +45,13 @@ STICK = 1
 SLIDE = 0
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def n_coords(p):
     """Number of generalized coordinates: 2 (pin) or 3 (disk)."""
     return 3 if p[P_ROT] > 0.5 else 2
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def friction_limit(p, speed):
     """Stribeck limit F_St = F_n,i mu(|v|) [N] and its derivative with respect to |v|."""
     fn_mu = p[P_FNI] * p[P_MU]
@@ -68,7 +69,7 @@ def friction_limit(p, speed):
     return f, df
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def contact_arm(p, pts, y, i):
     """Arm a_i = R(phi) p_i from the slave centre to contact i [m]."""
     if p[P_ROT] < 0.5:
@@ -78,7 +79,7 @@ def contact_arm(p, pts, y, i):
     return c * pts[i, 0] - s * pts[i, 1], s * pts[i, 0] + c * pts[i, 1]
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def contact_state(p, pts, y, i):
     """Arm (ax, ay), sliding velocity v_i, vector k_i and limit F_St,i of contact i.
 
@@ -103,14 +104,14 @@ def contact_state(p, pts, y, i):
     return ax, ay, vx, vy, kx, ky, fst, dfst
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def switch_value(p, pts, y, i):
     """Switching function s_i = |k_i| - F_St,i - beta_i eps [N]."""
     _, _, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
     return math.sqrt(kx * kx + ky * ky) - fst - p[P_BETAI] * p[P_EPS]
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def switch_rate(p, pts, y, f, i):
     """Time derivative of s_i along the motion with state rate f = dy/dt [N/s]."""
     nq = n_coords(p)
@@ -144,7 +145,7 @@ def switch_rate(p, pts, y, f, i):
     return rate
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def rhs(p, pts, modes, y, f):
     """dy/dt of the scene in the given contact modes (paper eqs. 3-10, MODEL.md section 4)."""
     nq = n_coords(p)
@@ -182,7 +183,7 @@ def rhs(p, pts, modes, y, f):
         f[nq + 2] = (torque - p[P_BETAB] * y[nq + 2]) / p[P_JS]
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def jacobian(p, pts, modes, y, jac):
     """Analytic Jacobian d(rhs)/dy in the given contact modes."""
     nq = n_coords(p)

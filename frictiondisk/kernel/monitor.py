@@ -12,10 +12,10 @@ functions serve the numba driver and the scipy cross-check.
 
 import math
 
-import numba as nb
 import numpy as np
 
 from .events import hermite_max
+from .jit import kernel_jit
 
 # mf indices
 F_T_ALL = 0  # start of the current whole-body sticking phase [s] (NaN if not all stick)
@@ -47,19 +47,19 @@ N_MI = 9
 RING = 16384
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _radius(y):
     return math.sqrt(y[0] * y[0] + y[1] * y[1])
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _push(ring, count, t0, t1):
     k = count % ring.shape[0]
     ring[k, 0] = t0
     ring[k, 1] = t1
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def monitor_begin(mf, mi, ring_all, ring_any, t, y, modes, nq, cycle_tol, cycle_count):
     """Initialise the monitor at the start of a run."""
     mf[:] = np.nan
@@ -71,7 +71,7 @@ def monitor_begin(mf, mi, ring_all, ring_any, t, y, modes, nq, cycle_tol, cycle_
     _update_phases(mf, mi, ring_all, ring_any, t, y, modes)
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _update_phases(mf, mi, ring_all, ring_any, t, y, modes):
     n_stick = 0
     for i in range(modes.shape[0]):
@@ -96,7 +96,7 @@ def _update_phases(mf, mi, ring_all, ring_any, t, y, modes):
     mi[I_ALL] = 1 if all_now else 0
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _enter_body_stick(mf, mi, t, y):
     """A slide->stick section point of the whole body."""
     radius = _radius(y)
@@ -130,7 +130,7 @@ def _enter_body_stick(mf, mi, t, y):
     mi[I_NSECT] += 1
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def monitor_step(mf, mi, y0, y1, h):
     """Track the largest radius while sliding, using the cubic Hermite of |r| over the step."""
     if mi[I_ALL] == 1:
@@ -149,14 +149,14 @@ def monitor_step(mf, mi, y0, y1, h):
         mf[F_RMAX] = best
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def monitor_switch(mf, mi, ring_all, ring_any, t, y, modes, n_switched):
     """Register contact mode switches at time t (modes are the new modes)."""
     mi[I_NTRANS] += n_switched
     _update_phases(mf, mi, ring_all, ring_any, t, y, modes)
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def stuck_for(mf, mi, t):
     """How long every contact has stuck without interruption at time t [s] (0 if not)."""
     if mi[I_ALL] == 0:
@@ -164,12 +164,12 @@ def stuck_for(mf, mi, t):
     return t - mf[F_T_ALL]
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def cycle_converged(mi):
     return mi[I_NAGREE] >= mi[I_CYCLE_COUNT]
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def _overlap(ring, count, open_start, t_lo, t_hi):
     total = 0.0
     n = min(count, ring.shape[0])
@@ -185,7 +185,7 @@ def _overlap(ring, count, open_start, t_lo, t_hi):
     return total
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def window_fractions(mf, mi, ring_all, ring_any, t_end, window):
     """Fractions of [t_end - window, t_end] with every contact / some contact sticking."""
     t_lo = max(0.0, t_end - window)

@@ -6,9 +6,8 @@ modes. The driver (kernel/driver.py) owns step-size control, events and switchin
 
 import math
 
-import numba as nb
-
 from . import coefficients as co
+from .jit import kernel_jit
 from .linalg import lu_factor, lu_solve
 from .model import jacobian, rhs
 
@@ -19,7 +18,7 @@ W_Q1, W_Q2 = 9, 10  # dense-output coefficients of the last step
 N_WORK_ROWS = 11
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     """Advance from y0 (with f0 = rhs(y0)) by h. Writes y1 and the dense output rows.
 
@@ -96,7 +95,7 @@ def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     return True
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def error_norm(y0, y1, err, rtol, atol):
     """Scaled RMS norm of the error estimate (Hairer & Wanner IV.8, eq. 4.10 style)."""
     n = y0.shape[0]
@@ -107,7 +106,7 @@ def error_norm(y0, y1, err, rtol, atol):
     return math.sqrt(acc / n)
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def dense_eval(y0, y1, wk, s, out):
     """Dense output at fraction s in [0, 1] of the last step (order 3)."""
     q1 = wk[W_Q1]
@@ -117,7 +116,7 @@ def dense_eval(y0, y1, wk, s, out):
         out[i] = s1 * y0[i] + s * (y1[i] + s1 * (q1[i] + s * q2[i]))
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def next_step_factor(err, err_old, h, h_old, first):
     """Step-size factor h_new / h after an accepted step (Gustafsson predictive controller)."""
     fac = max(co.FAC_MIN, min(co.FAC_MAX, err**co.ERROR_EXPONENT / co.SAFETY))
@@ -128,7 +127,7 @@ def next_step_factor(err, err_old, h, h_old, first):
     return 1.0 / fac
 
 
-@nb.njit(cache=True)
+@kernel_jit
 def reject_factor(err):
     """Step-size factor after a rejected step."""
     if not math.isfinite(err):
