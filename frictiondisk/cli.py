@@ -149,6 +149,12 @@ def simulate(
         result = run_simulation(config, record=record, dt_out=dt_out)
         if record and result.trajectory is None:
             raise click.ClickException("the simulation returned no trajectory to write or plot")
+        if record and result.trajectory.truncated:
+            click.echo(
+                f"warning: the trajectory buffer filled up; samples after "
+                f"t = {result.trajectory.t[-1]:.6g} s were not recorded (raise --dt-out)",
+                err=True,
+            )
 
         outputs: dict[str, str | None] = {"trajectory": None, "plot": None}
         if output is not None:

@@ -167,16 +167,20 @@ def test_graze_inside_a_step_is_found():
     w1 = sigma * model.switch_value(p, pts, y1, 0)
     assert w0 < 0 and w1 < 0
     # slopes of w with respect to s at the ends, by differences on the dense output
-    ybuf = np.empty(n)
+    ybuf, fbuf = np.empty(n), np.empty(n)
+    modes = np.full(1, STICK, dtype=np.int8)
+    kind = events.KIND_SWITCH
 
     def w_at(s):
-        return events.directed_value(p, pts, y0, y1, wk, s, 0, sigma, ybuf)
+        return events.directed_value(p, pts, modes, y0, y1, wk, s, 0, sigma, kind, ybuf, fbuf)
 
     d0 = (w_at(1e-7) - w_at(0.0)) / 1e-7
     d1 = (w_at(1.0) - w_at(1 - 1e-7)) / 1e-7
-    s_hi = events.find_graze(p, pts, y0, y1, wk, 0, sigma, w0, w1, d0, d1, ybuf)
+    s_hi = events.find_graze(p, pts, modes, y0, y1, wk, 0, sigma, w0, w1, d0, d1, ybuf, fbuf)
     assert 0.0 < s_hi < 1.0 and w_at(s_hi) >= 0.0
-    root = events.brent_root(p, pts, y0, y1, wk, 0, sigma, 0.0, w0, s_hi, w_at(s_hi), 1e-13, ybuf)
+    root = events.brent_root(
+        p, pts, modes, y0, y1, wk, 0, sigma, kind, 0.0, w0, s_hi, w_at(s_hi), 1e-13, ybuf, fbuf
+    )
     assert 0.0 < root < s_hi
     assert w_at(root) >= 0.0 and w_at(root - 1e-9) < 0.0
 

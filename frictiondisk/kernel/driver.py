@@ -10,9 +10,9 @@ import numpy as np
 
 from . import monitor as mon
 from . import status as st
-from .events import brent_root, find_graze
+from .events import KIND_REENTRY, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
-from .model import SLIDE, STICK, n_coords, rhs, switch_rate, switch_value
+from .model import SLIDE, STICK, n_coords, rhs, stick_rate, switch_rate, switch_value
 from .rodas import (
     N_WORK_ROWS,
     W_K6,
@@ -85,15 +85,15 @@ def _record_dense(rec_t, rec_y, rec_m, out_i, t0, h, s_end, y0, y1, wk, modes, d
 
 @kernel_jit
 def _check_entries(p, pts, modes, y, f, entered, pending, out_i):
-    """Refused-entry check after switches (MODEL.md section 3).
+    """Refused-entry check after switches (MODEL.md section 3). Returns the number refused.
 
     A contact entering stick is refused (stays in slide, pending) if, with stick dynamics,
     s = |k| - F_St would increase. A contact entering slide whose s would decrease again
-    in slide is marked pending too: it re-enters stick as soon as that is consistent.
-    Leaves f = rhs(y) in the final modes.
+    in slide is marked pending too: it re-enters stick once the stick rate falls through 0
+    (a located event of kind KIND_REENTRY). Leaves f = rhs(y) in the final modes.
     """
     rhs(p, pts, modes, y, f)
-    refused = False
+    n_refused = 0
     for i in range(modes.shape[0]):
         if entered[i] == 0:
             continue
@@ -101,23 +101,14 @@ def _check_entries(p, pts, modes, y, f, entered, pending, out_i):
         if modes[i] == STICK and rate > 0.0:
             modes[i] = SLIDE
             pending[i] = 1
-            out_i[C_REFUSED] += 1
-            refused = True
+            entered[i] = 0
+            n_refused += 1
         elif modes[i] == SLIDE and rate < 0.0:
             pending[i] = 1
-    if refused:
+    if n_refused > 0:
+        out_i[C_REFUSED] += n_refused
         rhs(p, pts, modes, y, f)
-
-
-@kernel_jit
-def _stick_rate(p, pts, modes, y, i, ftmp):
-    """ds_i/dt if contact i were in stick (others unchanged)."""
-    old = modes[i]
-    modes[i] = STICK
-    rhs(p, pts, modes, y, ftmp)
-    rate = switch_rate(p, pts, y, ftmp, i)
-    modes[i] = old
-    return rate
+    return n_refused
 
 
 @kernel_jit
@@ -154,6 +145,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
     pending = np.zeros(ncon, dtype=np.int8)
     entered = np.zeros(ncon, dtype=np.int8)
     root_s = np.empty(ncon)
+    root_kind = np.zeros(ncon, dtype=np.int8)
     out_i[:] = 0
 
     t = 0.0
@@ -175,16 +167,17 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
 
     while True:
         # ---- stopping rules --------------------------------------------------------------
-        if stop_on_stick and mon.stuck_for(mf, mi, t) >= hold:
+        t_eps = 1e-12 * max(1.0, abs(t))
+        if stop_on_stick and mon.stuck_for(mf, mi, t) >= hold - t_eps:
             return st.STICK_HELD, t
         if converge and mon.cycle_converged(mi):
             return st.CYCLE_CONVERGED, t
-        if t >= t_stop:
+        if t >= t_stop - t_eps:
             # Never stop inside a sticking phase that may still decide `stick`.
             if stop_on_stick and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
                 out_i[C_EXTENDED] = 1
                 t_stop = mf[mon.F_T_ALL] + hold
-                if t < t_stop:
+                if t < t_stop - t_eps:
                     continue
             return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
         if out_i[C_EXTENDED] == 1 and mi[mon.I_ALL] == 0:
@@ -195,7 +188,10 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
             return st.MAX_EVENTS, t
 
         # ---- one step -----------------------------------------------------------------------
-        h = min(h, h_max, t_stop - t)
+        t_target = t_stop
+        if stop_on_stick and mi[mon.I_ALL] == 1:
+            t_target = min(t_target, mf[mon.F_T_ALL] + hold)  # end exactly at the decision
+        h = min(h, h_max, t_target - t)
         if h <= 1e-14 * max(1.0, t):
             return st.STEP_TOO_SMALL, t
         ok = rodas_step(p, pts, modes, y, f, h, jac, lu, piv, wk, y1)
@@ -219,11 +215,15 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
         s_event = 2.0
         for i in range(ncon):
             root_s[i] = 2.0
-            if pending[i] == 1:
-                continue
             sigma = 1.0 if modes[i] == STICK else -1.0
-            w0 = sigma * switch_value(p, pts, y, i)
-            w1 = sigma * switch_value(p, pts, y1, i)
+            if pending[i] == 1:
+                kind = KIND_REENTRY
+                w0 = -stick_rate(p, pts, modes, y, i, ftmp)
+                w1 = -stick_rate(p, pts, modes, y1, i, ftmp)
+            else:
+                kind = KIND_SWITCH
+                w0 = sigma * switch_value(p, pts, y, i)
+                w1 = sigma * switch_value(p, pts, y1, i)
             if w0 >= 0.0:
                 # just switched (w = 0 to round-off): count only a fresh crossing after a dip
                 w0 = -1e-300
@@ -232,19 +232,22 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
             if w1 >= 0.0:
                 s_hi = 1.0
                 w_hi = w1
-            else:
+            elif kind == KIND_SWITCH:
                 d0 = sigma * switch_rate(p, pts, y, f, i) * h
                 d1 = sigma * switch_rate(p, pts, y1, f1, i) * h
-                sg = find_graze(p, pts, y, y1, wk, i, sigma, w0, w1, d0, d1, ybuf)
+                sg = find_graze(p, pts, modes, y, y1, wk, i, sigma, w0, w1, d0, d1, ybuf, ftmp)
                 if sg > 0.0:
                     s_hi = sg
                     dense_eval(y, y1, wk, sg, ybuf)
                     w_hi = sigma * switch_value(p, pts, ybuf, i)
             if s_hi > 0.0:
-                sr = brent_root(p, pts, y, y1, wk, i, sigma, 0.0, w0, s_hi, w_hi, stol, ybuf)
+                sr = brent_root(
+                    p, pts, modes, y, y1, wk, i, sigma, kind, 0.0, w0, s_hi, w_hi, stol, ybuf, ftmp
+                )
                 if fresh[i] == 1 and sr <= stol:
                     continue  # the switch we just made, seen again through round-off
                 root_s[i] = sr
+                root_kind[i] = kind
                 if sr < s_event:
                     s_event = sr
 
@@ -260,19 +263,24 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
                 _record(rec_t, rec_y, rec_m, out_i, t_ev, ybuf, modes)
             y[:] = ybuf
             window = max(SIMULTANEOUS / h, stol)
-            n_sw = 0
             for i in range(ncon):
                 entered[i] = 0
                 fresh[i] = 0
-                if root_s[i] <= s_event + window:
+                if root_s[i] > s_event + window:
+                    continue
+                if root_kind[i] == KIND_REENTRY:
+                    pending[i] = 0
+                    if switch_value(p, pts, y, i) > 0.0:
+                        continue  # above the limit by now: an ordinary sliding contact
+                    modes[i] = STICK
+                else:
                     modes[i] = SLIDE if modes[i] == STICK else STICK
-                    entered[i] = 1
-                    fresh[i] = 1
-                    n_sw += 1
+                entered[i] = 1
+                fresh[i] = 1
             _check_entries(p, pts, modes, y, f, entered, pending, out_i)
+            n_sw = 0
             for i in range(ncon):
-                if entered[i] == 1 and pending[i] == 1 and modes[i] == SLIDE:
-                    fresh[i] = 0
+                n_sw += entered[i]
             mon.monitor_switch(mf, mi, ring_all, ring_any, t_ev, y, modes, n_sw)
             out_i[C_EVENTS] += n_sw
             if t_ev - t_last_event < SAME_TIME:
@@ -302,25 +310,10 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
         if record and dt_out <= 0.0:
             _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
 
-        # Pending contacts (slide with plastic rate below eps): re-checked at step ends.
-        n_sw = 0
+        # A pending contact whose s has risen above 0 is an ordinary sliding contact again.
         for i in range(ncon):
-            if pending[i] == 0:
-                continue
-            if switch_value(p, pts, y, i) > 0.0:
+            if pending[i] == 1 and switch_value(p, pts, y, i) > 0.0:
                 pending[i] = 0
-            elif _stick_rate(p, pts, modes, y, i, ftmp) <= 0.0:
-                modes[i] = STICK
-                pending[i] = 0
-                fresh[i] = 1
-                n_sw += 1
-        if n_sw > 0:
-            rhs(p, pts, modes, y, f)
-            mon.monitor_switch(mf, mi, ring_all, ring_any, t, y, modes, n_sw)
-            out_i[C_EVENTS] += n_sw
-            first = True
-            if record:
-                _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
 
         if fixed:
             h = fopt[O_DT]

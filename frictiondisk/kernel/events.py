@@ -11,23 +11,31 @@ driver knows w and dw/dt at both ends. Two cases are found:
   stick->slide crossing near mu* can last well under a step and shows up only here.
 
 The root is then refined by Brent's method on w(y(t)) to a time tolerance.
+
+Event functions come in two kinds: KIND_SWITCH, w = sigma s_i; and KIND_REENTRY for a
+pending contact (slide with plastic rate below eps after a refused entry), w = -ds_i/dt
+under stick dynamics: the contact may stick again once that rate falls through 0.
 """
 
 import math
 
 from .jit import kernel_jit
-from .model import switch_value
+from .model import stick_rate, switch_value
 from .rodas import dense_eval
 
 GOLDEN = 0.3819660112501051  # (3 - sqrt(5)) / 2
 GRAZE_SCAN = 24  # golden-section iterations when a graze is suspected
 BRENT_MAXITER = 100
+KIND_SWITCH = 0
+KIND_REENTRY = 1
 
 
 @kernel_jit
-def directed_value(p, pts, y0, y1, wk, s, i, sigma, ybuf):
-    """w_i at fraction s of the last step, from the dense output."""
+def directed_value(p, pts, modes, y0, y1, wk, s, i, sigma, kind, ybuf, fbuf):
+    """Event function w_i of the given kind at fraction s of the last step (dense output)."""
     dense_eval(y0, y1, wk, s, ybuf)
+    if kind == KIND_REENTRY:
+        return -stick_rate(p, pts, modes, ybuf, i, fbuf)
     return sigma * switch_value(p, pts, ybuf, i)
 
 
@@ -73,7 +81,7 @@ def hermite_max(w0, w1, d0, d1):
 
 
 @kernel_jit
-def find_graze(p, pts, y0, y1, wk, i, sigma, w0, w1, d0, d1, ybuf):
+def find_graze(p, pts, modes, y0, y1, wk, i, sigma, w0, w1, d0, d1, ybuf, fbuf):
     """Fraction s in (0, 1] where w >= 0 inside a step whose ends are both negative,
     or -1 if the step holds no crossing. d0, d1 are dw/ds at the ends."""
     hmax, hs = hermite_max(w0, w1, d0, d1)
@@ -87,9 +95,9 @@ def find_graze(p, pts, y0, y1, wk, i, sigma, w0, w1, d0, d1, ybuf):
     hi = 1.0
     x1 = lo + GOLDEN * (hi - lo)
     x2 = hi - GOLDEN * (hi - lo)
-    f1 = directed_value(p, pts, y0, y1, wk, x1, i, sigma, ybuf)
-    f2 = directed_value(p, pts, y0, y1, wk, x2, i, sigma, ybuf)
-    fh = directed_value(p, pts, y0, y1, wk, hs, i, sigma, ybuf)
+    f1 = directed_value(p, pts, modes, y0, y1, wk, x1, i, sigma, KIND_SWITCH, ybuf, fbuf)
+    f2 = directed_value(p, pts, modes, y0, y1, wk, x2, i, sigma, KIND_SWITCH, ybuf, fbuf)
+    fh = directed_value(p, pts, modes, y0, y1, wk, hs, i, sigma, KIND_SWITCH, ybuf, fbuf)
     if fh >= 0.0:
         return hs
     for _ in range(GRAZE_SCAN):
@@ -102,13 +110,13 @@ def find_graze(p, pts, y0, y1, wk, i, sigma, w0, w1, d0, d1, ybuf):
             x2 = x1
             f2 = f1
             x1 = lo + GOLDEN * (hi - lo)
-            f1 = directed_value(p, pts, y0, y1, wk, x1, i, sigma, ybuf)
+            f1 = directed_value(p, pts, modes, y0, y1, wk, x1, i, sigma, KIND_SWITCH, ybuf, fbuf)
         else:
             lo = x1
             x1 = x2
             f1 = f2
             x2 = hi - GOLDEN * (hi - lo)
-            f2 = directed_value(p, pts, y0, y1, wk, x2, i, sigma, ybuf)
+            f2 = directed_value(p, pts, modes, y0, y1, wk, x2, i, sigma, KIND_SWITCH, ybuf, fbuf)
     if f1 >= 0.0:
         return x1
     if f2 >= 0.0:
@@ -117,7 +125,7 @@ def find_graze(p, pts, y0, y1, wk, i, sigma, w0, w1, d0, d1, ybuf):
 
 
 @kernel_jit
-def brent_root(p, pts, y0, y1, wk, i, sigma, a, fa, b, fb, stol, ybuf):
+def brent_root(p, pts, modes, y0, y1, wk, i, sigma, kind, a, fa, b, fb, stol, ybuf, fbuf):
     """Brent's method for w(s) = 0 on [a, b] with fa < 0 <= fb; returns the upper end of the
     final bracket (w >= 0 there), so the event is never placed before the crossing."""
     c = a
@@ -169,7 +177,7 @@ def brent_root(p, pts, y0, y1, wk, i, sigma, a, fa, b, fb, stol, ybuf):
             b += d
         else:
             b += math.copysign(tol1, xm)
-        fb = directed_value(p, pts, y0, y1, wk, b, i, sigma, ybuf)
+        fb = directed_value(p, pts, modes, y0, y1, wk, b, i, sigma, kind, ybuf, fbuf)
     # b and c bracket the root; return the end on the crossed side
     if fb >= 0.0:
         return b

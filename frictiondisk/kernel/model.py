@@ -146,6 +146,19 @@ def switch_rate(p, pts, y, f, i):
 
 
 @kernel_jit
+def stick_rate(p, pts, modes, y, i, fbuf):
+    """ds_i/dt if contact i were in stick, the other contacts unchanged [N/s].
+
+    Used for the refused-entry check and for the re-entry of pending contacts; fbuf is
+    scratch space for the state rate."""
+    old = modes[i]
+    modes[i] = STICK
+    rhs(p, pts, modes, y, fbuf)
+    modes[i] = old
+    return switch_rate(p, pts, y, fbuf, i)
+
+
+@kernel_jit
 def rhs(p, pts, modes, y, f):
     """dy/dt of the scene in the given contact modes (paper eqs. 3-10, MODEL.md section 4)."""
     nq = n_coords(p)
