@@ -297,19 +297,7 @@ class _RadauRun:
         t = np.asarray(self.rec_t)
         y = np.vstack(self.rec_y) if self.rec_y else np.empty((0, self.model.n_states))
         m = np.vstack(self.rec_m) if self.rec_m else np.empty((0, self.model.n_contacts), np.int8)
-        return Trajectory(
-            t=t,
-            x=y[:, 0].copy(),
-            y=y[:, 1].copy(),
-            vx=y[:, nq].copy(),
-            vy=y[:, nq + 1].copy(),
-            phi=y[:, 2].copy() if nq == 3 else None,
-            phidot=y[:, nq + 2].copy() if nq == 3 else None,
-            Zx=y[:, 2 * nq :: 2].copy(),
-            Zy=y[:, 2 * nq + 1 :: 2].copy(),
-            mode=m.astype(np.int8),
-            truncated=False,
-        )
+        return Trajectory.from_states(t, y, m, nq)
 
     # --- one segment -----------------------------------------------------------------------
 

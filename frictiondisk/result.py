@@ -35,6 +35,25 @@ class Trajectory:
     mode: np.ndarray
     truncated: bool = False
 
+    @classmethod
+    def from_states(
+        cls, t: np.ndarray, y: np.ndarray, mode: np.ndarray, nq: int, truncated: bool = False
+    ) -> Trajectory:
+        """Split rows of the kernel state layout (kernel/model.py; nq = 2 pin, 3 disk)."""
+        return cls(
+            t=np.array(t, dtype=float),
+            x=y[:, 0].copy(),
+            y=y[:, 1].copy(),
+            vx=y[:, nq].copy(),
+            vy=y[:, nq + 1].copy(),
+            phi=y[:, 2].copy() if nq == 3 else None,
+            phidot=y[:, nq + 2].copy() if nq == 3 else None,
+            Zx=y[:, 2 * nq :: 2].copy(),
+            Zy=y[:, 2 * nq + 1 :: 2].copy(),
+            mode=np.array(mode, dtype=np.int8),
+            truncated=truncated,
+        )
+
     @property
     def n_contacts(self) -> int:
         return int(self.mode.shape[1])

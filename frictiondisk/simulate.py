@@ -137,7 +137,8 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     if record:
         k = int(out_i[driver.C_RECORDED])
         truncated = bool(out_i[driver.C_TRUNCATED])
-        trajectory = _trajectory(config, rec_t[:k], rec_y[:k], rec_m[:k], truncated)
+        nq = 3 if config.scene == "disk" else 2
+        trajectory = Trajectory.from_states(rec_t[:k], rec_y[:k], rec_m[:k], nq, truncated)
     counters = {
         "n_steps": int(out_i[driver.C_STEPS]),
         "n_rejected": int(out_i[driver.C_REJECTED]),
@@ -204,22 +205,4 @@ def build_result(
         wall_s=wall,
         method=num.method,
         trajectory=trajectory,
-    )
-
-
-def _trajectory(config, t, y, m, truncated) -> Trajectory:
-    nq = 3 if config.scene == "disk" else 2
-    z = y[:, 2 * nq :]
-    return Trajectory(
-        t=t.copy(),
-        x=y[:, 0].copy(),
-        y=y[:, 1].copy(),
-        vx=y[:, nq].copy(),
-        vy=y[:, nq + 1].copy(),
-        phi=y[:, 2].copy() if nq == 3 else None,
-        phidot=y[:, nq + 2].copy() if nq == 3 else None,
-        Zx=z[:, 0::2].copy(),
-        Zy=z[:, 1::2].copy(),
-        mode=m.copy(),
-        truncated=truncated,
     )

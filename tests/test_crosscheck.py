@@ -34,9 +34,31 @@ TOL_SWITCH = 1e-4  # [s]
 N_SWITCHES = 6  # switches of the mu = 0.11 pin run in 20 s (the kernel finds exactly 6)
 
 
-def pin(mu, method, **numerics):
-    num = {"method": method, "rtol": RTOL, "atol": ATOL, "h_max": 0.02, "t_decide": 20.0}
-    num.update(numerics)
+def numerics(method, **overrides):
+    """The compared runs' numerics: same tolerances and largest step on both sides."""
+    return {
+        "method": method,
+        "rtol": RTOL,
+        "atol": ATOL,
+        "h_max": 0.02,
+        "t_decide": 20.0,
+        **overrides,
+    }
+
+
+def disk_pair(params, contact=None, record=False):
+    """The same disk scene run by the kernel and by scipy-radau."""
+    runs = {}
+    for method in ("rodas4", "scipy-radau"):
+        spec = {"scene": "disk", "params": params, "numerics": numerics(method)}
+        if contact:
+            spec["contact"] = contact
+        runs[method] = simulate(scene_from_dict(spec), record=record)
+    return runs["rodas4"], runs["scipy-radau"]
+
+
+def pin(mu, method, **overrides):
+    num = numerics(method, **overrides)
     return scene_from_dict(
         {"scene": "pin", "params": {"mu": mu, "x_ms": 0.1, "x0": 0.0}, "numerics": num}
     )
@@ -169,24 +191,7 @@ def test_pin_switching_instants_agree(pin_pair):
 
 def test_disk_agrees():
     """Disk on 4 points, co-rotating at start: same outcome and R1."""
-    runs = {}
-    for method in ("rodas4", "scipy-radau"):
-        config = scene_from_dict(
-            {
-                "scene": "disk",
-                "params": {"mu": 0.14, "phidot0": 1.1},
-                "contact": {"points": 4},
-                "numerics": {
-                    "method": method,
-                    "rtol": RTOL,
-                    "atol": ATOL,
-                    "h_max": 0.02,
-                    "t_decide": 20.0,
-                },
-            }
-        )
-        runs[method] = simulate(config)
-    kernel, radau = runs["rodas4"], runs["scipy-radau"]
+    kernel, radau = disk_pair({"mu": 0.14, "phidot0": 1.1}, contact={"points": 4})
     assert kernel.outcome == radau.outcome == "stick", (kernel.reason, radau.reason)
     assert abs(kernel.R1 - radau.R1) <= TOL_R1
     assert abs(kernel.t_R1 - radau.t_R1) <= TOL_T_R1
@@ -198,23 +203,7 @@ def test_disk_at_rest_with_refused_entries_agrees():
     """12-point disk starting at rest: contacts stick one by one, some entries are refused
     and re-enter stick later (a located event on both sides). Same switches, same
     refusals, same instants."""
-    runs = {}
-    for method in ("rodas4", "scipy-radau"):
-        config = scene_from_dict(
-            {
-                "scene": "disk",
-                "params": {"mu": 0.14, "phidot0": 0.0},
-                "numerics": {
-                    "method": method,
-                    "rtol": RTOL,
-                    "atol": ATOL,
-                    "h_max": 0.02,
-                    "t_decide": 20.0,
-                },
-            }
-        )
-        runs[method] = simulate(config, record=True)
-    kernel, radau = runs["rodas4"], runs["scipy-radau"]
+    kernel, radau = disk_pair({"mu": 0.14, "phidot0": 0.0}, record=True)
     assert kernel.outcome == radau.outcome, (kernel.reason, radau.reason)
     assert kernel.n_refused == radau.n_refused > 0
     assert kernel.n_transitions == radau.n_transitions

@@ -64,10 +64,9 @@ def _linear_stuck_pin():
     return p, pts, y0, modes
 
 
-def test_rodas4_shows_fourth_order_convergence_on_a_smooth_problem():
-    p, pts, y0, modes = _linear_stuck_pin()
+def _exact_flow(p, pts, modes, y0, t):
+    """Exact y(t) of the affine system y' = A y + b (stick mode is linear): matrix exponential."""
     n = y0.size
-    # Exact solution of the affine system y' = A y + b via the matrix exponential.
     b = np.empty(n)
     model.rhs(p, pts, modes, np.zeros(n), b)
     a = np.empty((n, n))
@@ -75,8 +74,14 @@ def test_rodas4_shows_fourth_order_convergence_on_a_smooth_problem():
     aug = np.zeros((n + 1, n + 1))
     aug[:n, :n] = a
     aug[:n, n] = b
+    return (expm(aug * t) @ np.append(y0, 1.0))[:n]
+
+
+def test_rodas4_shows_fourth_order_convergence_on_a_smooth_problem():
+    p, pts, y0, modes = _linear_stuck_pin()
+    n = y0.size
     t_end = 2.0
-    exact = (expm(aug * t_end) @ np.append(y0, 1.0))[:n]
+    exact = _exact_flow(p, pts, modes, y0, t_end)
 
     def integrate(steps):
         h = t_end / steps
@@ -99,13 +104,6 @@ def test_rodas4_shows_fourth_order_convergence_on_a_smooth_problem():
 def test_dense_output_has_third_order_accuracy_inside_the_step():
     p, pts, y0, modes = _linear_stuck_pin()
     n = y0.size
-    b = np.empty(n)
-    model.rhs(p, pts, modes, np.zeros(n), b)
-    a = np.empty((n, n))
-    model.jacobian(p, pts, modes, y0, a)
-    aug = np.zeros((n + 1, n + 1))
-    aug[:n, :n] = a
-    aug[:n, n] = b
 
     def midpoint_error(h):
         f, y1 = np.empty(n), np.empty(n)
@@ -116,7 +114,7 @@ def test_dense_output_has_third_order_accuracy_inside_the_step():
         rodas.rodas_step(p, pts, modes, y0, f, h, jac, lu, piv, wk, y1)
         mid = np.empty(n)
         rodas.dense_eval(y0, y1, wk, 0.37, mid)
-        exact = (expm(aug * 0.37 * h) @ np.append(y0, 1.0))[:n]
+        exact = _exact_flow(p, pts, modes, y0, 0.37 * h)
         return np.abs(mid - exact).max()
 
     e1, e2 = midpoint_error(0.1), midpoint_error(0.05)
