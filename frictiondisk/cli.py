@@ -203,7 +203,15 @@ def simulate(
     click.echo("\n".join(lines))
 
 
-# Later commands (run, resume, status, plot) attach to `main` here.
+# Campaign commands live in frictiondisk/campaign/cli.py; `plot` comes later.
+def _add_campaign_commands() -> None:
+    from frictiondisk.campaign.cli import resume, run, status
+
+    for command in (run, resume, status):
+        main.add_command(command)
+
+
+_add_campaign_commands()
 
 
 if __name__ == "__main__":  # python -m frictiondisk.cli

@@ -392,6 +392,16 @@ def _field_at(loc: tuple[int | str, ...]) -> FieldInfo | None:
         return None
 
 
+def describe_key(dotted: str) -> tuple[str | None, str]:
+    """Unit ("1" = dimensionless, None = not a quantity) and description of a scene key,
+    e.g. "params.x_ms" -> ("m", "axes offset ... [m]"). KeyError for an unknown key."""
+    field = _field_at(tuple(dotted.split(".")))
+    if field is None:
+        raise KeyError(dotted)
+    extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
+    return extra.get("unit"), field.description or dotted
+
+
 def _dotted(loc: tuple[int | str, ...]) -> str:
     return ".".join(map(str, loc)) or "(top level)"
 

@@ -1,0 +1,220 @@
+"""Bisection for the jump mu* of one parameter point (MODEL.md section 7). Pure Python.
+
+`Bisection` is a state machine: `pending()` names the runs it needs next, `feed()` takes
+their outcomes. It keeps [mu_lo, mu_hi] with mu_lo -> not stick and mu_hi -> stick and
+stops when mu_hi - mu_lo <= tol. It knows nothing of simulation, I/O or Dask, so the same
+object drives a live campaign and its replay from the journal.
+
+Rules (after Attractors.jl's `bisect_to_edge`: check, retry a bounded number of times,
+never guess):
+* the bracket ends are checked first; if both give the same answer the bracket is widened
+  (its width doubled, within `limits`), reusing the end already known;
+* an `undetermined` run is retried with a longer horizon (level + 1) up to `max_retries`;
+  after that the point fails with the reason of the last run;
+* an inverted bracket (stick at mu_lo, not stick at mu_hi) fails with both outcomes named;
+* every run is kept; runs that contradict monotonicity (a stick below a not-stick) are
+  listed in the result instead of being hidden.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+STICK = "stick"
+UNDETERMINED = "undetermined"
+WIDEN_FACTOR = 2.0  # a widened bracket is this many times wider
+
+
+@dataclasses.dataclass(frozen=True)
+class RunRequest:
+    """One simulation the bisection needs: friction coefficient and retry level.
+
+    The horizon of the run is the base horizon times horizon_factor ** level."""
+
+    mu: float
+    level: int = 0
+
+
+@dataclasses.dataclass(frozen=True)
+class RunRecord:
+    request: RunRequest
+    result: dict[str, Any]  # SimulationResult.summary()
+
+    @property
+    def outcome(self) -> str:
+        return self.result["outcome"]
+
+
+@dataclasses.dataclass(frozen=True)
+class BisectionResult:
+    """The located jump: a bracket with its midpoint, never a bare number."""
+
+    status: str  # "converged" or "failed"
+    reason: str
+    mu_lo: float  # NaN if the bracket was never established
+    mu_hi: float
+    runs: tuple[RunRecord, ...]
+    contradictions: tuple[tuple[float, float], ...]  # (mu of a stick, larger mu of a not stick)
+
+    @property
+    def mu_star(self) -> float:
+        return 0.5 * (self.mu_lo + self.mu_hi)
+
+    @property
+    def width(self) -> float:
+        return self.mu_hi - self.mu_lo
+
+    @property
+    def monotone(self) -> bool:
+        return not self.contradictions
+
+    def end_result(self, which: str) -> dict[str, Any] | None:
+        """The decisive run at mu_lo or mu_hi (its last retry level)."""
+        mu = self.mu_lo if which == "lo" else self.mu_hi
+        found = None
+        for run in self.runs:
+            if run.request.mu == mu and run.outcome != UNDETERMINED:
+                found = run.result
+        return found
+
+
+class Bisection:
+    """Locate the jump between not-stick and stick in mu for one parameter point."""
+
+    def __init__(
+        self,
+        bracket: tuple[float, float],
+        tol: float,
+        limits: tuple[float, float],
+        max_retries: int,
+    ):
+        lo, hi = bracket
+        if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
+            raise ValueError(f"bad bracket {bracket} for limits {limits} and tol {tol}")
+        self.lo = lo
+        self.hi = hi
+        self.tol = tol
+        self.limits = limits
+        self.max_retries = max_retries
+        self.phase = "check"
+        self.runs: list[RunRecord] = []
+        self._known: dict[float, str] = {}  # mu -> stick / not-stick (determined runs only)
+        self._level: dict[float, int] = {}  # mu -> retry level to ask for next
+        self._failure: str | None = None
+        self._issued: dict[RunRequest, int] = {}  # request -> order of first request
+
+    # ---- what to run ------------------------------------------------------------------
+    def pending(self) -> list[RunRequest]:
+        """Runs needed before the bisection can move on (empty when done)."""
+        if self.done:
+            return []
+        if self.phase == "check":
+            mus = [mu for mu in (self.lo, self.hi) if mu not in self._known]
+        else:
+            mus = [self._midpoint()]
+        requests = [RunRequest(mu, self._level.get(mu, 0)) for mu in mus]
+        for request in requests:
+            self._issued.setdefault(request, len(self._issued))
+        return requests
+
+    @property
+    def done(self) -> bool:
+        return self._failure is not None or self.phase == "converged"
+
+    def _midpoint(self) -> float:
+        return self.lo + 0.5 * (self.hi - self.lo)
+
+    # ---- what came back ---------------------------------------------------------------
+    def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
+        """Take the outcome of a requested run and advance."""
+        if self.done or request not in self.pending():
+            raise ValueError(f"unexpected run {request}")
+        self.runs.append(RunRecord(request, result))
+        outcome = result["outcome"]
+        if outcome == UNDETERMINED:
+            if request.level >= self.max_retries:
+                self._failure = (
+                    f"undetermined at mu = {request.mu:.10g} after {request.level} retries "
+                    f"with longer horizons: {result.get('reason', '')}"
+                )
+            else:
+                self._level[request.mu] = request.level + 1
+            return
+        self._known[request.mu] = STICK if outcome == STICK else "not stick"
+        if self.phase == "check":
+            self._after_check()
+        else:
+            if outcome == STICK:
+                self.hi = request.mu
+            else:
+                self.lo = request.mu
+            self._maybe_converged()
+
+    def _after_check(self) -> None:
+        if self.lo not in self._known or self.hi not in self._known:
+            return
+        lo_stick = self._known[self.lo] == STICK
+        hi_stick = self._known[self.hi] == STICK
+        width = self.hi - self.lo
+        if not lo_stick and hi_stick:
+            self.phase = "bisect"
+            self._maybe_converged()
+        elif lo_stick and not hi_stick:
+            self._failure = (
+                f"bracket inverted: mu_lo = {self.lo:.10g} gave stick, "
+                f"mu_hi = {self.hi:.10g} gave {self._outcome_at(self.hi)}"
+            )
+        elif not lo_stick:  # both ends not stick: the jump lies above
+            if self.hi >= self.limits[1]:
+                self._failure = (
+                    f"no stick up to the limit: mu_lo = {self.lo:.10g} gave "
+                    f"{self._outcome_at(self.lo)}, mu_hi = {self.hi:.10g} (= limit) gave "
+                    f"{self._outcome_at(self.hi)}"
+                )
+            else:
+                self.lo, self.hi = self.hi, min(self.limits[1], self.hi + WIDEN_FACTOR * width)
+        else:  # both ends stick: the jump lies below
+            if self.lo <= self.limits[0]:
+                self._failure = (
+                    f"stick down to the limit: mu_lo = {self.lo:.10g} (= limit) gave stick, "
+                    f"mu_hi = {self.hi:.10g} gave stick"
+                )
+            else:
+                self.lo, self.hi = max(self.limits[0], self.lo - WIDEN_FACTOR * width), self.lo
+
+    def _outcome_at(self, mu: float) -> str:
+        for run in reversed(self.runs):
+            if run.request.mu == mu:
+                return run.outcome
+        return "nothing"
+
+    def _maybe_converged(self) -> None:
+        if self.hi - self.lo <= self.tol * (1 + 1e-9):
+            self.phase = "converged"
+
+    # ---- the answer -------------------------------------------------------------------
+    def result(self) -> BisectionResult:
+        if not self.done:
+            raise ValueError("bisection not finished")
+        converged = self._failure is None
+        established = converged or self.phase == "bisect"
+        nan = float("nan")
+        return BisectionResult(
+            status="converged" if converged else "failed",
+            reason=(
+                f"bracket of width {self.hi - self.lo:.3g} <= tol {self.tol:.3g}"
+                if converged
+                else self._failure
+            ),
+            mu_lo=self.lo if established else nan,
+            mu_hi=self.hi if established else nan,
+            # in the order requested, not the order results arrived: independent of timing
+            runs=tuple(sorted(self.runs, key=lambda run: self._issued[run.request])),
+            contradictions=self._contradictions(),
+        )
+
+    def _contradictions(self) -> tuple[tuple[float, float], ...]:
+        sticks = sorted(mu for mu, o in self._known.items() if o == STICK)
+        nots = sorted(mu for mu, o in self._known.items() if o != STICK)
+        return tuple((s, n) for s in sticks for n in nots if s < n)

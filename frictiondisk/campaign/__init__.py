@@ -1,0 +1,1 @@
+"""Campaigns: validated campaign files (spec), and what is built on them."""

@@ -1,0 +1,155 @@
+"""Which runs a campaign needs next: planners for `find_jump` and `scan` (pure Python).
+
+A planner turns a campaign into requests `(point index, RunRequest)` and takes their
+results back. It does no I/O and knows nothing of Dask, so a live campaign and its replay
+from the journal follow the same path, and the results do not depend on worker count or
+timing: every decision depends only on outcomes, never on the order they arrive in.
+
+Warm start (find_jump), along the last varied dimension ("a row"): a point starts once
+every point at least `lanes` places before it in its row is done, so up to `lanes`
+points of a row are in flight at once. Its bracket is predicted by linear extrapolation
+through the two nearest of those finished points; with fewer than two it starts cold
+(a constant prediction from one point costs more widening than it saves). Which points
+a prediction uses is fixed by the campaign, never by timing, so 1 and 2 workers give
+identical results.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from frictiondisk.bisection import Bisection, BisectionResult, RunRequest
+
+WARM_HALF_WIDTH_TOLS = 3.0  # half-width of a predicted bracket, in units of tol
+
+
+def cold_run_count(bracket: tuple[float, float], tol: float) -> int:
+    """Runs of a cold bisection over `bracket` (2 end checks + halvings), no retries."""
+    return 2 + max(0, math.ceil(math.log2((bracket[1] - bracket[0]) / tol)))
+
+
+def run_config(point_config, request: RunRequest, horizon_factor: float):
+    """The scene of one requested run: mu set, horizon lengthened by the retry level."""
+    num = point_config.numerics
+    key = "numerics.t_max" if num.mode == "converge" else "numerics.t_decide"
+    horizon = num.t_max if num.mode == "converge" else num.t_decide
+    overrides: dict[str, Any] = {"params.mu": request.mu}
+    if request.level:
+        overrides[key] = horizon * horizon_factor**request.level
+    return point_config.with_overrides(overrides)
+
+
+class JumpPlanner:
+    """find_jump: one bisection per point, warm-started along lanes."""
+
+    def __init__(self, campaign):
+        self.campaign = campaign
+        self.task = campaign.task
+        self.points = campaign.points()
+        self.shape = campaign.shape
+        self.bisections: dict[int, Bisection] = {}
+        self.results: dict[int, BisectionResult] = {}
+        self.warm: dict[int, bool] = {}
+
+    def config_for(self, i: int, request: RunRequest):
+        return run_config(self.points[i].config, request, self.task.horizon_factor)
+
+    @property
+    def done(self) -> bool:
+        return len(self.results) == len(self.points)
+
+    def requests(self) -> list[tuple[int, RunRequest]]:
+        for i in range(len(self.points)):
+            if i not in self.bisections and self._ready(i):
+                self._start(i)
+        return [
+            (i, req)
+            for i, bis in sorted(self.bisections.items())
+            if not bis.done
+            for req in bis.pending()
+        ]
+
+    def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
+        """Take a result; a result the point no longer waits for is ignored."""
+        bis = self.bisections[i]
+        if bis.done or request not in bis.pending():
+            return
+        bis.feed(request, result)
+        if bis.done:
+            self.results[i] = bis.result()
+
+    # ---- warm-start window ------------------------------------------------------------
+    def _row_pos(self, i: int) -> tuple[int, int]:
+        return divmod(i, self.shape[-1])
+
+    def _finished_before(self, i: int) -> list[int]:
+        """Points at least `lanes` places before i in its row, nearest first."""
+        row, pos = self._row_pos(i)
+        first = row * self.shape[-1]
+        return [first + p for p in range(pos - self.task.lanes, -1, -1)]
+
+    def _ready(self, i: int) -> bool:
+        return all(j in self.results for j in self._finished_before(i))
+
+    def _start(self, i: int) -> None:
+        bracket = self._predicted_bracket(i)
+        self.warm[i] = bracket is not None
+        bracket = bracket or tuple(self.task.bracket)
+        self.bisections[i] = Bisection(
+            bracket, self.task.tol, tuple(self.task.limits), self.task.max_retries
+        )
+
+    def _predicted_bracket(self, i: int) -> tuple[float, float] | None:
+        found = [j for j in self._finished_before(i) if self.results[j].status == "converged"]
+        if len(found) < 2:
+            return None
+        dim = self.campaign.dims[-1]
+        x = self.points[i].coords[dim]
+        (x1, mu1), (x2, mu2) = (
+            (self.points[j].coords[dim], self.results[j].mu_star) for j in found[:2]
+        )
+        mu_hat = mu1 + (mu1 - mu2) * (x - x1) / (x1 - x2)
+        half = WARM_HALF_WIDTH_TOLS * self.task.tol
+        lo = max(self.task.limits[0], mu_hat - half)
+        hi = min(self.task.limits[1], mu_hat + half)
+        return (lo, hi) if lo < hi else None
+
+    def runs_saved(self) -> int:
+        """Runs a cold bisection from the campaign bracket would have made, minus the runs
+        the warm-started points made (points that failed are not counted)."""
+        saved = 0
+        for i, res in self.results.items():
+            if self.warm.get(i) and res.status == "converged":
+                saved += cold_run_count(tuple(self.task.bracket), self.task.tol) - len(res.runs)
+        return saved
+
+
+class ScanPlanner:
+    """scan: one run per grid point (mu and at most one more parameter), no bisection."""
+
+    def __init__(self, campaign):
+        self.campaign = campaign
+        self.points = campaign.points()
+        self.results: dict[int, dict[str, Any]] = {}
+
+    def config_for(self, i: int, request: RunRequest):
+        return self.points[i].config
+
+    @property
+    def done(self) -> bool:
+        return len(self.results) == len(self.points)
+
+    def requests(self) -> list[tuple[int, RunRequest]]:
+        return [
+            (i, RunRequest(p.config.params.mu))
+            for i, p in enumerate(self.points)
+            if i not in self.results
+        ]
+
+    def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
+        self.results.setdefault(i, result)
+
+
+def planner_for(campaign):
+    return JumpPlanner(campaign) if campaign.task.kind == "find_jump" else ScanPlanner(campaign)

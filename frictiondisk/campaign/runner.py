@@ -1,0 +1,324 @@
+"""Run a campaign: replay the journal, compute what is missing on Dask, write results.
+
+The driver is the only writer of DIR. It holds DIR/lock for the whole run, commits every
+finished run to the journal at once, and replays the planner from the journal first, so
+an interrupted campaign resumes without computing a finished run again and loses at most
+the runs that were in flight.
+
+DIR layout: campaign.yaml (the campaign as first run), journal/ (one file per run),
+status.json (progress, rewritten while running), results.nc, runs.nc, lock.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from frictiondisk.campaign import datasets
+from frictiondisk.campaign.files import atomic_write_netcdf, atomic_write_text
+from frictiondisk.campaign.journal import CampaignLock, Journal, run_key
+from frictiondisk.campaign.plan import planner_for
+from frictiondisk.campaign.spec import Campaign, campaign_from_text, load_campaign
+from frictiondisk.campaign.tasks import run_scene, warm_up
+
+CAMPAIGN_FILE = "campaign.yaml"
+STATUS_FILE = "status.json"
+RESULTS_FILE = "results.nc"
+RUNS_FILE = "runs.nc"
+STATUS_EVERY = 0.5  # [s] between status.json rewrites
+MAX_WORKER_FAILURES = 3  # resubmissions of a run whose worker died
+
+
+class CampaignChanged(Exception):
+    """The campaign file differs from the one DIR was started with."""
+
+    def __init__(self, out_dir: Path, differences: list[str]):
+        self.differences = differences
+        super().__init__(
+            f"{out_dir} holds a different campaign; refusing to mix results "
+            f"(start a new directory, or resume with the original file):\n  "
+            + "\n  ".join(differences)
+        )
+
+
+class CampaignInterrupted(Exception):
+    """Stopped by the user (Ctrl-C); the journal holds every finished run."""
+
+
+@dataclasses.dataclass
+class RunSummary:
+    points: int
+    points_failed: int
+    runs_total: int  # runs the planner used (journal hits + computed)
+    runs_computed: int  # runs computed in this invocation
+    runs_saved_by_warm_start: int
+    wall_s: float
+    results: Path
+    runs: Path
+
+
+def prepare_directory(out_dir: Path, campaign: Campaign | None) -> Campaign:
+    """Check DIR against the campaign (or load the stored one when campaign is None)."""
+    stored_file = out_dir / CAMPAIGN_FILE
+    if stored_file.exists():
+        stored = load_campaign(stored_file)
+        if campaign is None:
+            return stored
+        differences = stored.diff(campaign)
+        if differences:
+            raise CampaignChanged(out_dir, differences)
+        return stored
+    if campaign is None:
+        raise FileNotFoundError(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    atomic_write_text(stored_file, campaign.text)
+    return campaign
+
+
+def run_campaign(
+    campaign: Campaign | None,
+    out_dir: Path,
+    workers: int = 2,
+    scheduler: str | None = None,
+    processes: bool = False,
+    progress: bool = True,
+) -> RunSummary:
+    """Run (or resume, with campaign=None) the campaign in out_dir."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    with CampaignLock(out_dir):
+        campaign = prepare_directory(out_dir, campaign)
+        return _Driver(campaign, out_dir, progress).run(workers, scheduler, processes)
+
+
+class _Driver:
+    def __init__(self, campaign: Campaign, out_dir: Path, progress: bool):
+        self.campaign = campaign
+        self.out_dir = out_dir
+        self.journal = Journal(out_dir)
+        self.planner = planner_for(campaign)
+        self.progress = progress
+        self.keys: dict[tuple[int, Any], str] = {}  # (point, request) -> run key
+        self.run_walls: dict[str, float] = {}
+        self.computed = 0
+        self.runs_at_start = len(self.journal)  # listed once: the journal only grows by put()
+        self.in_flight: dict[str, Any] = {}  # run key -> future
+        self.waiting: dict[str, list[tuple[int, Any]]] = {}  # run key -> (point, request)
+        self.inputs: dict[str, dict] = {}
+        self.failures: dict[str, int] = {}
+        self.t0 = time.perf_counter()
+        self._last_status = 0.0
+        self._bar = None
+
+    # ---- the loop -----------------------------------------------------------------------
+    def run(self, workers: int, scheduler: str | None, processes: bool) -> RunSummary:
+        self._replay()
+        if not self.planner.done:
+            self._compute(workers, scheduler, processes)
+        return self._finish()
+
+    def _replay(self) -> None:
+        """Feed every run the journal already holds (no Dask)."""
+        progressed = True
+        while progressed and not self.planner.done:
+            progressed = False
+            for point, request in self.planner.requests():
+                cached = self.journal.get(self._key(point, request))
+                if cached is not None:
+                    self.planner.feed(point, request, cached)
+                    progressed = True
+
+    def _compute(self, workers: int, scheduler: str | None, processes: bool) -> None:
+        from distributed import Client, LocalCluster
+
+        warm_up()  # compile once here, so workers load the cache instead of racing on it
+        if scheduler:
+            client, cluster = Client(scheduler), None
+        else:
+            cluster = LocalCluster(
+                n_workers=workers,
+                threads_per_worker=1,
+                processes=processes,
+                dashboard_address=None,
+            )
+            client = Client(cluster)
+        self._open_bar()
+        try:
+            self._loop(client)
+        except KeyboardInterrupt:
+            self._write_status(state="interrupted")
+            raise CampaignInterrupted(
+                f"interrupted; {self._runs_done()} finished runs are in the journal. "
+                f"Continue with: frictiondisk resume {self.out_dir}"
+            ) from None
+        finally:
+            for future in self.in_flight.values():
+                future.cancel()
+            client.close()
+            if cluster is not None:
+                cluster.close()
+            if self._bar is not None:
+                self._bar.close()
+
+    def _loop(self, client) -> None:
+        from distributed import wait
+
+        while not self.planner.done:
+            self._submit_new(client)
+            if self.planner.done:
+                break
+            if not self.in_flight:
+                raise RuntimeError("campaign stalled: no run in flight and none to submit")
+            try:
+                finished = wait(
+                    list(self.in_flight.values()),
+                    timeout=STATUS_EVERY,
+                    return_when="FIRST_COMPLETED",
+                ).done
+            except TimeoutError:
+                finished = set()
+            for future in finished:
+                self._collect(client, future)
+            self._tick()
+
+    def _submit_new(self, client) -> None:
+        """Submit every requested run that is neither known nor in flight."""
+        progressed = True
+        while progressed:
+            progressed = False
+            for point, request in self.planner.requests():
+                key = self._key(point, request)
+                if key in self.in_flight:
+                    if (point, request) not in self.waiting[key]:
+                        self.waiting[key].append((point, request))
+                    continue
+                cached = self.journal.get(key)
+                if cached is not None:
+                    self.planner.feed(point, request, cached)
+                    progressed = True
+                    continue
+                self._submit(client, key, [(point, request)])
+
+    def _submit(self, client, key: str, waiting: list) -> None:
+        canonical = self.inputs[key]
+        self.in_flight[key] = client.submit(run_scene, canonical, key=f"run-{key}", pure=False)
+        self.waiting[key] = waiting
+
+    def _collect(self, client, future) -> None:
+        key = future.key.removeprefix("run-") if isinstance(future.key, str) else future.key
+        waiting = self.waiting.pop(key)
+        del self.in_flight[key]
+        try:
+            result = future.result()
+        except Exception as exc:  # a worker died or the run raised: retry a bounded number
+            self.failures[key] = self.failures.get(key, 0) + 1
+            if self.failures[key] <= MAX_WORKER_FAILURES:
+                self._submit(client, key, waiting)
+                return
+            result = _failed_run(f"worker failed {self.failures[key]} times: {exc!r}")
+            for point, request in waiting:  # not journaled: a resume tries again
+                self.planner.feed(point, request, result)
+            return
+        self.journal.put(key, self.inputs[key], result)
+        self.computed += 1
+        for point, request in waiting:
+            self.planner.feed(point, request, result)
+
+    def _key(self, point: int, request) -> str:
+        cached = self.keys.get((point, request))
+        if cached is None:
+            config = self.planner.config_for(point, request)
+            cached = run_key(config)
+            self.keys[(point, request)] = cached
+            self.inputs[cached] = config.canonical()
+        return cached
+
+    # ---- progress and status ------------------------------------------------------------
+    def _open_bar(self) -> None:
+        if not self.progress:
+            return
+        from tqdm import tqdm
+
+        self._bar = tqdm(
+            total=len(self.planner.points),
+            initial=self._points_done(),
+            unit="point",
+            desc=self.campaign.name,
+            file=sys.stderr,
+            dynamic_ncols=True,
+        )
+
+    def _runs_done(self) -> int:
+        return self.runs_at_start + self.computed
+
+    def _points_done(self) -> int:
+        return len(self.planner.results)
+
+    def _tick(self) -> None:
+        if self._bar is not None:
+            self._bar.n = self._points_done()
+            self._bar.set_postfix(
+                runs=self._runs_done(), in_flight=len(self.in_flight), refresh=False
+            )
+            self._bar.refresh()
+        now = time.perf_counter()
+        if now - self._last_status >= STATUS_EVERY:
+            self._write_status(state="running")
+            self._last_status = now
+
+    def _write_status(self, state: str) -> None:
+        done = self._points_done()
+        total = len(self.planner.points)
+        elapsed = time.perf_counter() - self.t0
+        rate = done / elapsed if done and elapsed > 0 else 0.0
+        status = {
+            "state": state,
+            "pid": os.getpid(),
+            "campaign": self.campaign.name,
+            "points_total": total,
+            "points_done": done,
+            "points_failed": self._points_failed(),
+            "runs_done": self._runs_done(),
+            "runs_in_flight": len(self.in_flight),
+            "runs_computed_now": self.computed,
+            "elapsed_s": elapsed,
+            "eta_s": (total - done) / rate if rate > 0 else None,
+            "updated": time.time(),
+        }
+        atomic_write_text(self.out_dir / STATUS_FILE, json.dumps(status, indent=1))
+
+    def _points_failed(self) -> int:
+        results = self.planner.results.values()
+        return sum(1 for r in results if getattr(r, "status", "converged") == "failed")
+
+    # ---- the end ------------------------------------------------------------------------
+    def _finish(self) -> RunSummary:
+        results_ds = datasets.results_dataset(self.campaign, self.planner)
+        runs_ds = datasets.runs_dataset(self.campaign, self.planner, self._key)
+        results = atomic_write_netcdf(results_ds, self.out_dir / RESULTS_FILE)
+        runs = atomic_write_netcdf(runs_ds, self.out_dir / RUNS_FILE)
+        self._write_status(state="complete")
+        return RunSummary(
+            points=len(self.planner.points),
+            points_failed=self._points_failed(),
+            runs_total=int(runs_ds.sizes["run"]),
+            runs_computed=self.computed,
+            runs_saved_by_warm_start=getattr(self.planner, "runs_saved", lambda: 0)(),
+            wall_s=time.perf_counter() - self.t0,
+            results=Path(results),
+            runs=Path(runs),
+        )
+
+
+def _failed_run(reason: str) -> dict[str, Any]:
+    return {"outcome": "undetermined", "reason": reason}
+
+
+def load_stored_campaign(out_dir: Path) -> Campaign:
+    text = (Path(out_dir) / CAMPAIGN_FILE).read_text()
+    return campaign_from_text(text, str(Path(out_dir) / CAMPAIGN_FILE))

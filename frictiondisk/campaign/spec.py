@@ -1,0 +1,667 @@
+"""Campaign files (`campaigns/*.yaml`): a base scene plus one task, validated like scenes.
+
+A campaign file holds a `name`, a base scene (the keys of a scene file: `scene`, `params`,
+`contact`, `numerics`) and exactly one task:
+
+- `find_jump`: bisect mu to the jump mu* (MODEL.md section 7) at every point of a line of one
+  scene key or a grid of two, e.g. `along: {params.x_ms: {start: 0.02, stop: 0.2, num: 10}}`.
+- `scan`: run every point of a grid of mu (and optionally one more scene key) in
+  `numerics.mode` `converge` (or `decide`), keeping each run's outcome and measures; this
+  feeds size-versus-mu curves.
+
+Varied values are a list of numbers or `{start, stop, num}` (numpy.linspace). Any numeric
+scene key may be varied, numerics ones included (`numerics.rtol`, `contact.stiffness`).
+
+Validation follows `frictiondisk.config`: the base scene is validated exactly as a scene file
+(same paths, same messages); every varied value is checked by building the scene it gives;
+all problems are collected and raised together as one `ConfigError`, one line
+`dotted.path: what is wrong; what is allowed` each, list items written `path[i]`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import hashlib
+import itertools
+import json
+import math
+import operator
+import re
+import types
+from collections.abc import Mapping
+from dataclasses import dataclass
+from os import PathLike
+from typing import Any, ClassVar, Union, get_args, get_origin
+
+import numpy as np
+import yaml
+from pydantic import BaseModel
+from pydantic.fields import FieldInfo
+
+# Private helpers of config are shared on purpose, so that campaign messages read exactly like
+# scene messages: _show/_kind render values, _requirement says what a scene field accepts.
+from frictiondisk.config import (
+    _DOTTED_KEY,
+    ConfigError,
+    Numerics,
+    SceneConfig,
+    _kind,
+    _requirement,
+    _show,
+    scene_from_dict,
+)
+from frictiondisk.yamlio import StrictDumper, load_yaml_text
+
+__all__ = [
+    "Campaign",
+    "FindJump",
+    "Point",
+    "Scan",
+    "campaign_from_dict",
+    "campaign_from_text",
+    "load_campaign",
+]
+
+SCENE_KEYS = ("scene", "params", "contact", "numerics")
+TASK_KEYS = ("find_jump", "scan")
+TOP_KEYS = ("name", *SCENE_KEYS, *TASK_KEYS)
+FIND_JUMP_KEYS = (
+    "parameter",
+    "bracket",
+    "tol",
+    "limits",
+    "max_retries",
+    "horizon_factor",
+    "lanes",
+    "along",
+)
+SCAN_KEYS = ("mu", "along", "mode")
+LINSPACE_KEYS = ("start", "stop", "num")
+
+# find_jump defaults (MODEL.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
+DEFAULT_TOL = 1.0e-4
+DEFAULT_LIMITS = (1.0e-6, 10.0)  # the bracket may be widened within these
+DEFAULT_MAX_RETRIES = 2  # retries of an undetermined run with a longer horizon
+DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_max) by this
+DEFAULT_LANES = 2  # warm-start chains
+DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (MODEL.md section 6)
+
+_NAME = re.compile(r"[A-Za-z0-9_-]+")
+_MODE_FIELD = Numerics.model_fields["mode"]
+_MISSING: Any = object()  # a key not given at all (unlike a null value)
+_SYMBOLS = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
+_COMPARE = {"gt": operator.gt, "ge": operator.ge, "lt": operator.lt, "le": operator.le}
+
+
+# --- the campaign -----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class FindJump:
+    """Bisect `parameter` (mu) to the jump mu* at every point of `along`.
+
+    `bracket` = (lo, hi) with lo expected not to stick and hi to stick; the bisection stops
+    when hi - lo <= `tol`. The bracket may be widened within `limits`. An undetermined run is
+    retried up to `max_retries` times, each with numerics.t_decide (or t_max) multiplied by
+    `horizon_factor`. `lanes`: how many points of a row (the last dim) are in flight at
+    once; a point starts when every point `lanes` or more places before it is done and
+    extrapolates its bracket from the two nearest (campaign/plan.py). `along` maps 1 or 2 dotted scene keys, in file order, to
+    their values.
+    """
+
+    kind: ClassVar[str] = "find_jump"
+
+    parameter: str
+    bracket: tuple[float, float]
+    tol: float
+    limits: tuple[float, float]
+    max_retries: int
+    horizon_factor: float
+    lanes: int
+    along: dict[str, tuple[float, ...]]
+
+    def canonical(self) -> dict[str, Any]:
+        """JSON-able dict, keys sorted except `along`, whose order is the dims order."""
+        return {
+            "along": {key: list(values) for key, values in self.along.items()},
+            "bracket": list(self.bracket),
+            "horizon_factor": self.horizon_factor,
+            "lanes": self.lanes,
+            "limits": list(self.limits),
+            "max_retries": self.max_retries,
+            "parameter": self.parameter,
+            "tol": self.tol,
+        }
+
+
+@dataclass(frozen=True)
+class Scan:
+    """Run every point of the grid `mu` x `along` with numerics.mode = `mode`.
+
+    `along` maps at most one dotted scene key to its values (empty: a line in mu).
+    """
+
+    kind: ClassVar[str] = "scan"
+
+    mu: tuple[float, ...]
+    along: dict[str, tuple[float, ...]]
+    mode: str
+
+    def canonical(self) -> dict[str, Any]:
+        """JSON-able dict, keys sorted."""
+        return {
+            "along": {key: list(values) for key, values in self.along.items()},
+            "mode": self.mode,
+            "mu": list(self.mu),
+        }
+
+
+@dataclass(frozen=True)
+class Point:
+    """One grid point: its `index` in `Campaign.shape`, varied values and full scene."""
+
+    index: tuple[int, ...]
+    coords: dict[str, float]
+    config: SceneConfig
+
+
+@dataclass(frozen=True)
+class Campaign:
+    """One validated campaign: build it with `load_campaign` or `campaign_from_text/_dict`.
+
+    `text` is the YAML the campaign was read from (for `campaign_from_dict`, the canonical
+    form as YAML); it does not take part in equality.
+    """
+
+    name: str
+    base: SceneConfig
+    task: FindJump | Scan
+    text: str = dataclasses.field(default="", compare=False, repr=False)
+
+    @property
+    def kind(self) -> str:
+        """ "find_jump" or "scan"."""
+        return self.task.kind
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """Varied dotted keys in file order; a scan's first dim is "params.mu"."""
+        return tuple(self._axes())
+
+    @property
+    def coords(self) -> dict[str, np.ndarray]:
+        """Values of each dim (fresh arrays)."""
+        return {dim: np.array(values, dtype=float) for dim, values in self._axes().items()}
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Number of values of each dim."""
+        return tuple(len(values) for values in self._axes().values())
+
+    def points(self) -> list[Point]:
+        """Every grid point in C order over `shape` (the last dim varies fastest).
+
+        `config` is the base scene with the point's values set; for a scan also params.mu
+        and numerics.mode = the scan's mode.
+        """
+        axes = self._axes()
+        fixed = {"numerics.mode": self.task.mode} if isinstance(self.task, Scan) else {}
+        points = []
+        for index in itertools.product(*(range(len(values)) for values in axes.values())):
+            coords = {dim: axes[dim][i] for dim, i in zip(axes, index, strict=True)}
+            overrides = {dim: _scene_value(dim, value) for dim, value in coords.items()}
+            config = self.base.with_overrides({**overrides, **fixed})
+            points.append(Point(index=index, coords=coords, config=config))
+        return points
+
+    def canonical(self) -> dict[str, Any]:
+        """JSON-able dict: defaults filled in, the base scene canonical, values as lists.
+
+        Keys are sorted, except under `along`, whose order is the order of `dims`.
+        """
+        data = {**self.base.canonical(), "name": self.name, self.kind: self.task.canonical()}
+        return {key: data[key] for key in sorted(data)}
+
+    def content_hash(self) -> str:
+        """sha256 hex digest of the canonical dict as compact JSON.
+
+        Like `SceneConfig.content_hash`, but the keys are not re-sorted: `canonical()` is
+        already sorted, and the order of `along` (the dims order) is part of the content.
+        """
+        text = json.dumps(self.canonical(), separators=(",", ":"))
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def diff(self, other: Campaign) -> list[str]:
+        """Lines `dotted.path: mine -> other's` for each canonical value that differs."""
+        mine, theirs = _flatten(self.canonical()), _flatten(other.canonical())
+        lines = [
+            f"{path}: {_show_or_absent(mine, path)} -> {_show_or_absent(theirs, path)}"
+            for path in sorted(mine.keys() | theirs.keys())
+            if mine.get(path, _MISSING) != theirs.get(path, _MISSING)
+        ]
+        if self.dims != other.dims and set(self.dims) == set(other.dims):
+            lines.append(f"dims: {', '.join(self.dims)} -> {', '.join(other.dims)}")
+        return lines
+
+    def _axes(self) -> dict[str, tuple[float, ...]]:
+        if isinstance(self.task, Scan):
+            return {"params.mu": self.task.mu, **self.task.along}
+        return dict(self.task.along)
+
+
+# --- loading ----------------------------------------------------------------------------
+
+
+def load_campaign(path: str | PathLike[str]) -> Campaign:
+    """Load and validate a campaign YAML file; any problem is a `ConfigError`."""
+    # Read here, not with yamlio.load_yaml_file, because the campaign keeps its text.
+    try:
+        with open(path, encoding="utf-8") as stream:
+            text = stream.read()
+    except (OSError, UnicodeDecodeError) as err:
+        raise ConfigError(f"{path}: cannot read: {err}", str(path)) from None
+    return campaign_from_text(text, source=str(path))
+
+
+def campaign_from_text(text: str, source: str = "<string>") -> Campaign:
+    """Validate a campaign given as YAML text; `source` names it in errors."""
+    return _read(load_yaml_text(text, source=source), source, text)
+
+
+def campaign_from_dict(data: Any, source: str = "<dict>") -> Campaign:
+    """Validate a campaign given as a dict (e.g. parsed YAML).
+
+    Raises ConfigError listing every problem as `dotted.path: message`.
+    """
+    return _read(data, source, None)
+
+
+def _read(data: Any, source: str, text: str | None) -> Campaign:
+    problems: list[str] = []
+    top = _mapping(data, "", TOP_KEYS, problems)
+    if top is None:
+        raise ConfigError(problems, source)
+    name = _name(top.get("name", _MISSING), problems)
+    base = None
+    try:
+        base = scene_from_dict({key: top[key] for key in SCENE_KEYS if key in top}, source=source)
+    except ConfigError as err:
+        problems += err.problems
+    tasks = [key for key in TASK_KEYS if key in top]
+    task: FindJump | Scan | None = None
+    if not tasks:
+        problems.append("(top level): no task: give exactly one of find_jump or scan")
+    elif len(tasks) > 1:
+        problems.append("(top level): both find_jump and scan given: give exactly one task")
+    elif tasks[0] == "find_jump":
+        task = _find_jump(top["find_jump"], base, problems)
+    else:
+        task = _scan(top["scan"], base, problems)
+    if problems:
+        raise ConfigError(problems, source)
+    campaign = Campaign(name=name, base=base, task=task)
+    if text is None:
+        # Block-style YAML like yamlio.dump_yaml, but `along` keeps its order (the dims).
+        text = yaml.dump(
+            campaign.canonical(), Dumper=StrictDumper, sort_keys=False, default_flow_style=False
+        )
+    return dataclasses.replace(campaign, text=text)
+
+
+# --- tasks ------------------------------------------------------------------------------
+
+
+def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> FindJump | None:
+    spec = _mapping(data, "find_jump", FIND_JUMP_KEYS, problems)
+    if spec is None:
+        return None
+    parameter = spec.get("parameter", "mu")
+    if parameter != "mu":
+        problems.append(f"find_jump.parameter: {_show(parameter)} is not allowed: must be 'mu'")
+    bracket = _pair(spec.get("bracket", _MISSING), "find_jump.bracket", "lo, hi", problems)
+    tol = _number(spec.get("tol", DEFAULT_TOL), "find_jump.tol", problems, gt=0)
+    limits = _pair(spec.get("limits", DEFAULT_LIMITS), "find_jump.limits", "low, high", problems)
+    max_retries = _number(
+        spec.get("max_retries", DEFAULT_MAX_RETRIES),
+        "find_jump.max_retries",
+        problems,
+        integer=True,
+        ge=0,
+        le=10,
+    )
+    horizon_factor = _number(
+        spec.get("horizon_factor", DEFAULT_HORIZON_FACTOR),
+        "find_jump.horizon_factor",
+        problems,
+        gt=1,
+    )
+    lanes = _number(
+        spec.get("lanes", DEFAULT_LANES), "find_jump.lanes", problems, integer=True, ge=1, le=64
+    )
+    if bracket is not None:
+        lo, hi = bracket
+        if tol is not None and tol >= hi - lo:
+            problems.append(
+                f"find_jump.tol: {_show(tol)} is out of range: must be > 0 and "
+                f"< hi - lo = {hi - lo:.6g} (the bracket's width)"
+            )
+        if limits is not None and not (limits[0] <= lo and hi <= limits[1]):
+            problems.append(
+                f"find_jump.limits: {_show(list(limits))} does not contain the bracket "
+                f"{_show(list(bracket))}: must have limits[0] <= lo and hi <= limits[1]"
+            )
+    along = _along(
+        spec.get("along", _MISSING),
+        "find_jump.along",
+        base,
+        problems,
+        counts=(1, 2),
+        taken={"params.mu": "params.mu is the bisected parameter; it cannot also be varied"},
+    )
+    if None in (bracket, tol, limits, max_retries, horizon_factor, lanes, along):
+        return None
+    return FindJump(
+        parameter=parameter,
+        bracket=bracket,
+        tol=tol,
+        limits=limits,
+        max_retries=max_retries,
+        horizon_factor=horizon_factor,
+        lanes=lanes,
+        along=along,
+    )
+
+
+def _scan(data: Any, base: SceneConfig | None, problems: list[str]) -> Scan | None:
+    spec = _mapping(data, "scan", SCAN_KEYS, problems)
+    if spec is None:
+        return None
+    mu = _values(spec.get("mu", _MISSING), "scan.mu", problems)
+    if mu is not None and base is not None:
+        for i, value in enumerate(mu):
+            _check_scene(base, "params.mu", value, f"scan.mu[{i}]", problems)
+    along = _along(
+        spec.get("along", {}),
+        "scan.along",
+        base,
+        problems,
+        counts=(0, 1),
+        taken={"params.mu": "params.mu is the scan's own axis: give its values in scan.mu"},
+    )
+    mode = spec.get("mode", DEFAULT_SCAN_MODE)
+    if mode not in get_args(_MODE_FIELD.annotation):
+        must = _requirement(_MODE_FIELD)
+        problems.append(f"scan.mode: {_show(mode)} is not allowed: must be {must}")
+        mode = None
+    if None in (mu, along, mode):
+        return None
+    return Scan(mu=mu, along=along, mode=mode)
+
+
+def _along(
+    data: Any,
+    path: str,
+    base: SceneConfig | None,
+    problems: list[str],
+    counts: tuple[int, int],
+    taken: Mapping[str, str],
+) -> dict[str, tuple[float, ...]] | None:
+    """The varied keys under `path`, each checked against the scene with each value."""
+    least, most = counts
+    allowed = f"{least} or {most}" if least else f"at most {most}"
+    noun = "scene key" if most == 1 else "scene keys"
+    if data is _MISSING:
+        problems.append(f"{path}: missing; must be a mapping of {allowed} dotted {noun} to values")
+        return None
+    spec = _mapping(data, path, None, problems)
+    if spec is None:
+        return None
+    ok = True
+    if not least <= len(spec) <= most:
+        got = f"{len(spec)} keys ({', '.join(spec)})" if spec else "no keys"
+        problems.append(f"{path}: {got} given: vary {allowed} {noun}")
+        ok = False
+    along = {}
+    for key, item in spec.items():
+        item_path = f"{path}.{key}"
+        values = _values(item, item_path, problems)
+        if key in taken:
+            problems.append(f"{item_path}: {taken[key]}")
+        elif _numeric_scene_field(key, path, problems) and values is not None:
+            if base is not None:
+                for i, value in enumerate(values):
+                    _check_scene(base, key, value, f"{item_path}[{i}]", problems)
+            along[key] = values
+            continue
+        ok = False
+    return along if ok else None
+
+
+# --- checks -----------------------------------------------------------------------------
+
+
+def _mapping(
+    data: Any, path: str, allowed: tuple[str, ...] | None, problems: list[str]
+) -> dict[str, Any] | None:
+    """`data` as a dict of its text keys that are `allowed` (None: any), else None."""
+    where = path or "(top level)"
+    keys = f"keys {', '.join(allowed)}" if allowed else "dotted scene keys"
+    if not isinstance(data, Mapping):
+        got = _kind(data) if data is None else f"{_kind(data)} {_show(data)}"
+        problems.append(f"{where}: expected a mapping with {keys}; got {got}")
+        return None
+    under = f"under {path}" if path else "at top level"
+    out = {}
+    for key, value in data.items():
+        if not isinstance(key, str):
+            problems.append(f"{where}: key {_show(key)} is not text; allowed: {keys}")
+        elif allowed is not None and key not in allowed:
+            text = f"unknown key; allowed keys {under}: {', '.join(allowed)}"
+            close = difflib.get_close_matches(key, allowed, n=1)
+            text += f" (did you mean {close[0]!r}?)" if close else ""
+            problems.append(f"{_join(path, key)}: {text}")
+        else:
+            out[key] = value
+    return out
+
+
+def _name(value: Any, problems: list[str]) -> str | None:
+    must = "must be text of letters, digits, _ and - only"
+    if value is _MISSING:
+        problems.append(f"name: missing; {must}")
+    elif not isinstance(value, str):
+        problems.append(f"name: {_show(value)} is {_kind(value)}, not text: {must}")
+    elif not _NAME.fullmatch(value):
+        problems.append(f"name: {_show(value)} is not allowed: {must}")
+    else:
+        return value
+    return None
+
+
+def _number(
+    value: Any,
+    path: str,
+    problems: list[str],
+    integer: bool = False,
+    **bounds: float,
+) -> Any:
+    """`value` as a finite float (or an int), within `bounds` (gt/ge/lt/le), else None."""
+    limits = " and ".join(f"{_SYMBOLS[name]} {bound}" for name, bound in bounds.items())
+    noun = "an integer" if integer else "a number"
+    must = f"must be {'an integer' if integer else 'a finite number'} {limits}".rstrip()
+    if value is _MISSING:
+        problems.append(f"{path}: missing; {must}")
+        return None
+    if value is None:
+        problems.append(f"{path}: missing value (null); {must}")
+        return None
+    kinds = (int,) if integer else (int, float)
+    if isinstance(value, bool) or not isinstance(value, kinds):
+        hint = " (write numbers without quotes)" if isinstance(value, str) else ""
+        problems.append(f"{path}: {_show(value)} is {_kind(value)}, not {noun}: {must}{hint}")
+        return None
+    if not math.isfinite(value):
+        problems.append(f"{path}: {_show(value)} is not allowed: {must}")
+        return None
+    if not all(_COMPARE[name](value, bound) for name, bound in bounds.items()):
+        problems.append(f"{path}: {_show(value)} is out of range: must be {limits}")
+        return None
+    return value if integer else float(value)
+
+
+def _pair(value: Any, path: str, names: str, problems: list[str]) -> tuple[float, float] | None:
+    """`[a, b]` with 0 < a < b, both finite, else None."""
+    must = f"must be a list [{names}] of two finite numbers with 0 < {names.replace(', ', ' < ')}"
+    if value is _MISSING:
+        problems.append(f"{path}: missing; {must}")
+        return None
+    if not isinstance(value, list | tuple) or len(value) != 2:
+        got = _kind(value) if value is None else f"{_kind(value)} {_show(value)}"
+        problems.append(f"{path}: expected a list [{names}]; got {got}: {must}")
+        return None
+    items = [_number(item, f"{path}[{i}]", problems, gt=0) for i, item in enumerate(value)]
+    if None in items:
+        return None
+    if items[0] >= items[1]:
+        problems.append(f"{path}: {_show(items)} is not allowed: {must}")
+        return None
+    return items[0], items[1]
+
+
+def _values(value: Any, path: str, problems: list[str]) -> tuple[float, ...] | None:
+    """A non-empty list of distinct finite numbers, or `{start, stop, num}` (linspace)."""
+    must = f"must be a list of numbers or a mapping with keys {', '.join(LINSPACE_KEYS)}"
+    if value is _MISSING:
+        problems.append(f"{path}: missing; {must}")
+        return None
+    if isinstance(value, Mapping):
+        spec = _mapping(value, path, LINSPACE_KEYS, problems)
+        start = _number(spec.get("start", _MISSING), f"{path}.start", problems)
+        stop = _number(spec.get("stop", _MISSING), f"{path}.stop", problems)
+        num = _number(spec.get("num", _MISSING), f"{path}.num", problems, integer=True, ge=1)
+        if None in (start, stop, num) or len(spec) < len(value):
+            return None
+        if num > 1 and start == stop:
+            problems.append(
+                f"{path}: start = stop = {_show(start)} with num {num} repeats one value: "
+                "use num: 1 or different start and stop"
+            )
+            return None
+        return tuple(float(item) for item in np.linspace(start, stop, num))
+    if not isinstance(value, list | tuple):
+        got = _kind(value) if value is None else f"{_kind(value)} {_show(value)}"
+        problems.append(f"{path}: expected a list or a mapping; got {got}: {must}")
+        return None
+    if not value:
+        problems.append(f"{path}: empty list: give at least one number")
+        return None
+    items = [_number(item, f"{path}[{i}]", problems) for i, item in enumerate(value)]
+    if None in items:
+        return None
+    first: dict[float, int] = {}
+    for i, item in enumerate(items):
+        if item in first:
+            problems.append(
+                f"{path}[{i}]: {_show(item)} repeats {path}[{first[item]}]: values must differ"
+            )
+        first.setdefault(item, i)
+    return tuple(items) if len(first) == len(items) else None
+
+
+def _numeric_scene_field(key: str, path: str, problems: list[str]) -> bool:
+    """Whether dotted `key` names a numeric scene field; else a problem naming path.key."""
+    key_path = f"{path}.{key}"
+    if not _DOTTED_KEY.fullmatch(key):
+        problems.append(f"{key_path}: not a dotted scene key, e.g. params.x_ms")
+        return False
+    model: Any = SceneConfig
+    parts = key.split(".")
+    for depth, part in enumerate(parts):
+        section = ".".join(parts[:depth])
+        if not _is_model(model):
+            text = f"unknown scene key; {section} is a value, not a section"
+            problems.append(f"{key_path}: {text}")
+            return False
+        fields = model.model_fields
+        if part not in fields:
+            under = f"under {section}" if section else "at top level"
+            text = f"unknown scene key; allowed keys {under}: {', '.join(fields)}"
+            close = difflib.get_close_matches(part, list(fields), n=1)
+            text += f" (did you mean {close[0]!r}?)" if close else ""
+            problems.append(f"{key_path}: {text}")
+            return False
+        model = fields[part].annotation
+    if _is_model(model):
+        keys = ", ".join(model.model_fields)
+        problems.append(f"{key_path}: a section, not a number: vary one of its keys: {keys}")
+        return False
+    field = _scene_field(key)
+    if not _field_types(field) <= {int, float}:
+        problems.append(
+            f"{key_path}: not a numeric scene key (it must be {_requirement(field)}); "
+            "only numbers can be varied"
+        )
+        return False
+    return True
+
+
+def _check_scene(base: SceneConfig, key: str, value: float, path: str, problems: list[str]) -> None:
+    """Problems of the scene `base` with `key` = `value`, reported under `path`."""
+    try:
+        base.with_overrides({key: _scene_value(key, value)})
+    except ConfigError as err:
+        for problem in err.problems:
+            text = problem.removesuffix(f" (from override {key})")
+            problems.append(f"{path}: {text.removeprefix(f'{key}: ')}")
+
+
+def _scene_value(key: str, value: float) -> float | int:
+    """`value` as the scene field `key` takes it: a whole float becomes an int for int keys."""
+    if _field_types(_scene_field(key)) == {int} and float(value).is_integer():
+        return int(value)
+    return value
+
+
+# --- helpers ----------------------------------------------------------------------------
+
+
+def _scene_field(key: str) -> FieldInfo:
+    """The SceneConfig field of an existing dotted key."""
+    model: Any = SceneConfig
+    *sections, leaf = key.split(".")
+    for part in sections:
+        model = model.model_fields[part].annotation
+    return model.model_fields[leaf]
+
+
+def _field_types(field: FieldInfo) -> set[Any]:
+    """The types a field accepts besides null, e.g. {float} for `float | None`."""
+    annotation = field.annotation
+    union = get_origin(annotation) in (Union, types.UnionType)
+    kinds = set(get_args(annotation)) if union else {annotation}
+    return {kind for kind in kinds if kind is not type(None)}
+
+
+def _is_model(annotation: Any) -> bool:
+    return isinstance(annotation, type) and issubclass(annotation, BaseModel)
+
+
+def _join(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else key
+
+
+def _flatten(data: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """{"a": {"b": 1}} -> {"a.b": 1}; lists are values."""
+    out: dict[str, Any] = {}
+    for key, value in data.items():
+        path = _join(prefix, key)
+        if isinstance(value, Mapping) and value:
+            out |= _flatten(value, path)
+        else:
+            out[path] = value
+    return out
+
+
+def _show_or_absent(flat: Mapping[str, Any], path: str) -> str:
+    return _show(flat[path]) if path in flat else "(absent)"

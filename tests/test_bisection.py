@@ -1,0 +1,121 @@
+"""The bisection state machine against synthetic outcome oracles (no simulation)."""
+
+import math
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from frictiondisk.bisection import Bisection, RunRequest
+
+
+def drive(bis, oracle):
+    """Run a bisection to the end with outcomes from oracle(request) -> outcome."""
+    while not bis.done:
+        for req in bis.pending():
+            if bis.done:
+                break
+            outcome = oracle(req)
+            bis.feed(req, {"outcome": outcome, "reason": f"oracle at {req.mu}"})
+    return bis.result()
+
+
+def step_at(mu_star):
+    return lambda req: "stick" if req.mu >= mu_star else "stick_slip"
+
+
+def test_converges_to_a_bracket_holding_the_jump():
+    res = drive(Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2), step_at(0.12653))
+    assert res.status == "converged"
+    assert res.mu_lo < 0.12653 <= res.mu_hi
+    assert res.width <= 1e-4
+    assert res.mu_star == pytest.approx(0.5 * (res.mu_lo + res.mu_hi))
+    assert res.monotone
+    assert res.end_result("hi")["outcome"] == "stick"
+    assert res.end_result("lo")["outcome"] == "stick_slip"
+    # 2 end checks + ceil(log2(0.25 / 1e-4)) = 12 halvings
+    assert len(res.runs) == 2 + math.ceil(math.log2(0.25 / 1e-4))
+
+
+@pytest.mark.parametrize("mu_star", [0.9, 0.004])
+def test_widens_the_bracket_when_both_ends_agree(mu_star):
+    res = drive(Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2), step_at(mu_star))
+    assert res.status == "converged"
+    assert res.mu_lo < mu_star <= res.mu_hi
+
+
+def test_fails_naming_both_ends_when_the_limits_stop_the_widening():
+    res = drive(Bisection((0.05, 0.3), 1e-4, (0.01, 0.5), 2), step_at(0.8))
+    assert res.status == "failed"
+    assert "no stick up to the limit" in res.reason
+    assert "0.5" in res.reason and "stick_slip" in res.reason
+    assert math.isnan(res.mu_star)
+
+
+def test_inverted_bracket_fails_with_both_outcomes():
+    res = drive(
+        Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2),
+        lambda r: "stick" if r.mu < 0.1 else "slide",
+    )
+    assert res.status == "failed"
+    assert "inverted" in res.reason and "slide" in res.reason
+
+
+def test_undetermined_is_retried_with_longer_horizons_then_used():
+    calls = []
+
+    def oracle(req):
+        calls.append(req)
+        if abs(req.mu - 0.175) < 1e-12 and req.level < 2:
+            return "undetermined"
+        return step_at(0.2)(req)
+
+    res = drive(Bisection((0.05, 0.3), 1e-3, (1e-6, 10.0), 2), oracle)
+    assert res.status == "converged"
+    assert [r.level for r in calls if abs(r.mu - 0.175) < 1e-12] == [0, 1, 2]
+    assert res.mu_lo < 0.2 <= res.mu_hi
+
+
+def test_undetermined_after_all_retries_fails_with_the_run_reason():
+    res = drive(
+        Bisection((0.05, 0.3), 1e-3, (1e-6, 10.0), 1),
+        lambda r: "undetermined" if r.mu > 0.2 else "stick_slip",
+    )
+    assert res.status == "failed"
+    assert "after 1 retries" in res.reason and "oracle at" in res.reason
+
+
+def test_non_monotone_runs_are_reported_not_hidden():
+    """Inside a valid bracket every midpoint is consistent by construction, so a
+    contradiction can only come from the end checks: a sticking island below a not-stick
+    region. It is reported as pairs (mu of a stick, larger mu of a not stick)."""
+
+    def oracle(req):
+        return "stick" if 0.05 <= req.mu < 0.055 or req.mu >= 0.1 else "stick_slip"
+
+    res = drive(Bisection((0.05, 0.06), 1e-4, (1e-6, 10.0), 0), oracle)
+    assert res.status == "failed"
+    assert not res.monotone
+    assert res.contradictions == ((0.05, 0.06),)
+
+
+def test_feed_rejects_runs_it_did_not_ask_for():
+    bis = Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2)
+    with pytest.raises(ValueError):
+        bis.feed(RunRequest(0.17), {"outcome": "stick"})
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    mu_star=st.floats(0.001, 5.0),
+    lo=st.floats(0.001, 5.0),
+    width=st.floats(1e-3, 3.0),
+    tol=st.floats(1e-6, 1e-3),
+)
+def test_any_step_oracle_is_bracketed(mu_star, lo, width, tol):
+    hi = lo + width
+    res = drive(Bisection((lo, hi), tol, (1e-4, 20.0), 0), step_at(mu_star))
+    if 1e-4 < mu_star <= 20.0:
+        assert res.status == "converged"
+        assert res.mu_lo < mu_star <= res.mu_hi
+        assert res.width <= tol * (1 + 1e-9)

@@ -1,0 +1,260 @@
+"""Campaigns end to end: located jumps against physics, determinism across worker counts,
+resume after SIGKILL and Ctrl-C, a killed worker, corruption repair, refusals."""
+
+from __future__ import annotations
+
+import math
+import os
+import random
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pytest
+import xarray as xr
+from click.testing import CliRunner
+
+from frictiondisk.campaign.journal import CampaignLock, Journal
+from frictiondisk.campaign.runner import run_campaign
+from frictiondisk.campaign.spec import campaign_from_text
+from frictiondisk.cli import main
+
+G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of MODEL.md 6 for the default pin
+
+PIN_LINE = """\
+name: pin_line
+scene: pin
+numerics: {{t_decide: 20.0}}
+find_jump:
+  bracket: [0.05, 0.3]
+  tol: 1.0e-4
+  lanes: {lanes}
+  along:
+    params.x_ms: {values}
+"""
+
+# Disk runs take tens of milliseconds: slow enough to interrupt a campaign mid-way.
+DISK_LINE = """\
+name: disk_line
+scene: disk
+params: {phidot0: 1.1}
+contact: {points: 6}
+numerics: {t_decide: 15.0}
+find_jump:
+  bracket: [0.05, 0.3]
+  tol: 1.0e-3
+  along:
+    params.x_ms: {start: 0.04, stop: 0.14, num: 6}
+"""
+
+
+def pin_line(values, lanes=2):
+    return campaign_from_text(PIN_LINE.format(values=values, lanes=lanes), "<test>")
+
+
+def _identical(dir_a: Path, dir_b: Path) -> None:
+    with xr.open_dataset(dir_a / "results.nc") as a, xr.open_dataset(dir_b / "results.nc") as b:
+        xr.testing.assert_identical(a.load(), b.load())
+    with xr.open_dataset(dir_a / "runs.nc") as a, xr.open_dataset(dir_b / "runs.nc") as b:
+        xr.testing.assert_identical(a.drop_vars("wall_s").load(), b.drop_vars("wall_s").load())
+
+
+def test_pin_jump_satisfies_the_sticking_circle_oracle(tmp_path):
+    run_campaign(pin_line("[0.1]"), tmp_path, workers=1, progress=False)
+    with xr.open_dataset(tmp_path / "results.nc") as ds:
+        lo, hi = float(ds.mu_lo[0]), float(ds.mu_hi[0])
+        r1 = float(ds.R1_hi[0])
+        assert ds.status.values[0] == "converged"
+        assert ds.outcome_hi.values[0] == "stick"
+        assert ds.outcome_lo.values[0] in ("stick_slip", "slide")
+        assert ds.mu_star.attrs["long_name"] and ds.x_ms.attrs["units"] == "m"
+    assert hi - lo <= 1e-4 * (1 + 1e-9)
+    oracle = 1.0 * 0.1 + G * r1  # c_s x_ms + g R1 (MODEL.md 6)
+    assert lo - 2e-5 < oracle <= hi + 2e-5
+
+
+def test_jump_scales_with_the_offset(tmp_path):
+    run_campaign(pin_line("[0.05, 0.1]"), tmp_path, workers=2, progress=False)
+    with xr.open_dataset(tmp_path / "results.nc") as ds:
+        lo, hi = ds.mu_lo.values, ds.mu_hi.values
+    # mu*(0.1) = 2 mu*(0.05): the intervals [lo2, hi2] and 2 [lo1, hi1] overlap
+    assert max(lo[1], 2 * lo[0]) <= min(hi[1], 2 * hi[0])
+
+
+def test_one_and_two_workers_give_identical_results(tmp_path):
+    campaign = pin_line("{start: 0.04, stop: 0.16, num: 5}")
+    run_campaign(campaign, tmp_path / "w1", workers=1, progress=False)
+    run_campaign(campaign, tmp_path / "w2", workers=2, progress=False)
+    _identical(tmp_path / "w1", tmp_path / "w2")
+    with xr.open_dataset(tmp_path / "w1" / "results.nc") as ds:
+        assert (ds.status.values == "converged").all()
+        # point j extrapolates from the points <= j - lanes: two of them exist from j = 3 on
+        assert ds.warm_start.values.tolist() == [0, 0, 0, 1, 1]
+        assert ds.attrs["runs_saved_by_warm_start"] > 0
+
+
+def _cli(*args, env=None):
+    return subprocess.Popen(
+        [sys.executable, "-m", "frictiondisk.cli", *map(str, args)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=env,
+    )
+
+
+def _wait_for_entries(journal_dir: Path, count: int, proc, timeout=60.0) -> None:
+    t0 = time.time()
+    while time.time() - t0 < timeout and proc.poll() is None:
+        n = sum(1 for _ in journal_dir.glob("*/*.json")) if journal_dir.exists() else 0
+        if n >= count:
+            return
+        time.sleep(0.02)
+
+
+def test_sigkill_and_resume_give_the_uninterrupted_results(tmp_path):
+    campaign_file = tmp_path / "disk.yaml"
+    campaign_file.write_text(DISK_LINE)
+    reference = tmp_path / "reference"
+    run_campaign(campaign_from_text(DISK_LINE, "<test>"), reference, workers=2, progress=False)
+    n_runs = len(Journal(reference))
+
+    out = tmp_path / "killed"
+    rng = random.Random(7)
+    kills = 0
+    for _ in range(3):
+        proc = _cli("run", campaign_file, "-o", out)
+        _wait_for_entries(out / "journal", len(Journal(out)) + rng.randint(2, n_runs // 4), proc)
+        if proc.poll() is None:
+            proc.send_signal(signal.SIGKILL)
+            kills += 1
+        proc.wait()
+    assert kills >= 1
+    proc = _cli("resume", out)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err.decode()
+    _identical(reference, out)
+    counts = Journal(out).computed_counts()
+    repeated = sum(c - 1 for c in counts.values())
+    assert repeated <= 2 * kills  # at most the runs in flight (2 workers) at each kill
+
+
+def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
+    campaign_file = tmp_path / "disk.yaml"
+    campaign_file.write_text(DISK_LINE)
+    out = tmp_path / "out"
+    proc = _cli("run", campaign_file, "-o", out)
+    _wait_for_entries(out / "journal", 5, proc)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    if proc.returncode == 0:
+        pytest.skip("the campaign finished before the interrupt arrived")
+    assert proc.returncode == 130, err.decode()
+    assert b"frictiondisk resume" in err
+    before = len(Journal(out))
+    assert before >= 5
+    result = CliRunner().invoke(main, ["resume", str(out)])
+    assert result.exit_code == 0, result.output
+    counts = Journal(out).computed_counts()
+    assert sum(c - 1 for c in counts.values()) <= 2
+
+
+def test_killed_worker_is_retried_and_the_campaign_completes(tmp_path):
+    from distributed import Client, LocalCluster
+
+    campaign = campaign_from_text(DISK_LINE, "<test>")
+    run_campaign(campaign, tmp_path / "reference", workers=2, progress=False)
+    with (
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        Client(cluster) as client,
+    ):
+        pids = list(client.run(os.getpid).values())
+        out = tmp_path / "out"
+        errors = []
+
+        def target():
+            try:
+                run_campaign(campaign, out, scheduler=cluster.scheduler_address, progress=False)
+            except Exception as exc:  # surfaced below
+                errors.append(exc)
+
+        thread = threading.Thread(target=target)
+        thread.start()
+        t0 = time.time()
+        while len(Journal(out)) < 5 and time.time() - t0 < 120:
+            time.sleep(0.02)
+        os.kill(pids[0], signal.SIGKILL)  # the nanny restarts it; its task is rescheduled
+        thread.join(timeout=300)
+        assert not errors, errors
+    _identical(tmp_path / "reference", out)
+
+
+def test_corrupted_entry_and_truncated_results_are_repaired(tmp_path):
+    campaign = pin_line("[0.08, 0.1]")
+    run_campaign(campaign, tmp_path / "reference", workers=1, progress=False)
+    out = tmp_path / "out"
+    run_campaign(campaign, out, workers=1, progress=False)
+    entry = sorted((out / "journal").glob("*/*.json"))[3]
+    text = entry.read_text()
+    entry.write_text(text.replace('"stick', '"stuck', 1) if '"stick' in text else text[:-20])
+    results = out / "results.nc"
+    results.write_bytes(results.read_bytes()[: results.stat().st_size // 2])
+
+    status = CliRunner().invoke(main, ["status", str(out)])
+    assert "damaged" in status.output
+
+    summary = run_campaign(None, out, workers=1, progress=False)
+    assert summary.runs_computed == 1  # only the corrupted run
+    assert Journal(out).n_corrupt == 0  # a fresh journal object sees a clean journal
+    assert (out / "journal" / "corrupt").is_dir()
+    _identical(tmp_path / "reference", out)
+    status = CliRunner().invoke(main, ["status", str(out)])
+    assert "complete" in status.output
+
+
+def test_second_run_on_a_locked_directory_is_refused(tmp_path):
+    campaign_file = tmp_path / "c.yaml"
+    campaign_file.write_text(PIN_LINE.format(values="[0.1]", lanes=2))
+    out = tmp_path / "out"
+    out.mkdir()
+    with CampaignLock(out):
+        result = CliRunner().invoke(main, ["run", str(campaign_file), "-o", str(out)])
+    assert result.exit_code == 3
+    assert str(os.getpid()) in result.output
+
+
+def test_resuming_with_a_changed_campaign_names_the_difference(tmp_path):
+    campaign_file = tmp_path / "c.yaml"
+    campaign_file.write_text(PIN_LINE.format(values="[0.1]", lanes=2))
+    out = tmp_path / "out"
+    assert CliRunner().invoke(main, ["run", str(campaign_file), "-o", str(out)]).exit_code == 0
+    campaign_file.write_text(PIN_LINE.format(values="[0.1]", lanes=2).replace("1.0e-4", "2.0e-4"))
+    result = CliRunner().invoke(main, ["run", str(campaign_file), "-o", str(out)])
+    assert result.exit_code == 2
+    assert "find_jump.tol" in result.output
+
+
+@pytest.mark.parametrize(
+    "edit, path",
+    [
+        (
+            lambda t: t.replace("tol: 1.0e-4", "tol: 1.0e-4\n  frobnicate: 1"),
+            "find_jump.frobnicate",
+        ),
+        (lambda t: t.replace("[0.05, 0.3]", "[0.3, 0.05]"), "find_jump.bracket"),
+        (lambda t: t.replace("tol: 1.0e-4", "tol: 0"), "find_jump.tol"),
+        (lambda t: t.replace("tol: 1.0e-4", "tol: .nan"), "find_jump.tol"),
+        (lambda t: t.replace("params.x_ms", "params.nope"), "params.nope"),
+    ],
+)
+def test_bad_campaign_files_exit_2_naming_the_path(tmp_path, edit, path):
+    campaign_file = tmp_path / "c.yaml"
+    campaign_file.write_text(edit(PIN_LINE.format(values="[0.1]", lanes=2)))
+    result = CliRunner().invoke(main, ["run", str(campaign_file), "-o", str(tmp_path / "o")])
+    assert result.exit_code == 2
+    assert path in result.output
+    assert "Traceback" not in result.output

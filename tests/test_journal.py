@@ -1,0 +1,363 @@
+"""Campaign storage: run keys, the journal, the campaign lock and atomic netCDF files.
+
+Fast tests, no kernel runs: journal entries hold hand-made results.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from frictiondisk.campaign import journal as journal_module
+from frictiondisk.campaign.files import (
+    atomic_write_bytes,
+    atomic_write_netcdf,
+    atomic_write_text,
+    netcdf_is_valid,
+)
+from frictiondisk.campaign.journal import (
+    CampaignLock,
+    CampaignLocked,
+    Journal,
+    _source_digest,
+    kernel_version,
+    run_key,
+)
+from frictiondisk.config import scene_from_dict
+
+INPUTS = {"scene": {"scene": "pin", "params": {"mu": 0.13}}, "kernel": "0123456789abcdef"}
+RESULT = {"outcome": "stick_slip", "t_stick": None, "x_amplitude": 0.0123456789, "n_events": 42}
+
+
+def _key(n: int) -> str:
+    return f"{n:064x}"
+
+
+# --- keys ---------------------------------------------------------------------------------
+
+
+def test_kernel_version_is_16_hex_and_stable():
+    version = kernel_version()
+    assert len(version) == 16 and int(version, 16) >= 0
+    assert kernel_version() == version
+    assert run_key(scene_from_dict({"scene": "pin"})) == run_key(scene_from_dict({"scene": "pin"}))
+
+
+def test_kernel_version_changes_with_any_kernel_source(tmp_path):
+    (tmp_path / "kernel").mkdir()
+    files = ["kernel/a.py", "kernel/b.py", "simulate.py", "classify.py"]
+    for name in files:
+        (tmp_path / name).write_text(f"# {name}\nX = 1\n")
+    (tmp_path / "plotting.py").write_text("# not numerics\n")
+    before = _source_digest(tmp_path)
+    (tmp_path / "plotting.py").write_text("# edited, still not numerics\n")
+    assert _source_digest(tmp_path) == before
+    for name in files:
+        original = (tmp_path / name).read_text()
+        (tmp_path / name).write_text(original.replace("X = 1", "X = 2"))
+        assert _source_digest(tmp_path) != before, name
+        (tmp_path / name).write_text(original)
+    assert _source_digest(tmp_path) == before
+    (tmp_path / "kernel" / "c.py").write_text("")
+    assert _source_digest(tmp_path) != before, "a new kernel file"
+
+
+@pytest.mark.parametrize(
+    "override",
+    [
+        {"scene": "disk"},
+        {"params": {"mu": 0.1300001}},
+        {"params": {"x_ms": 0.2}},
+        {"contact": {"stribeck": {"r": 0.5}}},
+        {"numerics": {"rtol": 1e-7}},
+        {"numerics": {"stop_on_stick": False}},
+    ],
+)
+def test_run_key_changes_with_any_scene_value(override):
+    base = run_key(scene_from_dict({"scene": "pin"}))
+    assert run_key(scene_from_dict({"scene": "pin", **override})) != base
+
+
+def test_run_key_ignores_how_defaults_are_written():
+    implicit = scene_from_dict({"scene": "pin"})
+    explicit = scene_from_dict({"scene": "pin", "params": {"mu": 0.13}, "contact": {"points": 1}})
+    assert run_key(implicit) == run_key(explicit)
+
+
+def test_run_key_changes_with_kernel_version(monkeypatch):
+    config = scene_from_dict({"scene": "pin"})
+    before = run_key(config)
+    monkeypatch.setattr(journal_module, "kernel_version", lambda: "fedcba9876543210")
+    assert run_key(config) != before
+
+
+# --- journal ------------------------------------------------------------------------------
+
+
+def test_put_get_round_trip(tmp_path):
+    journal = Journal(tmp_path)
+    key = run_key(scene_from_dict({"scene": "pin"}))
+    assert journal.get(key) is None and len(journal) == 0
+    journal.put(key, INPUTS, RESULT)
+    assert journal.get(key) == RESULT
+    assert Journal(tmp_path).get(key) == RESULT  # a fresh reader, e.g. after a restart
+    assert journal.keys() == [key] and len(journal) == 1 and key in journal
+    entry = json.loads(journal.entry_path(key).read_text())
+    assert entry["version"] == 1 and entry["key"] == key and entry["inputs"] == INPUTS
+    assert journal.entry_path(key) == tmp_path / "journal" / key[:2] / f"{key}.json"
+    assert journal.n_corrupt == 0
+    assert _temp_files(tmp_path) == []
+
+
+def test_put_rejects_nan_with_the_field_named(tmp_path):
+    journal = Journal(tmp_path)
+    with pytest.raises(ValueError, match=r"result\.x_amplitude is NaN or infinite.*pass None"):
+        journal.put(_key(1), INPUTS, {**RESULT, "x_amplitude": float("nan")})
+    with pytest.raises(ValueError, match=r"inputs\.mu\.1 is NaN or infinite"):
+        journal.put(_key(1), {"mu": [0.1, np.inf]}, RESULT)
+    with pytest.raises(TypeError, match=r"not JSON serializable"):
+        journal.put(_key(1), INPUTS, {"x": object()})
+    with pytest.raises(ValueError, match=r"not valid: expected a sha256 hex digest"):
+        journal.put("../../etc", INPUTS, RESULT)
+    assert journal.get(_key(1)) is None and journal.keys() == []
+    assert _temp_files(tmp_path) == []
+
+
+def _truncate(path: Path) -> None:
+    path.write_bytes(path.read_bytes()[: path.stat().st_size // 2])
+
+
+def _flip_result_digit(path: Path) -> None:
+    raw = path.read_bytes()
+    assert raw.count(b"0.0123456789") == 1
+    path.write_bytes(raw.replace(b"0.0123456789", b"0.0123456788"))  # one byte differs
+
+
+def _wrong_key_field(path: Path) -> None:
+    entry = json.loads(path.read_text())
+    entry["key"] = _key(999)
+    path.write_text(json.dumps(entry))
+
+
+def _not_json(path: Path) -> None:
+    path.write_bytes(b"\x00\xff garbage, not JSON\n")
+
+
+@pytest.mark.parametrize(
+    ("damage", "reason"),
+    [
+        (_truncate, "truncated or not JSON"),
+        (_flip_result_digit, "sha256 mismatch"),
+        (_wrong_key_field, "differs from the file's key"),
+        (_not_json, "truncated or not JSON"),
+    ],
+)
+def test_damaged_entry_is_detected_moved_and_recomputable(tmp_path, damage, reason):
+    journal = Journal(tmp_path)
+    key, other = _key(0xABC), _key(0xDEF)
+    journal.put(key, INPUTS, RESULT)
+    journal.put(other, INPUTS, RESULT)
+    damage(journal.entry_path(key))
+
+    assert journal.get(key) is None
+    assert journal.n_corrupt == 1
+    assert len(journal.corrupt_reasons) == 1 and journal.corrupt_reasons[0].startswith(key)
+    assert reason in journal.corrupt_reasons[0]
+    assert not journal.entry_path(key).exists()
+    assert [p.name for p in (tmp_path / "journal" / "corrupt").iterdir()] == [f"{key}.1.json"]
+    assert journal.keys() == [other] and journal.get(other) == RESULT
+
+    assert journal.get(key) is None and journal.n_corrupt == 1  # now missing, not corrupt
+    journal.put(key, INPUTS, RESULT)  # the recomputed run
+    assert journal.get(key) == RESULT and journal.n_corrupt == 1
+
+    damage(journal.entry_path(key))  # damaged again: kept next to the first one
+    assert journal.get(key) is None and journal.n_corrupt == 2
+    assert (tmp_path / "journal" / "corrupt" / f"{key}.2.json").exists()
+
+
+def test_entry_with_missing_field_or_empty_file_is_corrupt(tmp_path):
+    journal = Journal(tmp_path)
+    journal.put(_key(1), INPUTS, RESULT)
+    entry = json.loads(journal.entry_path(_key(1)).read_text())
+    del entry["sha256"]
+    journal.entry_path(_key(1)).write_text(json.dumps(entry))
+    journal.put(_key(2), INPUTS, RESULT)
+    journal.entry_path(_key(2)).write_bytes(b"")
+    assert journal.get(_key(1)) is None and journal.get(_key(2)) is None
+    assert journal.n_corrupt == 2
+    assert "missing field(s) sha256" in journal.corrupt_reasons[0]
+    assert "empty file" in journal.corrupt_reasons[1]
+
+
+def test_computed_counts_counts_repeated_puts(tmp_path):
+    journal = Journal(tmp_path)
+    assert journal.computed_counts() == {}
+    for key in (_key(1), _key(2), _key(1), _key(1)):
+        journal.put(key, INPUTS, RESULT)
+    assert journal.computed_counts() == {_key(1): 3, _key(2): 1}
+    assert len(journal) == 2 and journal.get(_key(1)) == RESULT  # overwritten atomically
+    assert Journal(tmp_path).computed_counts() == {_key(1): 3, _key(2): 1}
+
+
+def test_truncated_last_log_line_is_ignored_and_next_put_still_logged(tmp_path):
+    journal = Journal(tmp_path)
+    journal.put(_key(1), INPUTS, RESULT)
+    with open(journal.log_path, "ab") as fh:
+        fh.write(_key(2)[:30].encode())  # a write cut short by a crash
+    assert journal.computed_counts() == {_key(1): 1}
+    journal.put(_key(3), INPUTS, RESULT)
+    assert journal.computed_counts() == {_key(1): 1, _key(3): 1}
+
+
+# --- lock ---------------------------------------------------------------------------------
+
+_HOLDER_SCRIPT = textwrap.dedent(
+    """
+    import sys, time
+    from frictiondisk.campaign.journal import CampaignLock
+    with CampaignLock(sys.argv[1]):
+        print("locked", flush=True)
+        time.sleep(60)
+    """
+)
+
+
+@pytest.fixture
+def lock_holder(tmp_path):
+    """A separate process holding the lock of tmp_path / "campaign"; killed at the end."""
+    campaign = tmp_path / "campaign"
+    proc = subprocess.Popen(
+        [sys.executable, "-c", _HOLDER_SCRIPT, str(campaign)],
+        stdout=subprocess.PIPE,
+        text=True,
+        cwd=Path(__file__).resolve().parent.parent,
+    )
+    try:
+        assert proc.stdout.readline().strip() == "locked"
+        yield campaign, proc
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        proc.wait(timeout=10)
+        proc.stdout.close()
+
+
+def test_second_lock_is_refused_naming_dir_and_pid(lock_holder):
+    campaign, proc = lock_holder
+    assert CampaignLock.holder(campaign) == proc.pid
+    with pytest.raises(CampaignLocked, match=rf"in use .*\(PID {proc.pid}, started ") as info:
+        with CampaignLock(campaign):
+            pass
+    assert info.value.pid == proc.pid and str(campaign) in str(info.value)
+    assert info.value.directory == campaign
+
+
+def test_sigkilled_holder_leaves_no_stuck_lock(lock_holder):
+    campaign, proc = lock_holder
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait(timeout=10)
+    assert CampaignLock.holder(campaign) is None
+    with CampaignLock(campaign) as lock:
+        assert lock.held
+        assert CampaignLock.holder(campaign) == os.getpid()
+    assert not lock.held
+    assert CampaignLock.holder(campaign) is None
+
+
+def test_lock_in_one_process_is_exclusive_and_reusable(tmp_path):
+    assert CampaignLock.holder(tmp_path) is None  # no lock file yet
+    assert not (tmp_path / "lock").exists()
+    with CampaignLock(tmp_path):
+        with pytest.raises(CampaignLocked, match=rf"PID {os.getpid()}"):
+            CampaignLock(tmp_path).acquire()
+    with CampaignLock(tmp_path):
+        pass
+    assert CampaignLock.holder(tmp_path) is None
+
+
+def test_forked_child_does_not_keep_the_lock(tmp_path):
+    lock = CampaignLock(tmp_path).acquire()
+    pid = os.fork()
+    if pid == 0:  # child: sleeps while the parent releases
+        import time
+
+        time.sleep(5)
+        os._exit(0)
+    try:
+        lock.release()
+        assert CampaignLock.holder(tmp_path) is None  # the live child does not hold it
+    finally:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+
+
+# --- atomic files -------------------------------------------------------------------------
+
+
+def _temp_files(directory: Path) -> list[Path]:
+    return [p for p in directory.rglob("*") if p.name.endswith(".tmp")]
+
+
+def _dataset() -> xr.Dataset:
+    rng = np.random.default_rng(0)
+    return xr.Dataset(
+        {
+            "outcome": (("mu", "x_ms"), rng.integers(0, 3, (200, 50)).astype(np.int8)),
+            "amplitude": (("mu", "x_ms"), rng.normal(size=(200, 50)), {"units": "m"}),
+        },
+        coords={"mu": np.linspace(0.05, 0.2, 200), "x_ms": np.linspace(0.0, 0.2, 50)},
+        attrs={"title": "test"},
+    )
+
+
+def test_atomic_write_netcdf_round_trip_and_truncation_detected(tmp_path):
+    path = tmp_path / "sub" / "results.nc"
+    assert not netcdf_is_valid(path)
+    ds = _dataset()
+    assert atomic_write_netcdf(ds, path) == path
+    assert netcdf_is_valid(path)
+    with xr.open_dataset(path) as back:
+        xr.testing.assert_identical(back.load(), ds)
+    assert _temp_files(tmp_path) == []
+
+    _truncate(path)
+    assert not netcdf_is_valid(path)
+    atomic_write_netcdf(ds, path)  # repair: replaces the truncated file
+    assert netcdf_is_valid(path)
+
+
+def test_netcdf_is_valid_rejects_garbage_and_empty(tmp_path):
+    (tmp_path / "empty.nc").write_bytes(b"")
+    (tmp_path / "text.nc").write_text("not netCDF")
+    assert not netcdf_is_valid(tmp_path / "empty.nc")
+    assert not netcdf_is_valid(tmp_path / "text.nc")
+    assert not netcdf_is_valid(tmp_path)  # a directory
+
+
+def test_failed_netcdf_write_keeps_old_file_and_leaves_no_temp(tmp_path):
+    path = tmp_path / "results.nc"
+    atomic_write_netcdf(_dataset(), path)
+    before = path.read_bytes()
+    bad = xr.Dataset({"x": ("t", np.array([object(), object()]))})  # netCDF cannot store
+    with pytest.raises(Exception):  # noqa: B017 - whatever the backend raises
+        atomic_write_netcdf(bad, path)
+    assert path.read_bytes() == before and netcdf_is_valid(path)
+    assert _temp_files(tmp_path) == []
+
+
+def test_atomic_write_bytes_and_text(tmp_path):
+    path = tmp_path / "a" / "b.txt"
+    atomic_write_text(path, "first\n")
+    atomic_write_bytes(path, b"second\n")
+    assert path.read_bytes() == b"second\n"
+    assert sorted(p.name for p in path.parent.iterdir()) == ["b.txt"]
