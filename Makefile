@@ -2,7 +2,7 @@
 #
 #   make demo    create .venv, install, run the built-in pin example, show where the outputs are
 #   make test    create .venv if needed, install with test extras, run the test suite
-#   make bench   kernel benchmark
+#   make bench   kernel and campaign benchmarks (ratios against baselines run alongside)
 #   make lint    ruff check + ruff format --check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
@@ -47,6 +47,7 @@ test: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kernel.py
+	$(BIN)/python benchmarks/bench_campaign.py
 
 lint: $(STAMP)
 	$(BIN)/ruff check $(LINT_PATHS)

@@ -185,6 +185,19 @@ def test_damaged_entry_is_detected_moved_and_recomputable(tmp_path, damage, reas
     assert (tmp_path / "journal" / "corrupt" / f"{key}.2.json").exists()
 
 
+def test_peek_verifies_but_never_writes(tmp_path):
+    journal = Journal(tmp_path)
+    journal.put(_key(1), {"a": 1}, {"outcome": "stick", "R1": 0.0123456789})
+    assert Journal.peek(tmp_path, _key(1)) == {"outcome": "stick", "R1": 0.0123456789}
+    assert Journal.peek(tmp_path, _key(2)) is None
+    assert Journal.peek(tmp_path / "elsewhere", _key(1)) is None
+    assert not (tmp_path / "elsewhere").exists()
+    _flip_result_digit(journal.entry_path(_key(1)))
+    assert Journal.peek(tmp_path, _key(1)) is None
+    assert journal.entry_path(_key(1)).exists()  # left for the driver's get() to move
+    assert not journal.corrupt_dir.exists()
+
+
 def test_entry_with_missing_field_or_empty_file_is_corrupt(tmp_path):
     journal = Journal(tmp_path)
     journal.put(_key(1), INPUTS, RESULT)

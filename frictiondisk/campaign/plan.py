@@ -1,9 +1,11 @@
 """Which runs a campaign needs next: planners for `find_jump` and `scan` (pure Python).
 
 A planner turns a campaign into requests `(point index, RunRequest)` and takes their
-results back. It does no I/O and knows nothing of Dask, so a live campaign and its replay
-from the journal follow the same path, and the results do not depend on worker count or
-timing: every decision depends only on outcomes, never on the order they arrive in.
+results back (`requests`, `feed`: the driver answers them from the journal), and hands
+out the work the journal cannot answer as jobs (`jobs`, `complete`, `fail`: the driver
+runs them on Dask). It does no I/O and knows nothing of Dask, and the results do not
+depend on worker count or timing: every decision depends only on outcomes, never on the
+order they arrive in.
 
 Warm start (find_jump), along the last varied dimension ("a row"): a point starts once
 every point at least `lanes` places before it in its row is done, so up to `lanes`
@@ -20,6 +22,7 @@ import math
 from typing import Any
 
 from frictiondisk.bisection import Bisection, BisectionResult, RunRequest
+from frictiondisk.campaign.tasks import run_bisection, run_scene
 
 WARM_HALF_WIDTH_TOLS = 3.0  # half-width of a predicted bracket, in units of tol
 
@@ -51,6 +54,7 @@ class JumpPlanner:
         self.bisections: dict[int, Bisection] = {}
         self.results: dict[int, BisectionResult] = {}
         self.warm: dict[int, bool] = {}
+        self.busy: set[int] = set()  # points whose bisection is out on a worker
 
     def config_for(self, i: int, request: RunRequest):
         return run_config(self.points[i].config, request, self.task.horizon_factor)
@@ -66,16 +70,48 @@ class JumpPlanner:
         return [
             (i, req)
             for i, bis in sorted(self.bisections.items())
-            if not bis.done
+            if not bis.done and i not in self.busy
             for req in bis.pending()
         ]
 
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
         """Take a result; a result the point no longer waits for is ignored."""
         bis = self.bisections[i]
-        if bis.done or request not in bis.pending():
+        if bis.done or i in self.busy or request not in bis.pending():
             return
         bis.feed(request, result)
+        if bis.done:
+            self.results[i] = bis.result()
+
+    def jobs(self, campaign_dir: str) -> list[tuple[int, Any, tuple]]:
+        """(point, function, args) for every started point the journal could not finish;
+        the rest of its bisection runs on one worker (tasks.run_bisection), which reads
+        any later run the journal holds from campaign_dir instead of computing it."""
+        out = []
+        for i, bis in sorted(self.bisections.items()):
+            if bis.done or i in self.busy:
+                continue
+            self.busy.add(i)
+            canonical = self.points[i].config.canonical()
+            args = (bis, canonical, self.task.horizon_factor, campaign_dir)
+            out.append((i, run_bisection, args))
+        return out
+
+    def complete(self, i: int, value) -> list[tuple[int, RunRequest, dict[str, Any]]]:
+        """Take a finished job back; returns the runs it made, for the journal."""
+        bis, made = value
+        self.busy.discard(i)
+        self.bisections[i] = bis
+        if bis.done:
+            self.results[i] = bis.result()
+        return [(i, request, result) for request, result in made]
+
+    def fail(self, i: int, reason: str) -> None:
+        """A job that never came back (its worker kept dying): its next run counts as
+        undetermined, so the bisection retries it with a longer horizon or gives up."""
+        self.busy.discard(i)
+        bis = self.bisections[i]
+        bis.feed(bis.pending()[0], {"outcome": "undetermined", "reason": reason})
         if bis.done:
             self.results[i] = bis.result()
 
@@ -132,6 +168,7 @@ class ScanPlanner:
         self.campaign = campaign
         self.points = campaign.points()
         self.results: dict[int, dict[str, Any]] = {}
+        self.busy: set[int] = set()
 
     def config_for(self, i: int, request: RunRequest):
         return self.points[i].config
@@ -144,11 +181,30 @@ class ScanPlanner:
         return [
             (i, RunRequest(p.config.params.mu))
             for i, p in enumerate(self.points)
-            if i not in self.results
+            if i not in self.results and i not in self.busy
         ]
 
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
         self.results.setdefault(i, result)
+
+    def jobs(self, campaign_dir: str) -> list[tuple[int, Any, tuple]]:
+        """One job per point not yet known: a single (long, converge-mode) run."""
+        out = []
+        for i, point in enumerate(self.points):
+            if i in self.results or i in self.busy:
+                continue
+            self.busy.add(i)
+            out.append((i, run_scene, (point.config.canonical(),)))
+        return out
+
+    def complete(self, i: int, value) -> list[tuple[int, RunRequest, dict[str, Any]]]:
+        self.busy.discard(i)
+        self.results[i] = value
+        return [(i, RunRequest(self.points[i].config.params.mu), value)]
+
+    def fail(self, i: int, reason: str) -> None:
+        self.busy.discard(i)
+        self.results[i] = {"outcome": "undetermined", "reason": reason}
 
 
 def planner_for(campaign):
