@@ -19,6 +19,8 @@ DEMO_DIR := out/demo
 DEMO_NC := $(DEMO_DIR)/trajectory.nc
 DEMO_PNG := $(DEMO_DIR)/orbit.png
 DEMO_JSON := $(DEMO_DIR)/summary.json
+DEMO_CAMPAIGN := campaigns/demo_line.yaml
+DEMO_CAMPAIGN_DIR := out/demo_line
 
 .PHONY: all install demo test bench lint clean distclean
 
@@ -32,15 +34,20 @@ $(STAMP): pyproject.toml
 
 install: $(STAMP)
 
+# The main job: locate the jump mu* along a line of axes offsets (resumes if interrupted),
+# then one orbit of the demo scene.
 demo: $(STAMP)
+	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) -o $(DEMO_CAMPAIGN_DIR)
+	$(BIN)/frictiondisk status $(DEMO_CAMPAIGN_DIR)
 	@mkdir -p $(DEMO_DIR)
 	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)
-	@cat $(DEMO_JSON)
 	@echo ""
 	@echo "Demo finished. Outputs:"
-	@echo "  summary (JSON):       $(abspath $(DEMO_JSON))"
-	@echo "  trajectory (netCDF):  $(abspath $(DEMO_NC))"
-	@echo "  orbit plot (PNG):     $(abspath $(DEMO_PNG))"
+	@echo "  jump mu* along x_ms (netCDF): $(abspath $(DEMO_CAMPAIGN_DIR)/results.nc)"
+	@echo "  every run of it (netCDF):     $(abspath $(DEMO_CAMPAIGN_DIR)/runs.nc)"
+	@echo "  one run, summary (JSON):      $(abspath $(DEMO_JSON))"
+	@echo "  one run, trajectory (netCDF): $(abspath $(DEMO_NC))"
+	@echo "  one run, orbit plot (PNG):    $(abspath $(DEMO_PNG))"
 
 test: $(STAMP)
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
