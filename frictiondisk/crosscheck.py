@@ -8,7 +8,8 @@ as the numba kernel, but shares with it only what must be shared:
   and `simulate.build_result`, so both integrators are classified by the same rules.
 
 Everything that could hide a bug is written again here, from MODEL.md sections 2-4:
-the right-hand side, the switching function s_i = |k_i| - F_St,i - beta_i eps and its
+the right-hand side, the switching functions (|k_i| - F_St,i in stick, minus beta_i eps in
+slide) and their
 time derivative (`NumpyModel`, parameters read from the config, not from
 `pack_parameters`), event location (scipy's `solve_ivp` events: brentq on Radau's dense
 output), simultaneous switches, refused entries and the stopping rules. A bug on either
@@ -22,8 +23,9 @@ Jacobian (scipy's own, one vectorized call of the numpy right-hand side per Jaco
 Pending contacts (refused entries) re-enter stick when their stick rate ds/dt falls to
 0, located as an event on both sides. Deliberate differences from the kernel (the model is
 the same; these are numerics):
-* A pending contact leaves the pending state when s rises through 0: located here, tested
-  at step ends by the driver (it changes no dynamics, only which event is watched).
+* A contact leaves the hysteresis band of its mode (kernel/driver.py) when its switching
+  function changes sign: located here, tested at step ends by the driver (it changes no
+  dynamics, only which event is watched).
 * scipy finds an event only where w changes sign between two step ends; a crossing and
   re-crossing inside one step (a graze, which the kernel's `find_graze` looks for) is
   missed. Keep h_max small when comparing runs near a graze.
@@ -169,15 +171,23 @@ class NumpyModel:
         speed = np.sqrt(vx * vx + vy * vy)  # sqrt, not hypot: analytic for the complex step
         return ax, ay, vx, vy, ux, uy, kx, ky, self.friction_limit(speed), Zx, Zy
 
-    def switch(self, y):
-        """Switching functions s_i = |k_i| - F_St,i - beta_i eps [N], shape (N,) or (N, k)."""
+    def switch(self, y, modes):
+        """Switching functions [N], shape (N,) or (N, k): |k_i| - F_St,i for a contact in
+        stick, |k_i| - F_St,i - beta_i eps in slide (MODEL.md section 3)."""
         y2 = np.asarray(y)
         flat = y2.ndim == 1
         if flat:
             y2 = y2[:, None]
         *_, kx, ky, fst, _, _ = self.contacts(y2)
-        s = np.sqrt(kx * kx + ky * ky) - fst - self.beta_i * self.eps
+        offset = np.where(np.asarray(modes) == STICK, 0.0, self.beta_i * self.eps)
+        s = np.sqrt(kx * kx + ky * ky) - fst - offset[:, None]
         return s[:, 0] if flat else s
+
+    def in_band(self, y, modes):
+        """Contacts inside the hysteresis band of their mode: stuck above the limit, or
+        sliding below the end-of-slide threshold (kernel/driver.py)."""
+        s = self.switch(y, modes)
+        return np.where(np.asarray(modes) == STICK, s > 0.0, s <= 0.0)
 
     def rhs(self, y, modes):
         """dy/dt in the given contact modes (1 = stick, 0 = slide), MODEL.md sections 3-4."""
@@ -221,13 +231,16 @@ class NumpyModel:
         return f[:, 0] if flat else f
 
     def switch_rate(self, y, f):
-        """ds_i/dt along the motion y' = f, shape (N,): complex-step derivative of s.
+        """ds_i/dt along the motion y' = f, shape (N,): complex-step derivative of s (the
+        same in both modes: they differ by a constant).
 
         ds/dt = grad s . f = Im s(y + i h f) / h exactly to round-off (no subtractive
         cancellation, so h can be 1e-30): s is analytic in y away from |k| = 0 and |v| = 0.
         """
         y = np.asarray(y, dtype=float)
-        return self.switch(y + 1j * COMPLEX_STEP * np.asarray(f, dtype=float)).imag / COMPLEX_STEP
+        stick = np.full(self.n_contacts, STICK)
+        shifted = y + 1j * COMPLEX_STEP * np.asarray(f, dtype=float)
+        return self.switch(shifted, stick).imag / COMPLEX_STEP
 
     def stick_rate(self, y, modes, i):
         """ds_i/dt if contact i were in stick (the other contacts in `modes`)."""
@@ -237,7 +250,7 @@ class NumpyModel:
 
     def initial_modes(self, y):
         """Stick iff |k_i(0)| < F_St,i (MODEL.md section 3)."""
-        s = self.switch(y) + self.beta_i * self.eps
+        s = self.switch(y, np.full(self.n_contacts, STICK))
         return np.where(s < 0.0, STICK, SLIDE).astype(np.int8)
 
 
@@ -272,7 +285,7 @@ class _RadauRun:
         self.converge = num.mode == "converge"
         n = model.n_contacts
         self.modes = np.zeros(n, dtype=np.int8)
-        self.pending = np.zeros(n, dtype=np.int8)
+        self.band = np.zeros(n, dtype=np.int8)
         self.mf = np.empty(mon.N_MF)
         self.mi = np.empty(mon.N_MI, dtype=np.int64)
         self.ring_all = np.empty((mon.RING, 2))
@@ -305,7 +318,7 @@ class _RadauRun:
         """Integrate from t0 to t1 in the current modes; stop at the first switching event."""
         model = self.model
         modes = self.modes.copy()
-        pending = self.pending.copy()
+        band = self.band.copy()
         cache: dict = {}
 
         def fun(t, y):
@@ -315,16 +328,23 @@ class _RadauRun:
             # solve_ivp evaluates every event at each step end with the same y object
             if cache.get("y") is y and cache.get("t") == t:
                 return cache["s"]
-            s = model.switch(y)
+            s = model.switch(y, modes)
             cache.update(t=t, y=y, s=s)
             return s
 
         events = []
         labels = []
         for i in range(model.n_contacts):
-            if pending[i]:
-                # A pending contact (slide, refused or inconsistent entry) is not tracked by
-                # w: s > 0 clears it, a stick rate falling through 0 lets it enter stick.
+            if band[i] and modes[i] == STICK:
+                # stuck above the limit: s falling through 0 clears the band, |k| starting
+                # to grow (stick rate rising through 0) makes it slide
+                events.append(lambda t, y, i=i: -s_all(t, y)[i])
+                labels.append(("clear", i))
+                events.append(lambda t, y, i=i: model.stick_rate(y, modes, i))
+                labels.append(("rise", i))
+            elif band[i]:
+                # sliding below the end-of-slide threshold: s rising through 0 clears the
+                # band, a stick rate falling through 0 lets it enter stick
                 events.append(lambda t, y, i=i: s_all(t, y)[i])
                 labels.append(("clear", i))
                 events.append(lambda t, y, i=i: -model.stick_rate(y, modes, i))
@@ -422,21 +442,23 @@ class _RadauRun:
         """Refused-entry rule of the kernel (`_check_entries`, MODEL.md section 3).
 
         A contact that entered stick whose s would increase under stick dynamics is refused:
-        it stays in slide, pending, and counts in n_refused (not as a switch: its mode does
-        not change). A contact that entered slide whose s would decrease again in slide is
-        marked pending too. Returns the number refused.
+        it stays in slide and counts in n_refused (not as a switch: its mode does not
+        change). Every contact that switched gets its band flag. Returns the number refused.
         ds/dt: complex-step derivative of the numpy s along the numpy rhs (`switch_rate`).
         """
         model = self.model
         rate = model.switch_rate(y, model.rhs(y, self.modes))
+        in_band = model.in_band(y, self.modes)
+        for i in range(model.n_contacts):
+            if entered[i] or self.band[i]:
+                self.band[i] = int(in_band[i])
         refused = 0
-        for i in np.nonzero(entered)[0]:
+        for i in np.nonzero(entered == 1)[0]:  # a re-entry (2) is consistent by construction
             if self.modes[i] == STICK and rate[i] > 0.0:
                 self.modes[i] = SLIDE
-                self.pending[i] = 1
+                entered[i] = 0
+                self.band[i] = 1  # sliding at its end-of-slide threshold: re-entry is watched
                 refused += 1
-            elif self.modes[i] == SLIDE and rate[i] < 0.0:
-                self.pending[i] = 1
         self.n_refused += refused
         return refused
 
@@ -444,10 +466,11 @@ class _RadauRun:
         """Apply the switches at a terminal event; returns the number of mode switches."""
         model = self.model
         n = model.n_contacts
-        old_pending = self.pending.copy()
+        old_band = self.band.copy()
         entered = np.zeros(n, dtype=np.int8)
         n_sw = 0
-        s = model.switch(y)
+        s = model.switch(y, self.modes)
+        in_band = model.in_band(y, self.modes)
         sigma = np.where(self.modes == STICK, 1.0, -1.0)
         # w and its rate in the segment's modes: crossings within SIMULTANEOUS of the located
         # one are switched together (symmetric contact layouts cross within round-off)
@@ -455,22 +478,20 @@ class _RadauRun:
         w_ahead = w + SIMULTANEOUS * sigma * model.switch_rate(y, model.rhs(y, self.modes))
         fired_w = {i for kind, i in seg.fired if kind == "w"}
         for i in range(n):
-            if old_pending[i]:
+            if old_band[i]:
                 continue
             if i in fired_w or w[i] >= 0.0 or w_ahead[i] >= 0.0:
                 self.modes[i] = SLIDE if self.modes[i] == STICK else STICK
                 entered[i] = 1
                 n_sw += 1
         for kind, i in seg.fired:
-            if kind == "clear":
-                self.pending[i] = 0
-            elif kind == "enter":
-                if s[i] > 0.0:
-                    self.pending[i] = 0
-                else:
-                    self.modes[i] = STICK
-                    self.pending[i] = 0
-                    n_sw += 1
+            if kind == "w":
+                continue
+            self.band[i] = 0
+            if kind in ("enter", "rise") and in_band[i]:
+                self.modes[i] = SLIDE if self.modes[i] == STICK else STICK
+                entered[i] = 2 if kind == "enter" else 1
+                n_sw += 1
         if entered.any():
             n_sw -= self._check_entries(y, entered)
         return n_sw
@@ -483,6 +504,7 @@ class _RadauRun:
         num = self.num
         hold = self.hold
         self.modes[:] = modes
+        self.band[:] = self.model.in_band(y, self.modes)
         t = 0.0
         mon.monitor_begin(
             mf,

@@ -69,8 +69,7 @@ def initial_modes(p: np.ndarray, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Stick iff |k_i(0)| < F_St,i (MODEL.md section 3)."""
     modes = np.empty(pts.shape[0], dtype=np.int8)
     for i in range(pts.shape[0]):
-        s = km.switch_value(p, pts, y, i) + p[km.P_BETAI] * p[km.P_EPS]
-        modes[i] = km.STICK if s < 0.0 else km.SLIDE
+        modes[i] = km.STICK if km.switch_value(p, pts, y, i, km.STICK) < 0.0 else km.SLIDE
     return modes
 
 

@@ -108,8 +108,8 @@ def test_numpy_model_matches_kernel(scene):
             np.testing.assert_allclose(
                 f_numpy, f_kernel, rtol=1e-12, atol=1e-12 * scale, err_msg=f"trial {trial} {modes}"
             )
-            s_kernel = np.array([km.switch_value(p, pts, y, i) for i in range(ncon)])
-            np.testing.assert_allclose(model.switch(y), s_kernel, rtol=1e-12, atol=1e-15)
+            s_kernel = np.array([km.switch_value(p, pts, y, i, modes[i]) for i in range(ncon)])
+            np.testing.assert_allclose(model.switch(y, modes), s_kernel, rtol=1e-12, atol=1e-15)
             rate_kernel = np.array([km.switch_rate(p, pts, y, f_kernel, i) for i in range(ncon)])
             np.testing.assert_allclose(
                 model.switch_rate(y, f_numpy),
@@ -245,10 +245,13 @@ def test_dense_recording_includes_switching_points():
     assert np.all(np.diff(tr.t) >= 0.0)
     assert tr.mode.shape == (tr.t.size, 1) and tr.mode.dtype == np.int8
     assert tr.phi is None and tr.Zx.shape == (tr.t.size, 1)
-    # dense samples on the dt_out grid, plus the switching instant twice (old, new mode)
+    # dense samples on the dt_out grid, plus the switching instant twice (old, new mode),
+    # plus the ends of bookkeeping segments (a new stick contact leaving the hysteresis
+    # band: no mode change)
     on_grid = np.isclose(tr.t / 0.1, np.round(tr.t / 0.1), rtol=0.0, atol=1e-9)
     off = tr.t[~on_grid]
-    assert off.size == 2 and off[0] == off[1] == pytest.approx(result.t_R1, abs=0.0)
+    assert np.count_nonzero(off == result.t_R1) == 2
+    assert np.all(np.diff(tr.mode[:, 0])[np.diff(tr.t) > 0] == 0)  # switches only at repeats
     k = np.nonzero(tr.t == result.t_R1)[0]
     assert list(tr.mode[k, 0]) == [km.SLIDE, km.STICK]
     assert np.count_nonzero(on_grid) == 50 + 1  # 0.0, 0.1, ..., 5.0

@@ -161,8 +161,8 @@ def test_graze_inside_a_step_is_found():
     # y(s) = y0 + s (1 - s) (q1 + s q2) when y1 = y0: add a bump to Z_x of height 4 * 0.14
     wk[rodas.W_Q1, 4] = 4 * 0.14
     sigma = 1.0  # stick: event when s crosses 0 upwards
-    w0 = sigma * model.switch_value(p, pts, y0, 0)
-    w1 = sigma * model.switch_value(p, pts, y1, 0)
+    w0 = sigma * model.switch_value(p, pts, y0, 0, STICK)
+    w1 = sigma * model.switch_value(p, pts, y1, 0, STICK)
     assert w0 < 0 and w1 < 0
     # slopes of w with respect to s at the ends, by differences on the dense output
     ybuf, fbuf = np.empty(n), np.empty(n)

@@ -2,6 +2,18 @@
 
 `run` never raises: it returns a status code (kernel/status.py) and fills the monitor
 arrays, from which frictiondisk.simulate builds the outcome.
+
+Hysteresis band (MODEL.md section 3). Stick ends at |k| = F_St, slide ends at
+|k| = F_St + beta eps, so a contact that has just switched sits inside a band where its
+own exit threshold is behind it: a new stick contact has |k| = F_St + beta eps > F_St, a
+new slide contact |k| = F_St < F_St + beta eps. Such a contact is flagged `band` and
+watches a rate instead of its switching function:
+* stuck in the band (above the limit): it slides as soon as |k| starts to grow
+  (KIND_RISE); otherwise it could stay stuck above the limit for ever;
+* sliding in the band (plastic rate below eps): it sticks as soon as stick dynamics
+  would not raise |k| (KIND_REENTRY).
+It leaves the band when its switching function changes sign, which is tested at step
+ends (then the ordinary crossing rules apply).
 """
 
 import math
@@ -10,7 +22,7 @@ import numpy as np
 
 from . import monitor as mon
 from . import status as st
-from .events import KIND_REENTRY, KIND_SWITCH, brent_root, find_graze
+from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
 from .model import SLIDE, STICK, n_coords, rhs, stick_rate, switch_rate, switch_value
 from .rodas import (
@@ -84,27 +96,32 @@ def _record_dense(rec_t, rec_y, rec_m, out_i, t0, h, s_end, y0, y1, wk, modes, d
 
 
 @kernel_jit
-def _check_entries(p, pts, modes, y, f, entered, pending, out_i):
+def _in_band(p, pts, modes, y, i):
+    """Whether contact i is inside the hysteresis band of its mode (module docstring)."""
+    g = switch_value(p, pts, y, i, modes[i])
+    return g > 0.0 if modes[i] == STICK else g <= 0.0
+
+
+@kernel_jit
+def _check_entries(p, pts, modes, y, f, entered, band, out_i):
     """Refused-entry check after switches (MODEL.md section 3). Returns the number refused.
 
-    A contact entering stick is refused (stays in slide, pending) if, with stick dynamics,
-    s = |k| - F_St would increase. A contact entering slide whose s would decrease again
-    in slide is marked pending too: it re-enters stick once the stick rate falls through 0
-    (a located event of kind KIND_REENTRY). Leaves f = rhs(y) in the final modes.
+    A contact entering stick by crossing its threshold (entered = 1) is refused (stays in
+    slide) if, with stick dynamics, |k| - F_St would increase. A re-entry (entered = 2) is
+    consistent by construction: it happens where that rate has just fallen through 0.
+    Every contact that switched gets its band flag. Leaves f = rhs(y) in the final modes.
     """
     rhs(p, pts, modes, y, f)
+    for i in range(modes.shape[0]):
+        if entered[i] > 0 or band[i] == 1:
+            band[i] = 1 if _in_band(p, pts, modes, y, i) else 0
     n_refused = 0
     for i in range(modes.shape[0]):
-        if entered[i] == 0:
-            continue
-        rate = switch_rate(p, pts, y, f, i)
-        if modes[i] == STICK and rate > 0.0:
+        if entered[i] == 1 and modes[i] == STICK and switch_rate(p, pts, y, f, i) > 0.0:
             modes[i] = SLIDE
-            pending[i] = 1
             entered[i] = 0
+            band[i] = 1  # sliding at its end-of-slide threshold: re-entry is watched
             n_refused += 1
-        elif modes[i] == SLIDE and rate < 0.0:
-            pending[i] = 1
     if n_refused > 0:
         out_i[C_REFUSED] += n_refused
         rhs(p, pts, modes, y, f)
@@ -142,7 +159,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
     piv = np.empty(n, dtype=np.int64)
     wk = np.empty((N_WORK_ROWS, n))
     fresh = np.zeros(ncon, dtype=np.int8)
-    pending = np.zeros(ncon, dtype=np.int8)
+    band = np.zeros(ncon, dtype=np.int8)
     entered = np.zeros(ncon, dtype=np.int8)
     root_s = np.empty(ncon)
     root_kind = np.zeros(ncon, dtype=np.int8)
@@ -150,6 +167,8 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
 
     t = 0.0
     rhs(p, pts, modes, y, f)
+    for i in range(ncon):
+        band[i] = 1 if _in_band(p, pts, modes, y, i) else 0
     mon.monitor_begin(
         mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT]
     )
@@ -216,14 +235,15 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
         for i in range(ncon):
             root_s[i] = 2.0
             sigma = 1.0 if modes[i] == STICK else -1.0
-            if pending[i] == 1:
-                kind = KIND_REENTRY
-                w0 = -stick_rate(p, pts, modes, y, i, ftmp)
-                w1 = -stick_rate(p, pts, modes, y1, i, ftmp)
+            if band[i] == 1:
+                kind = KIND_RISE if modes[i] == STICK else KIND_REENTRY
+                sign = 1.0 if kind == KIND_RISE else -1.0
+                w0 = sign * stick_rate(p, pts, modes, y, i, ftmp)
+                w1 = sign * stick_rate(p, pts, modes, y1, i, ftmp)
             else:
                 kind = KIND_SWITCH
-                w0 = sigma * switch_value(p, pts, y, i)
-                w1 = sigma * switch_value(p, pts, y1, i)
+                w0 = sigma * switch_value(p, pts, y, i, modes[i])
+                w1 = sigma * switch_value(p, pts, y1, i, modes[i])
             if w0 >= 0.0:
                 # just switched (w = 0 to round-off): count only a fresh crossing after a dip
                 w0 = -1e-300
@@ -239,7 +259,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
                 if sg > 0.0:
                     s_hi = sg
                     dense_eval(y, y1, wk, sg, ybuf)
-                    w_hi = sigma * switch_value(p, pts, ybuf, i)
+                    w_hi = sigma * switch_value(p, pts, ybuf, i, modes[i])
             if s_hi > 0.0:
                 sr = brent_root(
                     p, pts, modes, y, y1, wk, i, sigma, kind, 0.0, w0, s_hi, w_hi, stol, ybuf, ftmp
@@ -268,19 +288,20 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
                 fresh[i] = 0
                 if root_s[i] > s_event + window:
                     continue
-                if root_kind[i] == KIND_REENTRY:
-                    pending[i] = 0
-                    if switch_value(p, pts, y, i) > 0.0:
-                        continue  # above the limit by now: an ordinary sliding contact
-                    modes[i] = STICK
-                else:
-                    modes[i] = SLIDE if modes[i] == STICK else STICK
-                entered[i] = 1
+                if root_kind[i] != KIND_SWITCH:
+                    # a band contact whose rate turned: switch only if it is still in the
+                    # band here, else it is an ordinary contact of its mode from now on
+                    still_in_band = _in_band(p, pts, modes, y, i)
+                    band[i] = 0
+                    if not still_in_band:
+                        continue
+                entered[i] = 2 if root_kind[i] == KIND_REENTRY else 1
+                modes[i] = SLIDE if modes[i] == STICK else STICK
                 fresh[i] = 1
-            _check_entries(p, pts, modes, y, f, entered, pending, out_i)
+            _check_entries(p, pts, modes, y, f, entered, band, out_i)
             n_sw = 0
             for i in range(ncon):
-                n_sw += entered[i]
+                n_sw += 1 if entered[i] > 0 else 0
             mon.monitor_switch(mf, mi, ring_all, ring_any, t_ev, y, modes, n_sw)
             out_i[C_EVENTS] += n_sw
             if t_ev - t_last_event < SAME_TIME:
@@ -310,10 +331,10 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
         if record and dt_out <= 0.0:
             _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
 
-        # A pending contact whose s has risen above 0 is an ordinary sliding contact again.
+        # A band contact whose switching function changed sign is an ordinary one again.
         for i in range(ncon):
-            if pending[i] == 1 and switch_value(p, pts, y, i) > 0.0:
-                pending[i] = 0
+            if band[i] == 1 and not _in_band(p, pts, modes, y, i):
+                band[i] = 0
 
         if fixed:
             h = fopt[O_DT]

@@ -12,9 +12,12 @@ driver knows w and dw/dt at both ends. Two cases are found:
 
 The root is then refined by Brent's method on w(y(t)) to a time tolerance.
 
-Event functions come in two kinds: KIND_SWITCH, w = sigma s_i; and KIND_REENTRY for a
-pending contact (slide with plastic rate below eps after a refused entry), w = -ds_i/dt
-under stick dynamics: the contact may stick again once that rate falls through 0.
+Event functions come in three kinds. KIND_SWITCH: w = sigma s_i with the switching
+function of the contact's mode (model.switch_value). For a contact inside the hysteresis
+band of its mode (kernel/driver.py) a rate is watched instead: KIND_REENTRY, a sliding
+contact whose ds/dt under stick dynamics falls through 0 (it may stick again), w = -rate;
+KIND_RISE, a stuck contact above the friction limit whose |k| starts to grow (it must
+slide), w = +rate.
 """
 
 import math
@@ -28,6 +31,7 @@ GRAZE_SCAN = 24  # golden-section iterations when a graze is suspected
 BRENT_MAXITER = 100
 KIND_SWITCH = 0
 KIND_REENTRY = 1
+KIND_RISE = 2
 
 
 @kernel_jit
@@ -36,7 +40,9 @@ def directed_value(p, pts, modes, y0, y1, wk, s, i, sigma, kind, ybuf, fbuf):
     dense_eval(y0, y1, wk, s, ybuf)
     if kind == KIND_REENTRY:
         return -stick_rate(p, pts, modes, ybuf, i, fbuf)
-    return sigma * switch_value(p, pts, ybuf, i)
+    if kind == KIND_RISE:
+        return stick_rate(p, pts, modes, ybuf, i, fbuf)
+    return sigma * switch_value(p, pts, ybuf, i, modes[i])
 
 
 @kernel_jit

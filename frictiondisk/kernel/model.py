@@ -11,9 +11,13 @@ Every contact law is written as  F_i = -G_i,  dZ_i/dt = (c_i/beta_i) (G_i - Z_i)
     k_i = Z_i + beta_i u_i,  u_i = v_i + omega_m e_z x z_i   (objective rate, MODEL.md section 3)
 In stick this is dZ/dt = c u; both forms are the same law.
 
-Switching function of contact i: s_i = |k_i| - F_St,i - beta_i eps.  Stick -> slide when s
-crosses 0 upwards, slide -> stick when it crosses 0 downwards (the plastic rate
-(|k| - F_St)/beta falls through eps).  See kernel/events.py.
+Switching functions of contact i (MODEL.md section 3):
+    stick -> slide when g_i = |k_i| - F_St,i crosses 0 upwards;
+    slide -> stick when g_i - beta_i eps crosses 0 downwards (the plastic rate
+    (|k| - F_St)/beta falls through eps).
+The stick limit is exactly F_St (eps only decides when sliding ends). Between the two
+thresholds lies a band of width beta eps where either mode is possible; kernel/driver.py
+handles contacts inside it.
 """
 
 import math
@@ -105,15 +109,20 @@ def contact_state(p, pts, y, i):
 
 
 @kernel_jit
-def switch_value(p, pts, y, i):
-    """Switching function s_i = |k_i| - F_St,i - beta_i eps [N]."""
+def switch_value(p, pts, y, i, mode):
+    """Switching function of contact i in `mode` [N]: |k_i| - F_St,i in stick,
+    |k_i| - F_St,i - beta_i eps in slide. Its sign change ends the mode."""
     _, _, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
-    return math.sqrt(kx * kx + ky * ky) - fst - p[P_BETAI] * p[P_EPS]
+    g = math.sqrt(kx * kx + ky * ky) - fst
+    if mode == SLIDE:
+        g -= p[P_BETAI] * p[P_EPS]
+    return g
 
 
 @kernel_jit
 def switch_rate(p, pts, y, f, i):
-    """Time derivative of s_i along the motion with state rate f = dy/dt [N/s]."""
+    """Time derivative of the switching function of contact i (either mode: they differ
+    by a constant) along the motion with state rate f = dy/dt [N/s]."""
     nq = n_coords(p)
     om = p[P_OMEGA]
     ci = p[P_CI]
