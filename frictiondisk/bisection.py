@@ -151,6 +151,11 @@ class Bisection:
                 self.lo = request.mu
             self._maybe_converged()
 
+    def abort(self, reason: str) -> None:
+        """End the bisection as failed without a run (e.g. its worker kept dying)."""
+        if not self.done:
+            self._failure = reason
+
     def _after_check(self) -> None:
         if self.lo not in self._known or self.hi not in self._known:
             return

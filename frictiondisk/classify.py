@@ -25,8 +25,8 @@ class RunFacts:
     stuck_for: float  # uninterrupted whole-body sticking at t_end [s]
     hold: float  # sticking time that decides `stick` [s]
     window: tuple[float, float]  # final window [s]
-    frac_all: float  # window fraction with every contact sticking
-    frac_any: float  # window fraction with some contact sticking
+    frac_all: float  # window fraction with every contact sticking (decides the outcome)
+    frac_any: float  # window fraction with some contact sticking (reported only)
     converge_mode: bool
     max_steps: int
     max_events: int
@@ -48,8 +48,14 @@ def classify(facts: RunFacts) -> tuple[str, str]:
     lo, hi = facts.window
     if facts.status == st.CYCLE_CONVERGED:
         return "stick_slip", f"limit cycle with sticking and sliding converged at t = {t:.6g} s"
-    if facts.frac_any == 0.0:
-        return "slide", f"no contact stuck in the final window [{lo:.6g}, {hi:.6g}] s"
+    if facts.frac_all == 0.0:
+        # outcome, stick_fraction and size all mean whole-body sticking (every contact)
+        partial = (
+            f"; single contacts stuck {facts.frac_any:.3g} of it" if facts.frac_any > 0 else ""
+        )
+        return "slide", (
+            f"the slave never stuck as a whole in the final window [{lo:.6g}, {hi:.6g}] s{partial}"
+        )
     if facts.status == st.TMAX_REACHED:
         return "undetermined", (
             f"limit cycle not converged by numerics.t_max = {t:.6g} s "

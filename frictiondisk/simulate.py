@@ -127,8 +127,9 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     out_i = np.zeros(driver.N_OUT_I, dtype=np.int64)
 
     wall0 = time.perf_counter()
+    state = y0  # the kernel integrates in place: this holds the final state afterwards
     status, t_end = driver.run(
-        p, pts, y0, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i
+        p, pts, state, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i
     )
     wall = time.perf_counter() - wall0
 
@@ -147,7 +148,7 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
         config,
         int(status),
         float(t_end),
-        y0,
+        state,
         mf,
         mi,
         ring_all,
@@ -184,7 +185,9 @@ def build_result(
     a = math.nan
     if outcome == "stick":
         size = radius_end
-    elif outcome == "stick_slip":
+    elif outcome == "stick_slip" and mon.cycle_converged(mi):
+        # only a converged cycle has a size (MODEL.md 6); before that the sticking segments
+        # still creep outwards, and their radius says nothing about the final cycle
         size = float(mf[mon.F_SIZE])
         a = float(mf[mon.F_A])
     return SimulationResult(

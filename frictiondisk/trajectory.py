@@ -8,9 +8,7 @@ atomically: a reader never sees a half-written file.
 
 from __future__ import annotations
 
-import contextlib
 import os
-import uuid
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +17,7 @@ import xarray as xr
 import yaml
 
 from frictiondisk import __version__
+from frictiondisk.files import atomic_write_netcdf
 from frictiondisk.result import SimulationResult
 
 # name -> (units, long_name) of the per-sample variables (dim `time`).
@@ -146,42 +145,8 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
 
 
 def write_trajectory(path: str | os.PathLike[str], result: SimulationResult, config: Any) -> Path:
-    """Write the trajectory of `result` to `path` as netCDF4, atomically.
-
-    The file is written to a temporary file in the same directory, flushed to disk and then
-    renamed over `path`, so `path` either holds the complete new file or is untouched.
-    Missing parent directories are created. Returns the path written.
-    """
+    """Write the trajectory of `result` to `path` as compressed netCDF4, atomically
+    (frictiondisk.files: a temporary file renamed over `path`). Returns the path."""
     ds = trajectory_dataset(result, config)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-
     encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
-    # A unique name next to the target (same file system, so the rename is atomic); netCDF
-    # creates it with the usual permissions, unlike tempfile.mkstemp's 0600.
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex}.tmp")
-    try:
-        ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4", encoding=encoding)
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            tmp.unlink()
-        raise
-    _fsync_directory(path.parent)
-    return path
-
-
-def _fsync_directory(directory: Path) -> None:
-    """Make a rename in `directory` durable (best effort; not every platform allows it)."""
-    try:
-        fd = os.open(directory, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
+    return atomic_write_netcdf(ds, path, encoding=encoding)

@@ -123,14 +123,18 @@ def load_yaml_text(text: str, source: str = "<string>") -> Any:
         raise ConfigError(f"{source}: YAML error: {err}", source) from None
 
 
-def load_yaml_file(path: str | PathLike[str]) -> Any:
-    """Read a UTF-8 YAML file with `load_yaml_text`; unreadable files are a `ConfigError`."""
+def read_text_file(path: str | PathLike[str]) -> str:
+    """The UTF-8 text of a configuration file; an unreadable file is a `ConfigError`."""
     try:
         with open(path, encoding="utf-8") as stream:
-            text = stream.read()
+            return stream.read()
     except (OSError, UnicodeDecodeError) as err:
         raise ConfigError(f"{path}: cannot read: {err}", str(path)) from None
-    return load_yaml_text(text, source=str(path))
+
+
+def load_yaml_file(path: str | PathLike[str]) -> Any:
+    """Read a UTF-8 YAML file with `load_yaml_text`; unreadable files are a `ConfigError`."""
+    return load_yaml_text(read_text_file(path), source=str(path))
 
 
 def dump_yaml(data: Any) -> str:

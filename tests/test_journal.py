@@ -18,12 +18,6 @@ import pytest
 import xarray as xr
 
 from frictiondisk.campaign import journal as journal_module
-from frictiondisk.campaign.files import (
-    atomic_write_bytes,
-    atomic_write_netcdf,
-    atomic_write_text,
-    netcdf_is_valid,
-)
 from frictiondisk.campaign.journal import (
     CampaignLock,
     CampaignLocked,
@@ -33,6 +27,12 @@ from frictiondisk.campaign.journal import (
     run_key,
 )
 from frictiondisk.config import scene_from_dict
+from frictiondisk.files import (
+    atomic_write_bytes,
+    atomic_write_netcdf,
+    atomic_write_text,
+    netcdf_is_valid,
+)
 
 INPUTS = {"scene": {"scene": "pin", "params": {"mu": 0.13}}, "kernel": "0123456789abcdef"}
 RESULT = {"outcome": "stick_slip", "t_stick": None, "x_amplitude": 0.0123456789, "n_events": 42}
@@ -54,7 +54,8 @@ def test_kernel_version_is_16_hex_and_stable():
 
 def test_kernel_version_changes_with_any_kernel_source(tmp_path):
     (tmp_path / "kernel").mkdir()
-    files = ["kernel/a.py", "kernel/b.py", "simulate.py", "classify.py"]
+    files = ["kernel/a.py", "kernel/b.py", "simulate.py", "classify.py", "crosscheck.py"]
+    files += ["result.py", "config.py"]
     for name in files:
         (tmp_path / name).write_text(f"# {name}\nX = 1\n")
     (tmp_path / "plotting.py").write_text("# not numerics\n")

@@ -214,3 +214,34 @@ def test_adaptive_error_falls_with_the_tolerance():
         )
         errs.append(abs(simulate(cfg).R1 - ref.R1))
     assert errs[0] > errs[1] > errs[2]
+
+
+# ---- stopping rules ------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("stop_on_stick", [True, False])
+def test_a_sticking_phase_open_at_the_horizon_is_finished_before_deciding(stop_on_stick):
+    """The pin sticks for good from t ~ 1.85 s; a 4 s horizon falls inside that phase, so
+    the run goes on until it has stuck for one revolution (MODEL.md 6: never guess)."""
+    res = simulate(
+        scene_from_dict(
+            {
+                "scene": "pin",
+                "params": {"mu": 0.14},
+                "numerics": {"t_decide": 4.0, "stop_on_stick": stop_on_stick},
+            }
+        )
+    )
+    assert res.outcome == "stick", res.reason
+    assert res.t_end == pytest.approx(res.t_R1 + 2 * math.pi / 1.1, abs=1e-9)
+
+
+def test_size_and_a_come_only_from_a_converged_cycle():
+    decide = simulate(scene_from_dict({"scene": "pin", "params": {"mu": 0.12}}))
+    assert decide.outcome == "stick_slip" and not decide.cycle_converged
+    assert math.isnan(decide.size) and math.isnan(decide.a)
+    converge = simulate(
+        scene_from_dict({"scene": "pin", "params": {"mu": 0.12}, "numerics": {"mode": "converge"}})
+    )
+    assert converge.outcome == "stick_slip" and converge.cycle_converged
+    assert converge.size > converge.R1 and converge.a > 0

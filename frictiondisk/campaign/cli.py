@@ -112,9 +112,9 @@ def resume(out_dir: Path, workers: int, scheduler, processes: bool) -> None:
 @click.argument("out_dir", type=click.Path(file_okay=False, path_type=Path))
 def status(out_dir: Path) -> None:
     """Report progress of the campaign in DIR: points, runs, failures, time left."""
-    from frictiondisk.campaign.files import netcdf_is_valid
     from frictiondisk.campaign.journal import CampaignLock, Journal
     from frictiondisk.campaign.runner import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
+    from frictiondisk.files import netcdf_is_valid
 
     if not (out_dir / CAMPAIGN_FILE).is_file():
         _fail(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})", [])
@@ -126,7 +126,7 @@ def status(out_dir: Path) -> None:
         except ValueError:
             info = {}
     holder = CampaignLock.holder(out_dir)
-    runs_done = len(Journal(out_dir))
+    runs_done = Journal.count(out_dir)
     state = info.get("state", "not started")
     if holder is not None:
         state = f"running (pid {holder})"
@@ -141,7 +141,8 @@ def status(out_dir: Path) -> None:
         f"state:     {state}",
         f"points:    {info.get('points_done', 0)} of {total} done, "
         f"{info.get('points_failed', 0)} failed",
-        f"runs:      {runs_done} done, {info.get('runs_in_flight', 0) if holder else 0} in flight",
+        f"runs:      {runs_done} done; "
+        f"{info.get('jobs_in_flight', 0) if holder else 0} jobs (points) in flight",
     ]
     eta = info.get("eta_s")
     if holder is not None and eta is not None:

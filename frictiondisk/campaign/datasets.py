@@ -38,16 +38,21 @@ def dim_names(campaign) -> dict[str, str]:
     return short
 
 
+def _key_attrs(key: str) -> dict[str, str]:
+    """units, long_name and scene_key of a varied scene key."""
+    unit, description = describe_key(key)
+    attrs = {"long_name": description, "scene_key": key}
+    if unit:
+        attrs["units"] = unit
+    return attrs
+
+
 def _coords(campaign) -> dict[str, Any]:
     names = dim_names(campaign)
-    coords = {}
-    for key in campaign.dims:
-        unit, description = describe_key(key)
-        attrs = {"long_name": description, "scene_key": key}
-        if unit:
-            attrs["units"] = unit
-        coords[names[key]] = (names[key], np.asarray(campaign.coords[key], dtype=float), attrs)
-    return coords
+    return {
+        names[key]: (names[key], np.asarray(campaign.coords[key], dtype=float), _key_attrs(key))
+        for key in campaign.dims
+    }
 
 
 def _attrs(campaign) -> dict[str, Any]:
@@ -128,8 +133,10 @@ def _jump_results(campaign, planner) -> xr.Dataset:
             "mu_hi": var("mu_hi", "1", "smallest mu found to stick", float),
             "outcome_lo": var("outcome_lo", None, "outcome at mu_lo", str),
             "outcome_hi": var("outcome_hi", None, "outcome at mu_hi", str),
-            "size_lo": var("size_lo", "m", "size at mu_lo (sticking segment of the cycle)", float),
-            "size_hi": var("size_hi", "m", "size at mu_hi (sticking circle)", float),
+            "size_lo": var(
+                "size_lo", "m", "size at mu_lo: converged cycle only (NaN in decide mode)", float
+            ),
+            "size_hi": var("size_hi", "m", "size at mu_hi (the sticking circle)", float),
             "R1_hi": var("R1_hi", "m", "first sticking radius at mu_hi", float),
             "n_runs": var("n_runs", "1", "runs made for this point", np.int64),
             "status": var("status", None, "converged or failed", str),
@@ -216,7 +223,7 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
         if key == "params.mu":
             continue
         values = [planner.points[r[0]].coords[key] for r in rows]
-        data_vars[names[key]] = ("run", np.asarray(values, float), {"scene_key": key})
+        data_vars[names[key]] = ("run", np.asarray(values, float), _key_attrs(key))
     for name, (units, long_name) in RUN_MEASURES.items():
         values = np.asarray([_num(r[2].get(name)) for r in rows])
         data_vars[name] = ("run", values, {"units": units, "long_name": long_name})

@@ -32,7 +32,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from frictiondisk.campaign.files import TEMP_SUFFIX, fsync_directory, temporary_name
+from frictiondisk.files import TEMP_SUFFIX, fsync_directory, temporary_name
 
 __all__ = [
     "ENTRY_VERSION",
@@ -48,7 +48,17 @@ _ENTRY_FIELDS = ("version", "key", "inputs", "result", "sha256")
 _KEY = re.compile(r"[0-9a-f]{64}")  # a sha256 hex digest, as made by run_key
 _PACKAGE_ROOT = Path(__file__).resolve().parent.parent  # the `frictiondisk` package folder
 # The numerics of a run: the kernel, the door into it, and the classifier of its outcome.
-_KERNEL_SOURCES = ("kernel/*.py", "simulate.py", "classify.py")
+# Everything that turns a scene into a result: the kernel, its Python door and classifier,
+# the cross-check integrator (numerics.method: scipy-radau), the result fields, and the
+# config (derived inputs such as the default contact damping and the contact layout).
+_KERNEL_SOURCES = (
+    "kernel/*.py",
+    "simulate.py",
+    "classify.py",
+    "crosscheck.py",
+    "result.py",
+    "config.py",
+)
 
 
 # --- keys ---------------------------------------------------------------------------------
@@ -81,8 +91,9 @@ def _source_digest(root: Path, patterns: tuple[str, ...] = _KERNEL_SOURCES) -> s
 def kernel_version() -> str:
     """Version of the numerics: 16 hex digits of a sha256 over the source code.
 
-    Hashes the bytes of every `frictiondisk/kernel/*.py` plus `frictiondisk/simulate.py` and
-    `frictiondisk/classify.py`, sorted by path. Any change to those files (even a comment)
+    Hashes the bytes of every file in `_KERNEL_SOURCES` (the kernel, simulate.py,
+    classify.py, crosscheck.py, result.py, config.py), sorted by path. Any change to those
+    files (even a comment)
     changes the version, hence every `run_key`: journal entries computed by older numerics
     are never reused. Computed once per process.
     """
@@ -275,6 +286,11 @@ class Journal:
 
     def __len__(self) -> int:
         return len(self.keys())
+
+    @staticmethod
+    def count(campaign_dir: str | os.PathLike[str]) -> int:
+        """Entries present in a campaign's journal, without creating anything (status)."""
+        return sum(1 for _ in (Path(campaign_dir) / "journal").glob("??/*.json"))
 
     def __contains__(self, key: object) -> bool:
         """Whether an entry file for `key` exists (not verified)."""

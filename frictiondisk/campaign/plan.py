@@ -107,13 +107,12 @@ class JumpPlanner:
         return [(i, request, result) for request, result in made]
 
     def fail(self, i: int, reason: str) -> None:
-        """A job that never came back (its worker kept dying): its next run counts as
-        undetermined, so the bisection retries it with a longer horizon or gives up."""
+        """A job that never came back (its worker kept dying): the point fails with that
+        reason; no run is invented for it."""
         self.busy.discard(i)
         bis = self.bisections[i]
-        bis.feed(bis.pending()[0], {"outcome": "undetermined", "reason": reason})
-        if bis.done:
-            self.results[i] = bis.result()
+        bis.abort(reason)
+        self.results[i] = bis.result()
 
     # ---- warm-start window ------------------------------------------------------------
     def _row_pos(self, i: int) -> tuple[int, int]:
@@ -203,6 +202,8 @@ class ScanPlanner:
         return [(i, RunRequest(self.points[i].config.params.mu), value)]
 
     def fail(self, i: int, reason: str) -> None:
+        """A run whose worker kept dying: reported `undetermined` with that reason (it is
+        not journaled, so a resume tries again)."""
         self.busy.discard(i)
         self.results[i] = {"outcome": "undetermined", "reason": reason}
 

@@ -20,11 +20,11 @@ from pathlib import Path
 from typing import Any
 
 from frictiondisk.campaign import datasets
-from frictiondisk.campaign.files import atomic_write_netcdf, atomic_write_text
 from frictiondisk.campaign.journal import CampaignLock, Journal, run_key
 from frictiondisk.campaign.plan import planner_for
-from frictiondisk.campaign.spec import Campaign, campaign_from_text, load_campaign
+from frictiondisk.campaign.spec import Campaign, load_campaign
 from frictiondisk.campaign.tasks import warm_up
+from frictiondisk.files import atomic_write_netcdf, atomic_write_text
 
 CAMPAIGN_FILE = "campaign.yaml"
 STATUS_FILE = "status.json"
@@ -94,7 +94,16 @@ def run_campaign(
     out_dir.mkdir(parents=True, exist_ok=True)
     with CampaignLock(out_dir):
         campaign = prepare_directory(out_dir, campaign)
-        return _Driver(campaign, out_dir, progress).run(workers, scheduler, processes)
+        Journal(out_dir).clean_temp_files()  # left by a put that was killed mid-write
+        driver = _Driver(campaign, out_dir, progress)
+        try:
+            return driver.run(workers, scheduler, processes)
+        except KeyboardInterrupt:
+            driver.interrupted()
+            raise CampaignInterrupted(
+                f"interrupted; {driver.runs_done()} finished runs are in the journal. "
+                f"Continue with: frictiondisk resume {out_dir}"
+            ) from None
 
 
 class _Driver:
@@ -153,12 +162,6 @@ class _Driver:
         self._open_bar()
         try:
             self._loop(client)
-        except KeyboardInterrupt:
-            self._write_status(state="interrupted")
-            raise CampaignInterrupted(
-                f"interrupted; {self._runs_done()} finished runs are in the journal. "
-                f"Continue with: frictiondisk resume {self.out_dir}"
-            ) from None
         finally:
             for *_, future in self.in_flight.values():
                 future.cancel()
@@ -167,7 +170,7 @@ class _Driver:
                 cluster.close()
             if self._bar is not None:
                 self._bar.n = self._points_done()
-                self._bar.set_postfix(runs=self._runs_done(), in_flight=0, refresh=False)
+                self._bar.set_postfix(runs=self.runs_done(), in_flight=0, refresh=False)
                 self._bar.close()
 
     def _loop(self, client) -> None:
@@ -200,9 +203,10 @@ class _Driver:
                 self._submit(client, job, function, args)
                 return
             error = value[1] if isinstance(value, tuple) and len(value) == 3 else value
-            # not journaled: a resume tries again
+            # nothing journaled for it: a resume tries the point again
             self.planner.fail(job, f"worker failed {self.failures[job]} times: {error!r}")
             return
+        self.failures.pop(job, None)
         for point, request, result in self.planner.complete(job, value):
             key = self._key(point, request)
             self.journal.put(key, self.inputs[key], result)
@@ -232,7 +236,10 @@ class _Driver:
             dynamic_ncols=True,
         )
 
-    def _runs_done(self) -> int:
+    def interrupted(self) -> None:
+        self._write_status(state="interrupted")
+
+    def runs_done(self) -> int:
         return self.runs_at_start + self.computed
 
     def _points_done(self) -> int:
@@ -244,7 +251,7 @@ class _Driver:
             self._last_bar = now
             self._bar.n = self._points_done()
             self._bar.set_postfix(
-                runs=self._runs_done(), in_flight=len(self.in_flight), refresh=False
+                runs=self.runs_done(), in_flight=len(self.in_flight), refresh=False
             )
             self._bar.refresh()
         if now - self._last_status >= STATUS_EVERY:
@@ -263,8 +270,8 @@ class _Driver:
             "points_total": total,
             "points_done": done,
             "points_failed": self._points_failed(),
-            "runs_done": self._runs_done(),
-            "runs_in_flight": len(self.in_flight),
+            "runs_done": self.runs_done(),
+            "jobs_in_flight": len(self.in_flight),  # points (find_jump) or runs (scan)
             "runs_computed_now": self.computed,
             "elapsed_s": elapsed,
             "eta_s": (total - done) / rate if rate > 0 else None,
@@ -307,8 +314,3 @@ def _send_without_batching_delay(client, cluster) -> None:
     for comm in comms:
         if comm is not None and hasattr(comm, "interval"):
             comm.interval = 0
-
-
-def load_stored_campaign(out_dir: Path) -> Campaign:
-    text = (Path(out_dir) / CAMPAIGN_FILE).read_text()
-    return campaign_from_text(text, str(Path(out_dir) / CAMPAIGN_FILE))

@@ -51,7 +51,7 @@ from frictiondisk.config import (
     _show,
     scene_from_dict,
 )
-from frictiondisk.yamlio import StrictDumper, load_yaml_text
+from frictiondisk.yamlio import StrictDumper, load_yaml_text, read_text_file
 
 __all__ = [
     "Campaign",
@@ -255,13 +255,8 @@ class Campaign:
 
 def load_campaign(path: str | PathLike[str]) -> Campaign:
     """Load and validate a campaign YAML file; any problem is a `ConfigError`."""
-    # Read here, not with yamlio.load_yaml_file, because the campaign keeps its text.
-    try:
-        with open(path, encoding="utf-8") as stream:
-            text = stream.read()
-    except (OSError, UnicodeDecodeError) as err:
-        raise ConfigError(f"{path}: cannot read: {err}", str(path)) from None
-    return campaign_from_text(text, source=str(path))
+    # the text itself, not only the parsed data: the campaign keeps it (results attributes)
+    return campaign_from_text(read_text_file(path), source=str(path))
 
 
 def campaign_from_text(text: str, source: str = "<string>") -> Campaign:

@@ -50,5 +50,6 @@ D35 = -6.594389125716872
 
 ERROR_EXPONENT = 0.25  # 1 / (embedded order + 1)
 SAFETY = 0.9  # step-size safety factor
-FAC_MAX = 5.0  # largest step growth per step
-FAC_MIN = 1.0 / 6.0  # largest step shrink per step
+# h_new = h / fac with fac clipped to [FAC_MIN, FAC_MAX] (Hairer & Wanner's convention):
+FAC_MAX = 5.0  # the step shrinks by at most 5x per step
+FAC_MIN = 1.0 / 6.0  # the step grows by at most 6x per step

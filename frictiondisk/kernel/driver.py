@@ -193,7 +193,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
             return st.CYCLE_CONVERGED, t
         if t >= t_stop - t_eps:
             # Never stop inside a sticking phase that may still decide `stick`.
-            if stop_on_stick and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
+            if mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
                 out_i[C_EXTENDED] = 1
                 t_stop = mf[mon.F_T_ALL] + hold
                 if t < t_stop - t_eps:
@@ -245,6 +245,13 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
                 w0 = sigma * switch_value(p, pts, y, i, modes[i])
                 w1 = sigma * switch_value(p, pts, y1, i, modes[i])
             if w0 >= 0.0:
+                if fresh[i] == 0:
+                    # past its threshold without having just switched (a crossing missed
+                    # inside an earlier step): switch it here rather than hide it
+                    root_s[i] = 0.0
+                    root_kind[i] = kind
+                    s_event = 0.0
+                    continue
                 # just switched (w = 0 to round-off): count only a fresh crossing after a dip
                 w0 = -1e-300
             s_hi = -1.0

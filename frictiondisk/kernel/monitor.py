@@ -118,7 +118,11 @@ def _enter_body_stick(mf, mi, t, y):
             and mf[F_DR1] * mf[F_DR2] > 0.0
             and abs(dr) > abs(mf[F_DR1]) > abs(mf[F_DR2])
         )
-        if abs(dr) <= tol and abs(dang) * radius <= tol and not creeping:
+        # a creep of one sign with small, steady steps shows in the net drift
+        drift = dr + (0.0 if math.isnan(mf[F_DR1]) else mf[F_DR1])
+        drift += 0.0 if math.isnan(mf[F_DR2]) else mf[F_DR2]
+        steady = abs(drift) <= tol
+        if abs(dr) <= tol and abs(dang) * radius <= tol and steady and not creeping:
             mi[I_NAGREE] += 1
         else:
             mi[I_NAGREE] = 0

@@ -22,8 +22,8 @@ N_WORK_ROWS = 11
 def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     """Advance from y0 (with f0 = rhs(y0)) by h. Writes y1 and the dense output rows.
 
-    Returns (ok, err_vec_row): ok is False if the iteration matrix is singular or a value
-    is not finite. The error estimate is wk[W_K6] (order-4 minus order-3 solution).
+    Returns False if the iteration matrix is singular or a value is not finite. The error
+    estimate is left in wk[W_K6] (order-4 minus order-3 solution).
     """
     n = y0.shape[0]
     jacobian(p, pts, modes, y0, jac)
@@ -129,7 +129,8 @@ def next_step_factor(err, err_old, h, h_old, first):
 
 @kernel_jit
 def reject_factor(err):
-    """Step-size factor after a rejected step."""
+    """Step-size factor after a rejected step (at most a 5x shrink, also for a non-finite
+    error estimate)."""
     if not math.isfinite(err):
-        return co.FAC_MIN
+        return 1.0 / co.FAC_MAX
     return 1.0 / max(co.FAC_MIN, min(co.FAC_MAX, err**co.ERROR_EXPONENT / co.SAFETY))
