@@ -277,3 +277,23 @@ def test_bad_campaign_files_exit_2_naming_the_path(tmp_path, edit, path):
     assert result.exit_code == 2
     assert path in result.output
     assert "Traceback" not in result.output
+
+
+def test_scan_shows_the_jump_in_size(tmp_path):
+    text = """\
+name: pin_scan
+scene: pin
+numerics: {t_max: 2000.0}
+scan:
+  mu: [0.124, 0.126, 0.128]
+"""
+    run_campaign(campaign_from_text(text, "<test>"), tmp_path, workers=2, progress=False)
+    with xr.open_dataset(tmp_path / "results.nc") as ds:
+        assert ds.mu.attrs["scene_key"] == "params.mu"
+        assert list(ds.outcome.values) == ["stick_slip", "stick_slip", "stick"]
+        assert ds.cycle_converged.values[:2].all()
+        size = ds["size"].values
+        # the outer cycle is far larger than the sticking circle: the jump of MODEL.md 7
+        assert size[0] < size[1] and size[1] > 2 * size[2]
+        assert ds["a"].values[1] > ds["a"].values[0] > 0  # a grows with mu (paper Fig. 6)
+        assert ds["size"].attrs["units"] == "m"
