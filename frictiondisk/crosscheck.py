@@ -20,9 +20,10 @@ integrates one smooth ODE, with one terminal event per contact, w_i = sigma_i s_
 (sigma = +1 in stick, -1 in slide) crossing 0 upwards. Radau gets a finite-difference
 Jacobian (scipy's own, one vectorized call of the numpy right-hand side per Jacobian).
 
-Pending contacts (refused entries) re-enter stick when their stick rate ds/dt falls to
-0, located as an event on both sides. Deliberate differences from the kernel (the model is
-the same; these are numerics):
+Contacts in the hysteresis band of their mode (kernel/driver.py) watch their stick rate
+ds/dt instead (a stuck one slides when it rises through 0, a sliding one sticks when it
+falls through 0), located as events on both sides. Deliberate differences from the kernel
+(the model is the same; these are numerics):
 * A contact leaves the hysteresis band of its mode (kernel/driver.py) when its switching
   function changes sign: located here, tested at step ends by the driver (it changes no
   dynamics, only which event is watched).

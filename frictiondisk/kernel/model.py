@@ -158,7 +158,7 @@ def switch_rate(p, pts, y, f, i):
 def stick_rate(p, pts, modes, y, i, fbuf):
     """ds_i/dt if contact i were in stick, the other contacts unchanged [N/s].
 
-    Used for the refused-entry check and for the re-entry of pending contacts; fbuf is
+    Used for the refused-entry check and by contacts in the hysteresis band; fbuf is
     scratch space for the state rate."""
     old = modes[i]
     modes[i] = STICK
