@@ -107,6 +107,8 @@ def run_campaign(
 
 
 class _Driver:
+    """One run or resume of a campaign: replay, compute, write results (holds no lock)."""
+
     def __init__(self, campaign: Campaign, out_dir: Path, progress: bool):
         self.campaign = campaign
         self.out_dir = out_dir
@@ -114,12 +116,11 @@ class _Driver:
         self.planner = planner_for(campaign)
         self.progress = progress
         self.keys: dict[tuple[int, Any], str] = {}  # (point, request) -> run key
-        self.run_walls: dict[str, float] = {}
         self.computed = 0
         self.runs_at_start = len(self.journal)  # listed once: the journal only grows by put()
         self.in_flight: dict[str, tuple] = {}  # future key -> (job, function, args, future)
         self.inputs: dict[str, dict] = {}
-        self.failures: dict[str, int] = {}
+        self.failures: dict[int, int] = {}  # job (point) -> failed attempts
         self.t0 = time.perf_counter()
         self._last_status = 0.0
         self._last_bar = 0.0
