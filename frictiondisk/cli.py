@@ -203,11 +203,12 @@ def simulate(
     click.echo("\n".join(lines))
 
 
-# Campaign commands live in frictiondisk/campaign/cli.py; `plot` comes later.
+# Campaign commands live in frictiondisk/campaign/cli.py, `plot` in campaign/plot_cli.py.
 def _add_campaign_commands() -> None:
     from frictiondisk.campaign.cli import resume, run, status
+    from frictiondisk.campaign.plot_cli import plot
 
-    for command in (run, resume, status):
+    for command in (run, resume, status, plot):
         main.add_command(command)
 
 

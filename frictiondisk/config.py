@@ -115,7 +115,7 @@ class Numerics(BaseModel):
 
     model_config = _MODEL_CONFIG
 
-    method: Literal["rodas4", "rodas4-fixed", "scipy-radau"] = _field(
+    method: Literal["rodas4", "rodas4-fixed", "scipy-radau", "coulomb"] = _field(
         "rodas4", None, "integration method"
     )
     rtol: float = _field(1.0e-6, "1", "relative tolerance", gt=0, lt=1)
@@ -158,6 +158,12 @@ class SceneConfig(BaseModel):
                 "scene_rule",
                 "a pin has exactly one contact; use 1 or null",
                 {"path": "contact.points", "value": self.contact.points, "scene": self.scene},
+            )
+        if self.scene != "pin" and self.numerics.method == "coulomb":
+            raise PydanticCustomError(
+                "scene_rule",
+                "the exact Coulomb model exists for scene pin only",
+                {"path": "numerics.method", "value": "coulomb", "scene": self.scene},
             )
         return self
 

@@ -84,6 +84,10 @@ def simulate(config, record: bool = False, dt_out: float = 0.0) -> SimulationRes
     record: keep the trajectory (dense-output samples every dt_out seconds plus every
     switching instant; dt_out = 0 records every step).
     """
+    if config.numerics.method == "coulomb":
+        from .coulomb import simulate_coulomb
+
+        return simulate_coulomb(config, record=record, dt_out=dt_out)
     if config.numerics.method == "scipy-radau":
         from .crosscheck import simulate_radau
 

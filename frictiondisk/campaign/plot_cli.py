@@ -1,0 +1,117 @@
+"""`frictiondisk plot DIR`: the figure of a finished campaign, from its netCDF files alone.
+
+Reads DIR/results.nc (and DIR/runs.nc for --runs), never simulates, and draws the figure
+that fits the campaign (see frictiondisk.campaign.figures). Exit codes: 0 written, 2 a
+missing or damaged results.nc / runs.nc (the message names the file and suggests
+`frictiondisk resume DIR`), a file that is not a campaign result, or a bad -o suffix.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+EXIT_USAGE = 2
+DEFAULT_FIGURE = "figure.png"
+
+
+def _fail(header: str, lines: list[str]):
+    click.echo(f"error: {header}", err=True)
+    for line in lines:
+        click.echo(f"  {line}", err=True)
+    raise SystemExit(EXIT_USAGE)
+
+
+def _check_suffix(ctx: click.Context, param: click.Parameter, value: Path | None) -> Path | None:
+    if value is None:
+        return None
+    from frictiondisk.plotting import FIGURE_FORMATS
+
+    if value.suffix.lower() not in FIGURE_FORMATS:
+        raise click.BadParameter(
+            f"{str(value)!r}: the suffix picks the format; use one of {', '.join(FIGURE_FORMATS)}"
+        )
+    return value
+
+
+def _load(path: Path, out_dir: Path):
+    """The Dataset in `path`, fully loaded and closed; exit 2 naming the file if it is
+    missing or does not load completely (e.g. truncated)."""
+    import xarray as xr
+
+    from frictiondisk.campaign.runner import CAMPAIGN_FILE
+
+    remedy = f"rebuild it from the journal: frictiondisk resume {out_dir}"
+    if not path.is_file():
+        if not (out_dir / CAMPAIGN_FILE).is_file():
+            _fail(
+                f"{path}: not found",
+                [
+                    f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE}); "
+                    f"make one with: frictiondisk run CAMPAIGN.yaml -o {out_dir}"
+                ],
+            )
+        _fail(f"{path}: not found", [f"the campaign has not finished writing it; {remedy}"])
+    try:
+        with xr.open_dataset(path, cache=False) as ds:
+            return ds.load()
+    except Exception as exc:  # any reader error: truncated, corrupted, not netCDF
+        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        _fail(f"{path}: damaged, cannot be read ({detail})", [remedy])
+
+
+@click.command()
+@click.argument("out_dir", metavar="DIR", type=click.Path(file_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, path_type=Path),
+    metavar="FILE",
+    callback=_check_suffix,
+    help=f"Figure file; the suffix (.png, .pdf or .svg) picks the format [default: DIR/{DEFAULT_FIGURE}].",
+)
+@click.option(
+    "--runs",
+    "show_runs",
+    is_flag=True,
+    help="find_jump: overlay every run of runs.nc as a dot at (coordinate, mu), stick dark, "
+    "not stick light (how the jump was iterated); a grid shows each cell's run count.",
+)
+def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
+    """Draw the figure of the campaign in DIR from DIR/results.nc (never simulates).
+
+    find_jump along one key: mu* against the key with its brackets, the regions "pure
+    sticking" and "outer limit cycle", failed points listed. find_jump over two keys: a map
+    of mu*. scan of mu: size against mu by outcome, and a against mu with its
+    least-squares line. scan of mu and one more key: one size curve per value of that key.
+    """
+    from frictiondisk.campaign.runner import RESULTS_FILE, RUNS_FILE
+
+    results = _load(out_dir / RESULTS_FILE, out_dir)
+    runs = None
+    task = results.attrs.get("task")
+    if show_runs and task == "find_jump":
+        runs = _load(out_dir / RUNS_FILE, out_dir)
+    elif show_runs:
+        click.echo(
+            f"note: --runs applies to find_jump campaigns; in a {task} every run is a point "
+            "already",
+            err=True,
+        )
+        show_runs = False
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from frictiondisk.campaign.figures import plot_campaign
+    from frictiondisk.plotting import save_figure
+
+    try:
+        fig = plot_campaign(results, runs, show_runs=show_runs)
+    except ValueError as exc:
+        path = out_dir / (RUNS_FILE if str(exc).startswith("runs") else RESULTS_FILE)
+        _fail(f"{path}: cannot draw this file", [str(exc)])
+    target = output if output is not None else out_dir / DEFAULT_FIGURE
+    written = save_figure(fig, target)
+    click.echo(f"figure: {written.resolve()}")
