@@ -16,6 +16,7 @@ from typing import Any, NoReturn
 import click
 
 from frictiondisk import __version__
+from frictiondisk.cli_options import check_figure_suffix
 
 EXIT_USAGE = 2
 
@@ -41,20 +42,6 @@ def _fail_config(scene: Path, problems: list[str]) -> NoReturn:
 def _check_dt_out(ctx: click.Context, param: click.Parameter, value: float) -> float:
     if not (math.isfinite(value) and value > 0.0):
         raise click.BadParameter(f"must be a finite number > 0 (seconds), got {value!r}")
-    return value
-
-
-def _check_plot_suffix(
-    ctx: click.Context, param: click.Parameter, value: Path | None
-) -> Path | None:
-    if value is None:
-        return None
-    from frictiondisk.plotting import FIGURE_FORMATS
-
-    if value.suffix.lower() not in FIGURE_FORMATS:
-        raise click.BadParameter(
-            f"{str(value)!r}: the suffix picks the format; use one of {', '.join(FIGURE_FORMATS)}"
-        )
     return value
 
 
@@ -102,7 +89,7 @@ def _fmt(value: float | None, unit: str = "", spec: str = ".6g") -> str:
     "plot_path",
     type=click.Path(dir_okay=False, path_type=Path),
     metavar="PATH",
-    callback=_check_plot_suffix,
+    callback=check_figure_suffix,
     help="Draw the orbit (sticking dark, sliding light) to PATH (.png, .pdf or .svg).",
 )
 @click.option(

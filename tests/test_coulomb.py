@@ -6,7 +6,7 @@ import math
 import pytest
 
 from frictiondisk.bisection import Bisection
-from frictiondisk.campaign.plan import run_config
+from frictiondisk.campaign.tasks import run_bisection
 from frictiondisk.config import ConfigError, scene_from_dict
 from frictiondisk.simulate import simulate
 
@@ -19,10 +19,7 @@ def pin(mu, **numerics):
 
 def bisect(base):
     bis = Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2)
-    while not bis.done:
-        for req in bis.pending():
-            if not bis.done:
-                bis.feed(req, simulate(run_config(base, req, 2.0)).summary())
+    bis, _ = run_bisection(bis, base.canonical(), 2.0, campaign_dir="/nonexistent")
     res = bis.result()
     assert res.status == "converged", res.reason
     return res

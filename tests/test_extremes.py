@@ -10,7 +10,7 @@ import math
 import pytest
 
 from frictiondisk.bisection import Bisection
-from frictiondisk.campaign.plan import run_config
+from frictiondisk.campaign.tasks import run_bisection
 from frictiondisk.config import scene_from_dict
 from frictiondisk.simulate import simulate
 
@@ -133,10 +133,7 @@ def test_steep_stribeck_curve_is_classified():
 def bisect(contact):
     base = scene_from_dict({"scene": "pin", "contact": contact})
     bis = Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2)
-    while not bis.done:
-        for req in bis.pending():
-            if not bis.done:
-                bis.feed(req, simulate(run_config(base, req, 2.0)).summary())
+    bis, _ = run_bisection(bis, base.canonical(), 2.0, campaign_dir="/nonexistent")
     res = bis.result()
     assert res.status == "converged"
     return res

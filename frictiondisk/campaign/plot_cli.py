@@ -12,6 +12,8 @@ from pathlib import Path
 
 import click
 
+from frictiondisk.cli_options import check_figure_suffix
+
 EXIT_USAGE = 2
 DEFAULT_FIGURE = "figure.png"
 
@@ -21,18 +23,6 @@ def _fail(header: str, lines: list[str]):
     for line in lines:
         click.echo(f"  {line}", err=True)
     raise SystemExit(EXIT_USAGE)
-
-
-def _check_suffix(ctx: click.Context, param: click.Parameter, value: Path | None) -> Path | None:
-    if value is None:
-        return None
-    from frictiondisk.plotting import FIGURE_FORMATS
-
-    if value.suffix.lower() not in FIGURE_FORMATS:
-        raise click.BadParameter(
-            f"{str(value)!r}: the suffix picks the format; use one of {', '.join(FIGURE_FORMATS)}"
-        )
-    return value
 
 
 def _load(path: Path, out_dir: Path):
@@ -68,7 +58,7 @@ def _load(path: Path, out_dir: Path):
     "--output",
     type=click.Path(dir_okay=False, path_type=Path),
     metavar="FILE",
-    callback=_check_suffix,
+    callback=check_figure_suffix,
     help=f"Figure file; the suffix (.png, .pdf or .svg) picks the format [default: DIR/{DEFAULT_FIGURE}].",
 )
 @click.option(
