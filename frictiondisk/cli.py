@@ -11,14 +11,12 @@ import json
 import math
 import sys
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import Any
 
 import click
 
 from frictiondisk import __version__
-from frictiondisk.cli_options import check_figure_suffix
-
-EXIT_USAGE = 2
+from frictiondisk.cli_options import check_figure_suffix, fail
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -29,14 +27,6 @@ def main() -> None:
     Simulates a pin or a slave disk on a driven master disk with elasto-visco-plastic
     friction contacts, and classifies each run as stick, stick_slip, slide or undetermined.
     """
-
-
-def _fail_config(scene: Path, problems: list[str]) -> NoReturn:
-    """Report a bad scene on stderr and exit with code 2 (no traceback)."""
-    click.echo(f"error: {scene}", err=True)
-    for problem in problems:
-        click.echo(f"  {problem}", err=True)
-    raise SystemExit(EXIT_USAGE)
 
 
 def _check_dt_out(ctx: click.Context, param: click.Parameter, value: float) -> float:
@@ -119,13 +109,13 @@ def simulate(
     from frictiondisk.config import ConfigError, load_scene
 
     if not scene.is_file():
-        _fail_config(scene, [f"scene file not found: {scene}"])
+        fail(str(scene), [f"scene file not found: {scene}"])
     try:
         config = load_scene(scene, list(overrides))
     except ConfigError as exc:
-        _fail_config(scene, list(exc.problems))
+        fail(str(scene), list(exc.problems))
     except OSError as exc:
-        _fail_config(scene, [f"cannot read the scene file: {exc.strerror or exc}"])
+        fail(str(scene), [f"cannot read the scene file: {exc.strerror or exc}"])
 
     from frictiondisk.simulate import simulate as run_simulation
 

@@ -1,10 +1,22 @@
-"""Click callbacks shared by the command modules (validation at the command line)."""
+"""What the command modules share: the usage exit code, error reports and option checks."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NoReturn
 
 import click
+
+EXIT_USAGE = 2  # bad command line, bad scene or campaign file, unreadable result file
+
+
+def fail(header: str, lines: list[str], code: int = EXIT_USAGE) -> NoReturn:
+    """Report `error: header` and one indented line per problem on stderr, then exit with
+    `code` (no traceback)."""
+    click.echo(f"error: {header}", err=True)
+    for line in lines:
+        click.echo(f"  {line}", err=True)
+    raise SystemExit(code)
 
 
 def check_figure_suffix(

@@ -12,16 +12,10 @@ from pathlib import Path
 
 import click
 
-EXIT_USAGE = 2
+from frictiondisk.cli_options import fail
+
 EXIT_LOCKED = 3
 EXIT_INTERRUPTED = 130
-
-
-def _fail(header: str, lines: list[str], code: int = EXIT_USAGE):
-    click.echo(f"error: {header}", err=True)
-    for line in lines:
-        click.echo(f"  {line}", err=True)
-    raise SystemExit(code)
 
 
 def _execute(campaign, out_dir: Path, workers: int, scheduler: str | None, processes: bool):
@@ -32,15 +26,15 @@ def _execute(campaign, out_dir: Path, workers: int, scheduler: str | None, proce
     try:
         summary = run_campaign(campaign, out_dir, workers, scheduler, processes)
     except CampaignChanged as exc:
-        _fail(f"{out_dir}: the campaign differs from the one this directory holds", exc.differences)
+        fail(f"{out_dir}: the campaign differs from the one this directory holds", exc.differences)
     except CampaignLocked as exc:
-        _fail(str(exc), [], EXIT_LOCKED)
+        fail(str(exc), [], EXIT_LOCKED)
     except CampaignInterrupted as exc:
-        _fail(str(exc), [], EXIT_INTERRUPTED)
+        fail(str(exc), [], EXIT_INTERRUPTED)
     except ConfigError as exc:
-        _fail(f"{out_dir}/campaign.yaml", list(exc.problems))
+        fail(f"{out_dir}/campaign.yaml", list(exc.problems))
     except FileNotFoundError as exc:
-        _fail(str(exc), [])
+        fail(str(exc), [])
     click.echo(
         f"done: {summary.points} points ({summary.points_failed} failed), "
         f"{summary.runs_total} runs used, {summary.runs_computed} computed now, "
@@ -90,11 +84,11 @@ def run(campaign_file: Path, out_dir: Path, workers: int, scheduler, processes: 
     from frictiondisk.config import ConfigError
 
     if not campaign_file.is_file():
-        _fail(str(campaign_file), [f"campaign file not found: {campaign_file}"])
+        fail(str(campaign_file), [f"campaign file not found: {campaign_file}"])
     try:
         campaign = load_campaign(campaign_file)
     except ConfigError as exc:
-        _fail(str(campaign_file), list(exc.problems))
+        fail(str(campaign_file), list(exc.problems))
     _execute(campaign, out_dir, workers, scheduler, processes)
 
 
@@ -117,7 +111,7 @@ def status(out_dir: Path) -> None:
     from frictiondisk.files import netcdf_is_valid
 
     if not (out_dir / CAMPAIGN_FILE).is_file():
-        _fail(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})", [])
+        fail(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})", [])
     info = {}
     status_file = out_dir / STATUS_FILE
     if status_file.is_file():

@@ -12,17 +12,9 @@ from pathlib import Path
 
 import click
 
-from frictiondisk.cli_options import check_figure_suffix
+from frictiondisk.cli_options import check_figure_suffix, fail
 
-EXIT_USAGE = 2
 DEFAULT_FIGURE = "figure.png"
-
-
-def _fail(header: str, lines: list[str]):
-    click.echo(f"error: {header}", err=True)
-    for line in lines:
-        click.echo(f"  {line}", err=True)
-    raise SystemExit(EXIT_USAGE)
 
 
 def _load(path: Path, out_dir: Path):
@@ -35,20 +27,20 @@ def _load(path: Path, out_dir: Path):
     remedy = f"rebuild it from the journal: frictiondisk resume {out_dir}"
     if not path.is_file():
         if not (out_dir / CAMPAIGN_FILE).is_file():
-            _fail(
+            fail(
                 f"{path}: not found",
                 [
                     f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE}); "
                     f"make one with: frictiondisk run CAMPAIGN.yaml -o {out_dir}"
                 ],
             )
-        _fail(f"{path}: not found", [f"the campaign has not finished writing it; {remedy}"])
+        fail(f"{path}: not found", [f"the campaign has not finished writing it; {remedy}"])
     try:
         with xr.open_dataset(path, cache=False) as ds:
             return ds.load()
     except Exception as exc:  # any reader error: truncated, corrupted, not netCDF
         detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        _fail(f"{path}: damaged, cannot be read ({detail})", [remedy])
+        fail(f"{path}: damaged, cannot be read ({detail})", [remedy])
 
 
 @click.command()
@@ -101,7 +93,7 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
         fig = plot_campaign(results, runs, show_runs=show_runs)
     except ValueError as exc:
         path = out_dir / (RUNS_FILE if str(exc).startswith("runs") else RESULTS_FILE)
-        _fail(f"{path}: cannot draw this file", [str(exc)])
+        fail(f"{path}: cannot draw this file", [str(exc)])
     target = output if output is not None else out_dir / DEFAULT_FIGURE
     written = save_figure(fig, target)
     click.echo(f"figure: {written.resolve()}")
