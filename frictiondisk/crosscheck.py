@@ -287,6 +287,8 @@ class _RadauRun:
         n = model.n_contacts
         self.modes = np.zeros(n, dtype=np.int8)
         self.band = np.zeros(n, dtype=np.int8)
+        # contacts whose band was cleared at the last event: their s sits at 0 to round-off
+        self.cleared = np.zeros(n, dtype=bool)
         self.mf = np.empty(mon.N_MF)
         self.mi = np.empty(mon.N_MI, dtype=np.int64)
         self.ring_all = np.empty((mon.RING, 2))
@@ -481,14 +483,19 @@ class _RadauRun:
         for i in range(n):
             if old_band[i]:
                 continue
-            if i in fired_w or w[i] >= 0.0 or w_ahead[i] >= 0.0:
+            # a contact whose band was just cleared at a located root may sit on the far
+            # side of 0 by round-off while moving away from its threshold: not a crossing
+            past = w[i] >= 0.0 and not (self.cleared[i] and w_ahead[i] < 0.0)
+            if i in fired_w or past or w_ahead[i] >= 0.0:
                 self.modes[i] = SLIDE if self.modes[i] == STICK else STICK
                 entered[i] = 1
                 n_sw += 1
+        self.cleared[:] = False
         for kind, i in seg.fired:
             if kind == "w":
                 continue
             self.band[i] = 0
+            self.cleared[i] = kind == "clear"
             if kind in ("enter", "rise") and in_band[i]:
                 self.modes[i] = SLIDE if self.modes[i] == STICK else STICK
                 entered[i] = 2 if kind == "enter" else 1
