@@ -3,6 +3,8 @@
 #   make demo    create .venv, install, run the built-in pin example, show where the outputs are
 #   make test    create .venv if needed, install with test extras, run the test suite
 #   make bench   kernel and campaign benchmarks (ratios against baselines run alongside)
+#   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
+#                and draw figures/<name>.png and .pdf (the README gallery)
 #   make lint    ruff check + ruff format --check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
@@ -22,7 +24,7 @@ DEMO_JSON := $(DEMO_DIR)/summary.json
 DEMO_CAMPAIGN := campaigns/demo_line.yaml
 DEMO_CAMPAIGN_DIR := out/demo_line
 
-.PHONY: all install demo test bench lint clean distclean
+.PHONY: all install demo test bench figures lint clean distclean
 
 all: test
 
@@ -55,6 +57,9 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kernel.py
 	$(BIN)/python benchmarks/bench_campaign.py
+
+figures: $(STAMP)
+	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures figures
 
 lint: $(STAMP)
 	$(BIN)/ruff check $(LINT_PATHS)

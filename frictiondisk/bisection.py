@@ -1,8 +1,9 @@
 """Bisection for the jump mu* of one parameter point (MODEL.md section 7). Pure Python.
 
 `Bisection` is a state machine: `pending()` names the runs it needs next, `feed()` takes
-their outcomes. It keeps [mu_lo, mu_hi] with mu_lo -> not stick and mu_hi -> stick and
-stops when mu_hi - mu_lo <= tol. It knows nothing of simulation, I/O or Dask, so the same
+their outcomes. It keeps [mu_lo, mu_hi] with mu_lo -> not stick and mu_hi -> stick (a
+*rising* jump; a falling one, `rising=False`, has stick at mu_lo and not stick at mu_hi)
+and stops when mu_hi - mu_lo <= tol. It knows nothing of simulation, I/O or Dask, so the same
 object drives a live campaign and its replay from the journal.
 
 Rules (after Attractors.jl's `bisect_to_edge`: check, retry a bounded number of times,
@@ -34,6 +35,7 @@ class RunRequest:
 
     mu: float
     level: int = 0
+    mode: str | None = None  # numerics.mode of the run; None: the point's own
 
 
 @dataclasses.dataclass(frozen=True)
@@ -55,7 +57,8 @@ class BisectionResult:
     mu_lo: float  # NaN if the bracket was never established
     mu_hi: float
     runs: tuple[RunRecord, ...]
-    contradictions: tuple[tuple[float, float], ...]  # (mu of a stick, larger mu of a not stick)
+    contradictions: tuple[tuple[float, float], ...]  # run pairs against one jump (see below)
+    rising: bool = True  # not stick at mu_lo, stick at mu_hi (False: the other way round)
 
     @property
     def mu_star(self) -> float:
@@ -88,6 +91,7 @@ class Bisection:
         tol: float,
         limits: tuple[float, float],
         max_retries: int,
+        rising: bool = True,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
@@ -97,6 +101,7 @@ class Bisection:
         self.tol = tol
         self.limits = limits
         self.max_retries = max_retries
+        self.rising = rising
         self.phase = "check"
         self.runs: list[RunRecord] = []
         self._known: dict[float, str] = {}  # mu -> stick / not-stick (determined runs only)
@@ -145,7 +150,7 @@ class Bisection:
         if self.phase == "check":
             self._after_check()
         else:
-            if outcome == STICK:
+            if (outcome == STICK) == self.rising:
                 self.hi = request.mu
             else:
                 self.lo = request.mu
@@ -162,7 +167,17 @@ class Bisection:
         lo_stick = self._known[self.lo] == STICK
         hi_stick = self._known[self.hi] == STICK
         width = self.hi - self.lo
-        if not lo_stick and hi_stick:
+        if not self.rising:
+            if lo_stick and not hi_stick:
+                self.phase = "bisect"
+                self._maybe_converged()
+            else:  # a falling jump is only ever bisected inside a bracket found by a scan
+                self._failure = (
+                    f"no falling jump in the bracket: mu_lo = {self.lo:.10g} gave "
+                    f"{self._outcome_at(self.lo)}, mu_hi = {self.hi:.10g} gave "
+                    f"{self._outcome_at(self.hi)}"
+                )
+        elif not lo_stick and hi_stick:
             self.phase = "bisect"
             self._maybe_converged()
         elif lo_stick and not hi_stick:
@@ -217,9 +232,14 @@ class Bisection:
             # in the order requested, not the order results arrived: independent of timing
             runs=tuple(sorted(self.runs, key=lambda run: self._issued[run.request])),
             contradictions=self._contradictions(),
+            rising=self.rising,
         )
 
     def _contradictions(self) -> tuple[tuple[float, float], ...]:
+        """Pairs of runs that contradict a single jump of this bracket's direction:
+        (stick mu, larger not-stick mu) for a rising jump, the reverse for a falling one."""
         sticks = sorted(mu for mu, o in self._known.items() if o == STICK)
         nots = sorted(mu for mu, o in self._known.items() if o != STICK)
-        return tuple((s, n) for s in sticks for n in nots if s < n)
+        if self.rising:
+            return tuple((s, n) for s in sticks for n in nots if s < n)
+        return tuple((n, s) for s in sticks for n in nots if n < s)

@@ -67,19 +67,30 @@ def plot_orbit(result: SimulationResult, config: Any, ax: Axes | None = None) ->
         ax = fig.add_subplot()
     else:
         fig = ax.figure
+    draw_orbit(ax, traj.x, traj.y, traj.all_stick, head["x_ms"])
+    ax.set_title(
+        f"{head['scene']}: \u03bc = {head['mu']:g}, x_ms = {head['x_ms']:g} m\n"
+        f"outcome: {result.outcome}"
+    )
+    return fig
 
-    x = np.asarray(traj.x, dtype=float)
-    y = np.asarray(traj.y, dtype=float)
+
+def draw_orbit(ax: Axes, x: Any, y: Any, stick: Any, x_ms: float) -> None:
+    """Draw the path (x, y) [m] into `ax`: samples where every contact sticks (`stick`)
+    start dark, thick segments, the others light, thin ones; the master axis is marked
+    '+', the spring rest position (x_ms, 0) 'x'; equal aspect, axes in metres, a legend."""
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
     points = np.column_stack([x, y])
     segments = np.stack([points[:-1], points[1:]], axis=1)  # (n - 1, 2, 2)
-    stick = np.asarray(traj.all_stick, dtype=bool)[:-1]
+    stuck = np.asarray(stick, dtype=bool)[:-1]
 
     ax.add_collection(
-        LineCollection(segments[~stick], colors=SLIDE_COLOR, linewidths=SLIDE_WIDTH, zorder=2)
+        LineCollection(segments[~stuck], colors=SLIDE_COLOR, linewidths=SLIDE_WIDTH, zorder=2)
     )
     ax.add_collection(
         LineCollection(
-            segments[stick],
+            segments[stuck],
             colors=STICK_COLOR,
             linewidths=STICK_WIDTH,
             capstyle="round",
@@ -87,12 +98,10 @@ def plot_orbit(result: SimulationResult, config: Any, ax: Axes | None = None) ->
         )
     )
     ax.plot([0.0], [0.0], linestyle="none", marker="+", markersize=14, color="black", zorder=4)
-    ax.plot(
-        [head["x_ms"]], [0.0], linestyle="none", marker="x", markersize=9, color="tab:red", zorder=4
-    )
+    ax.plot([x_ms], [0.0], linestyle="none", marker="x", markersize=9, color="tab:red", zorder=4)
 
     # Frame the orbit and both markers.
-    xs = np.concatenate([x[np.isfinite(x)], [0.0, head["x_ms"]]])
+    xs = np.concatenate([x[np.isfinite(x)], [0.0, x_ms]])
     ys = np.concatenate([y[np.isfinite(y)], [0.0]])
     ax.update_datalim(np.column_stack([[xs.min(), xs.max()], [ys.min(), ys.max()]]))
     ax.set_aspect("equal", adjustable="datalim")
@@ -119,11 +128,6 @@ def plot_orbit(result: SimulationResult, config: Any, ax: Axes | None = None) ->
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.grid(True, linewidth=0.4, alpha=0.5)
-    ax.set_title(
-        f"{head['scene']}: \u03bc = {head['mu']:g}, x_ms = {head['x_ms']:g} m\n"
-        f"outcome: {result.outcome}"
-    )
-    return fig
 
 
 def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:

@@ -50,6 +50,7 @@ MEASURES = {  # datasets.RUN_MEASURES: name -> units
     "t_end": "s",
     "n_steps": "1",
     "n_refused": "1",
+    "energy_residual": "1",
 }
 JUMP_ONLY_ATTRS = ("tol", "runs_saved_by_warm_start")  # results.nc of find_jump, not runs.nc
 KEYS = {  # scene key -> (dimension, units, long_name) as datasets._key_attrs writes them
@@ -123,6 +124,7 @@ def jump_runs(results, per_point):
         "point": ("run", np.asarray([r[0] for r in rows], np.int64), {}),
         "mu": ("run", np.asarray([r[1] for r in rows], float), {"units": "1"}),
         "level": ("run", np.zeros(n, np.int64), {}),
+        "mode": ("run", np.full(n, "decide"), {}),
         "outcome": ("run", np.asarray([r[2] for r in rows], str), {}),
         "reason": ("run", np.full(n, "why"), {}),
         "key": ("run", np.full(n, "0" * 64), {}),
@@ -415,7 +417,7 @@ def test_axis_label_and_caption_from_attributes(line):
 
 
 def test_a_dataset_that_is_not_a_campaign_result_is_refused(line):
-    with pytest.raises(ValueError, match="expected 'find_jump' or 'scan'"):
+    with pytest.raises(ValueError, match="expected 'find_jump', 'scan' or 'trajectory'"):
         figure_kind(xr.Dataset(attrs={"task": "orbit"}))
     with pytest.raises(ValueError, match="lacks the variable"):
         figure_kind(line.drop_vars("mu_hi"))

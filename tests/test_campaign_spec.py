@@ -377,13 +377,55 @@ def test_unknown_key_in_a_task(data, path, allowed):
 
 def test_both_tasks():
     data = {**find_jump(), "scan": {"mu": [0.1]}}
-    assert problems(data) == ["(top level): both find_jump and scan given: give exactly one task"]
+    assert problems(data) == [
+        "(top level): find_jump and scan given: give exactly one task (find_jump, scan, trajectory)"
+    ]
 
 
 def test_no_task():
     assert problems({"name": "t", "scene": "pin"}) == [
-        "(top level): no task: give exactly one of find_jump or scan"
+        "(top level): no task: give exactly one of find_jump, scan, trajectory"
     ]
+
+
+def test_trajectory_task():
+    campaign = campaign_from_dict(
+        {
+            "name": "orbit",
+            "scene": "pin",
+            "params": {"mu": 0.12},
+            "numerics": {"mode": "converge"},
+            "trajectory": {"dt_out": 0.02, "show": "cycle"},
+        }
+    )
+    assert campaign.kind == "trajectory"
+    assert campaign.task.dt_out == 0.02 and campaign.task.show == "cycle"
+    assert campaign.shape == () and len(campaign.points()) == 1
+    defaults = campaign_from_dict({"name": "o", "scene": "pin", "trajectory": None})
+    assert (defaults.task.dt_out, defaults.task.show) == (0.01, "whole")
+
+
+@pytest.mark.parametrize(
+    "task, numerics, message",
+    [
+        (
+            {"show": "last"},
+            {},
+            "trajectory.show: 'last' is not allowed: must be 'whole' or 'cycle'",
+        ),
+        (
+            {"show": "cycle"},
+            {},
+            "trajectory.show: 'cycle' needs the converged limit cycle: set numerics.mode: "
+            "converge (got 'decide')",
+        ),
+        ({"dt_out": 0}, {}, "trajectory.dt_out: 0 is out of range: must be > 0"),
+        ({"every": 1}, {}, "trajectory.every: unknown key; allowed keys under trajectory"),
+    ],
+)
+def test_bad_trajectory_task(task, numerics, message):
+    data = {"name": "o", "scene": "pin", "numerics": numerics, "trajectory": task}
+    assert_problem(problems(data), message)
 
 
 def test_not_a_mapping():

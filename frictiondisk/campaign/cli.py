@@ -41,7 +41,8 @@ def _execute(campaign, out_dir: Path, workers: int, scheduler: str | None, proce
         f"{summary.runs_saved_by_warm_start} saved by warm starts, {summary.wall_s:.1f} s"
     )
     click.echo(f"results: {summary.results}")
-    click.echo(f"runs:    {summary.runs}")
+    label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
+    click.echo(f"{label} {summary.runs}")
 
 
 _workers = click.option(

@@ -27,6 +27,8 @@ RUN_MEASURES = {  # summary field -> (units, long name)
     "t_end": ("s", "simulated time reached"),
     "n_steps": ("1", "accepted integrator steps"),
     "n_refused": ("1", "refused slide->stick entries"),
+    # integration quality of each run (kernel/energy.py); NaN for scipy-radau and coulomb
+    "energy_residual": ("1", "relative residual of the energy balance over the run"),
 }
 
 
@@ -55,7 +57,7 @@ def _coords(campaign) -> dict[str, Any]:
     }
 
 
-def _attrs(campaign) -> dict[str, Any]:
+def campaign_attrs(campaign) -> dict[str, Any]:
     return {
         "campaign_name": campaign.name,
         "task": campaign.task.kind,
@@ -146,12 +148,92 @@ def _jump_results(campaign, planner) -> xr.Dataset:
         },
         coords=_coords(campaign),
         attrs={
-            **_attrs(campaign),
+            **campaign_attrs(campaign),
             "tol": campaign.task.tol,
             "runs_saved_by_warm_start": int(planner.runs_saved()),
         },
     )
+    if campaign.task.prescan is not None:
+        ds = ds.assign(_all_jumps(campaign, planner, dims))
+        ds = ds.assign_coords(
+            scan_mu=(
+                "scan_mu",
+                np.asarray(campaign.task.prescan.mu, float),
+                {"units": "1", "long_name": "prescan friction coefficient mu"},
+            )
+        )
+        ds.attrs["prescan_mode"] = campaign.task.prescan.mode
     return ds
+
+
+def _all_jumps(campaign, planner, dims: tuple[str, ...]) -> dict[str, Any]:
+    """Every jump of every point (dim `jump`, NaN-padded) and the prescan runs (dim
+    `scan_mu`) of a find_jump with a prescan (frictiondisk.jumps)."""
+    shape = campaign.shape
+    results = [planner.results[i] for i in range(len(planner.points))]
+    n_jump = max([1, *(len(r.jumps) for r in results)])
+    scan_mu = campaign.task.prescan.mu
+    lo = np.full((len(results), n_jump), np.nan)
+    hi = np.full((len(results), n_jump), np.nan)
+    rising = np.full((len(results), n_jump), -1, np.int8)
+    status = np.full((len(results), n_jump), "", dtype=object)
+    outcome = np.full((len(results), len(scan_mu)), "", dtype=object)
+    measures = {name: np.full((len(results), len(scan_mu)), np.nan) for name in ("size", "a")}
+    for i, res in enumerate(results):
+        for j, jump in enumerate(res.jumps):
+            lo[i, j], hi[i, j] = jump.mu_lo, jump.mu_hi
+            rising[i, j] = int(jump.rising)
+            status[i, j] = jump.status
+        for run in res.scan:
+            k = scan_mu.index(run.request.mu)
+            outcome[i, k] = run.outcome
+            for name in measures:
+                measures[name][i, k] = _num(run.result.get(name))
+    jdims = (*dims, "jump")
+    sdims = (*dims, "scan_mu")
+
+    def shaped(values, last):
+        return np.asarray(values).reshape((*shape, last))
+
+    return {
+        "n_jumps": (
+            dims,
+            np.asarray([len(r.jumps) for r in results], np.int64).reshape(shape),
+            {"units": "1", "long_name": "jumps found by the prescan and bisected"},
+        ),
+        "jump_mu_lo": (jdims, shaped(lo, n_jump), {"units": "1", "long_name": "jump bracket low"}),
+        "jump_mu_hi": (jdims, shaped(hi, n_jump), {"units": "1", "long_name": "jump bracket high"}),
+        "jump_mu_star": (
+            jdims,
+            shaped(0.5 * (lo + hi), n_jump),
+            {"units": "1", "long_name": "jump mu* (bracket midpoint)"},
+        ),
+        "jump_rising": (
+            jdims,
+            shaped(rising, n_jump),
+            {"long_name": "1: not stick below, stick above; 0: the reverse; -1: no jump"},
+        ),
+        "jump_status": (
+            jdims,
+            shaped(status.astype(str), n_jump),
+            {"long_name": "converged or failed"},
+        ),
+        "scan_outcome": (
+            sdims,
+            shaped(outcome.astype(str), len(scan_mu)),
+            {"long_name": "outcome of the prescan run"},
+        ),
+        "scan_size": (
+            sdims,
+            shaped(measures["size"], len(scan_mu)),
+            {"units": "m", "long_name": RUN_MEASURES["size"][1] + " (prescan)"},
+        ),
+        "scan_a": (
+            sdims,
+            shaped(measures["a"], len(scan_mu)),
+            {"units": "m", "long_name": RUN_MEASURES["a"][1] + " (prescan)"},
+        ),
+    }
 
 
 def _scan_results(campaign, planner) -> xr.Dataset:
@@ -178,7 +260,7 @@ def _scan_results(campaign, planner) -> xr.Dataset:
     for name, (units, long_name) in RUN_MEASURES.items():
         values = np.asarray([_num(r.get(name)) for r in results]).reshape(shape)
         data_vars[name] = (dims, values, {"units": units, "long_name": long_name})
-    return xr.Dataset(data_vars, coords=_coords(campaign), attrs=_attrs(campaign))
+    return xr.Dataset(data_vars, coords=_coords(campaign), attrs=campaign_attrs(campaign))
 
 
 def _run_rows(campaign, planner):
@@ -206,6 +288,11 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             np.asarray([r[1].level for r in rows], np.int64),
             {"long_name": "retry level (horizon x horizon_factor**level)"},
         ),
+        "mode": (
+            "run",
+            np.asarray([r[1].mode or planner.points[r[0]].config.numerics.mode for r in rows], str),
+            {"long_name": "numerics.mode of the run (decide or converge)"},
+        ),
         "outcome": ("run", np.asarray([r[2]["outcome"] for r in rows], str), {}),
         "reason": ("run", np.asarray([r[2].get("reason", "") for r in rows], str), {}),
         "key": (
@@ -227,4 +314,4 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
     for name, (units, long_name) in RUN_MEASURES.items():
         values = np.asarray([_num(r[2].get(name)) for r in rows])
         data_vars[name] = ("run", values, {"units": units, "long_name": long_name})
-    return xr.Dataset(data_vars, attrs=_attrs(campaign))
+    return xr.Dataset(data_vars, attrs=campaign_attrs(campaign))

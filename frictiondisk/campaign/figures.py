@@ -56,7 +56,7 @@ __all__ = [
     "plot_scan_mu",
 ]
 
-FIGURE_KINDS = ("jump_line", "jump_grid", "scan_mu", "scan_family")
+FIGURE_KINDS = ("jump_line", "jump_grid", "jump_sizes", "scan_mu", "scan_family", "trajectory")
 MU_LABEL = "friction coefficient mu [-]"
 MU_STAR_LABEL = "mu* [-]"
 SIZE_LABEL = "size (sticking radius) [m]"
@@ -138,6 +138,9 @@ def figure_kind(results: xr.Dataset) -> str:
     dims = list(results.dims)
     if task == "find_jump":
         _check_vars(results, _JUMP_VARS, "results (find_jump)")
+        dims = list(results["mu_star"].dims)  # a prescan adds the dims jump and scan_mu
+        if len(dims) == 1 and results.attrs.get("prescan_mode") == "converge":
+            return "jump_sizes"
         if len(dims) == 1:
             return "jump_line"
         if len(dims) == 2:
@@ -153,8 +156,10 @@ def figure_kind(results: xr.Dataset) -> str:
         if len(dims) == 2:
             return "scan_family"
         raise ValueError(f"a scan varies mu and at most one more key, this one {dims}")
+    if task == "trajectory":
+        return "trajectory"
     raise ValueError(
-        f"results attribute 'task' is {task!r}; expected 'find_jump' or 'scan' "
+        f"results attribute 'task' is {task!r}; expected 'find_jump', 'scan' or 'trajectory' "
         "(not a frictiondisk campaign result?)"
     )
 
@@ -253,7 +258,7 @@ def _wrap_parts(parts: list[str], width: int) -> list[str]:
     return lines
 
 
-def _new_figure(
+def new_figure(
     results: xr.Dataset, width: float, height: float, note_lines: int
 ) -> tuple[Figure, SubFigure, SubFigure | None]:
     """A Figure of three stacked subfigures: the plot (height [in]), a note of `note_lines`
@@ -415,6 +420,50 @@ def _free_spot(
     return spot
 
 
+def _further_jumps(results: xr.Dataset, dim: str) -> dict[str, np.ndarray]:
+    """The jumps of a prescanned find_jump line besides each point's primary one (the
+    line): x, lo, hi and rising (bool) of each. Empty without a prescan."""
+    empty = {key: np.empty(0) for key in ("x", "lo", "hi", "rising")}
+    if "jump_mu_lo" not in results.variables:
+        return empty
+    lo = np.asarray(results["jump_mu_lo"].transpose(dim, "jump").values, dtype=float)
+    hi = np.asarray(results["jump_mu_hi"].transpose(dim, "jump").values, dtype=float)
+    rising = np.asarray(results["jump_rising"].transpose(dim, "jump").values) == 1
+    x = np.broadcast_to(np.asarray(results[dim].values, dtype=float)[:, None], lo.shape)
+    primary_lo = np.asarray(results["mu_lo"].values, dtype=float)[:, None]
+    primary_hi = np.asarray(results["mu_hi"].values, dtype=float)[:, None]
+    keep = np.isfinite(lo) & ~((lo == primary_lo) & (hi == primary_hi))
+    return {"x": x[keep], "lo": lo[keep], "hi": hi[keep], "rising": rising[keep]}
+
+
+def _draw_further_jumps(ax: Axes, extra: dict[str, np.ndarray]) -> list[Any]:
+    """Triangles with brackets: further rising jumps (^) and falling jumps (v)."""
+    handles = []
+    for rising, marker, color, label in (
+        (True, "^", STICK_COLOR, "further jump: not stick below, stick above"),
+        (False, "v", NON_MONOTONE_COLOR, "falling jump: stick below, not stick above"),
+    ):
+        sel = extra["rising"] == rising
+        if not sel.any():
+            continue
+        mid = 0.5 * (extra["lo"][sel] + extra["hi"][sel])
+        handles.append(
+            ax.errorbar(
+                extra["x"][sel],
+                mid,
+                yerr=[mid - extra["lo"][sel], extra["hi"][sel] - mid],
+                fmt=marker,
+                color=color,
+                markersize=6,
+                elinewidth=1.2,
+                capsize=3,
+                zorder=5,
+                label=label,
+            )
+        )
+    return handles
+
+
 def plot_jump_line(
     results: xr.Dataset, runs: xr.Dataset | None = None, *, show_runs: bool = False
 ) -> Figure:
@@ -447,14 +496,15 @@ def plot_jump_line(
 
     labels = _point_labels(results)
     fail_lines = _failure_lines(results, labels, failed)
-    fig, main, note = _new_figure(results, 7.2, 5.2, len(fail_lines) + 1 if fail_lines else 0)
+    fig, main, note = new_figure(results, 7.2, 5.2, len(fail_lines) + 1 if fail_lines else 0)
     ax = main.add_subplot()
     handles: list[Any] = []
     run_handles: list[Any] = []
 
+    extra = _further_jumps(results, dim)
     # the mu range shown: every bracket, and the runs up to RUNS_VIEW x the largest bracket
     # end (a bracket widened towards the limits must not squash the line)
-    ends = np.concatenate([mu_lo[bracketed], mu_hi[bracketed]])
+    ends = np.concatenate([mu_lo[bracketed], mu_hi[bracketed], extra["lo"], extra["hi"]])
     run_x = run_mu = run_outcome = np.empty(0)
     if show_runs and runs is not None:
         _check_vars(runs, (*_RUN_VARS, dim), "runs")
@@ -519,6 +569,8 @@ def plot_jump_line(
             label=f"mu* with its bracket [mu_lo, mu_hi]{tol_text}",
         )
         handles.append(container)
+
+    handles += _draw_further_jumps(ax, extra)
 
     partial = failed & bracketed
     if partial.any():
@@ -720,7 +772,7 @@ def plot_jump_grid(
     fail_lines = _failure_lines(
         results, labels, np.asarray(results["status"].values) != "converged"
     )
-    fig, main, note = _new_figure(results, 7.2, 5.4, len(fail_lines) + 1 if fail_lines else 0)
+    fig, main, note = new_figure(results, 7.2, 5.4, len(fail_lines) + 1 if fail_lines else 0)
     ax = main.add_subplot()
     ex, ey = _edges(xs), _edges(ys)
     shown = np.ma.masked_invalid(np.where(failed, np.nan, mu_star))
@@ -932,7 +984,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
     size = np.asarray(ds["size"].values, float)
     a = np.asarray(ds["a"].values, float)
 
-    fig, main, _ = _new_figure(results, 7.2, 6.6, 0)
+    fig, main, _ = new_figure(results, 7.2, 6.6, 0)
     ax_size, ax_a = main.subplots(2, 1, sharex=True, height_ratios=[3, 2])
 
     finite = np.isfinite(size)
@@ -970,13 +1022,14 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
         slope, intercept = np.polyfit(mu[cycle], a[cycle], 1)
         line_mu = np.array([mu[cycle].min(), mu[cycle].max()])
         sign = "-" if intercept < 0 else "+"
+        residual = np.max(np.abs(a[cycle] - (slope * mu[cycle] + intercept)))
         ax_a.plot(
             line_mu,
             slope * line_mu + intercept,
             color=STICK_COLOR,
             linewidth=1.2,
             label=f"least squares: a = {slope:.4g} m * mu {sign} {abs(intercept):.3g} m "
-            f"(slope {slope:.4g} m)",
+            f"(slope {slope:.4g} m, largest residual {residual:.2g} m)",
             gid="a_fit",
         )
     if cycle.any():
@@ -1019,7 +1072,7 @@ def plot_scan_family(results: xr.Dataset) -> Figure:
     size_all = np.asarray(ds["size"].values, float)
     n = values.size
 
-    fig, main, _ = _new_figure(results, 8.4, 5.4, 0)
+    fig, main, _ = new_figure(results, 8.4, 5.4, 0)
     ax = main.add_subplot()
     finite_all = size_all[np.isfinite(size_all)]
     ax.set_xlim(*_padded(mu.min(), mu.max(), 0.04))
@@ -1109,6 +1162,10 @@ def plot_campaign(
     there it changes nothing.
     """
     kind = figure_kind(results)
+    if kind == "jump_sizes":
+        from frictiondisk.campaign.size_figure import plot_jump_sizes
+
+        return plot_jump_sizes(results, runs if show_runs else None)
     if kind == "jump_line":
         return plot_jump_line(results, runs, show_runs=show_runs)
     if kind == "jump_grid":

@@ -23,6 +23,7 @@ from typing import Any
 
 from frictiondisk.bisection import Bisection, BisectionResult, RunRequest
 from frictiondisk.campaign.tasks import run_bisection, run_scene
+from frictiondisk.jumps import JumpSearch, JumpSearchResult
 
 WARM_HALF_WIDTH_TOLS = 3.0  # half-width of a predicted bracket, in units of tol
 
@@ -33,26 +34,32 @@ def cold_run_count(bracket: tuple[float, float], tol: float) -> int:
 
 
 def run_config(point_config, request: RunRequest, horizon_factor: float):
-    """The scene of one requested run: mu set, horizon lengthened by the retry level."""
+    """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
+    set, horizon lengthened by the retry level."""
     num = point_config.numerics
-    key = "numerics.t_max" if num.mode == "converge" else "numerics.t_decide"
-    horizon = num.t_max if num.mode == "converge" else num.t_decide
+    mode = request.mode or num.mode
+    key = "numerics.t_max" if mode == "converge" else "numerics.t_decide"
+    horizon = num.t_max if mode == "converge" else num.t_decide
     overrides: dict[str, Any] = {"params.mu": request.mu}
+    if mode != num.mode:
+        overrides["numerics.mode"] = mode
     if request.level:
         overrides[key] = horizon * horizon_factor**request.level
     return point_config.with_overrides(overrides)
 
 
 class JumpPlanner:
-    """find_jump: one bisection per point, warm-started along lanes."""
+    """find_jump: one bisection per point, warm-started along lanes; with a prescan, one
+    `JumpSearch` per point instead (every jump bisected; no warm start: the prescan
+    fixes the runs)."""
 
     def __init__(self, campaign):
         self.campaign = campaign
         self.task = campaign.task
         self.points = campaign.points()
         self.shape = campaign.shape
-        self.bisections: dict[int, Bisection] = {}
-        self.results: dict[int, BisectionResult] = {}
+        self.bisections: dict[int, Bisection | JumpSearch] = {}
+        self.results: dict[int, BisectionResult | JumpSearchResult] = {}
         self.warm: dict[int, bool] = {}
         self.busy: set[int] = set()  # points whose bisection is out on a worker
 
@@ -125,9 +132,18 @@ class JumpPlanner:
         return [first + p for p in range(pos - self.task.lanes, -1, -1)]
 
     def _ready(self, i: int) -> bool:
+        if self.task.prescan is not None:
+            return True
         return all(j in self.results for j in self._finished_before(i))
 
     def _start(self, i: int) -> None:
+        prescan = self.task.prescan
+        if prescan is not None:
+            self.warm[i] = False
+            self.bisections[i] = JumpSearch(
+                prescan.mu, self.task.tol, self.task.max_retries, prescan.mode
+            )
+            return
         bracket = self._predicted_bracket(i)
         self.warm[i] = bracket is not None
         bracket = bracket or tuple(self.task.bracket)

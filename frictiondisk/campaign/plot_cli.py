@@ -67,12 +67,38 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
     sticking" and "outer limit cycle", failed points listed. find_jump over two keys: a map
     of mu*. scan of mu: size against mu by outcome, and a against mu with its
     least-squares line. scan of mu and one more key: one size curve per value of that key.
+    trajectory: the orbit, sticking dark and sliding light (whole, or the last cycle with
+    the deviation a marked).
     """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from frictiondisk.plotting import save_figure
+
+    fig = figure_for_dir(out_dir, show_runs)
+    target = output if output is not None else out_dir / DEFAULT_FIGURE
+    written = save_figure(fig, target)
+    click.echo(f"figure: {written.resolve()}")
+
+
+def figure_for_dir(out_dir: Path, show_runs: bool = False):
+    """The Figure of the campaign in `out_dir`, from its netCDF files alone (exit 2 via
+    `fail` naming the file if one is missing, damaged or cannot be drawn)."""
+    from frictiondisk.campaign.figures import plot_campaign
+    from frictiondisk.campaign.orbit import TRAJECTORY_FILE
+    from frictiondisk.campaign.orbit_figure import plot_trajectory
     from frictiondisk.campaign.runner import RESULTS_FILE, RUNS_FILE
 
+    out_dir = Path(out_dir)
     results = _load(out_dir / RESULTS_FILE, out_dir)
-    runs = None
     task = results.attrs.get("task")
+    if task == "trajectory":
+        trajectory = _load(out_dir / TRAJECTORY_FILE, out_dir)
+        try:
+            return plot_trajectory(results, trajectory)
+        except ValueError as exc:
+            fail(f"{out_dir / TRAJECTORY_FILE}: cannot draw this file", [str(exc)])
+    runs = None
     if show_runs and task == "find_jump":
         runs = _load(out_dir / RUNS_FILE, out_dir)
     elif show_runs:
@@ -82,18 +108,8 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
             err=True,
         )
         show_runs = False
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from frictiondisk.campaign.figures import plot_campaign
-    from frictiondisk.plotting import save_figure
-
     try:
-        fig = plot_campaign(results, runs, show_runs=show_runs)
+        return plot_campaign(results, runs, show_runs=show_runs)
     except ValueError as exc:
         path = out_dir / (RUNS_FILE if str(exc).startswith("runs") else RESULTS_FILE)
         fail(f"{path}: cannot draw this file", [str(exc)])
-    target = output if output is not None else out_dir / DEFAULT_FIGURE
-    written = save_figure(fig, target)
-    click.echo(f"figure: {written.resolve()}")

@@ -94,6 +94,8 @@ def run_campaign(
     out_dir.mkdir(parents=True, exist_ok=True)
     with CampaignLock(out_dir):
         campaign = prepare_directory(out_dir, campaign)
+        if campaign.kind == "trajectory":
+            return _run_trajectory(campaign, out_dir)
         Journal(out_dir).clean_temp_files()  # left by a put that was killed mid-write
         driver = _Driver(campaign, out_dir, progress)
         try:
@@ -104,6 +106,23 @@ def run_campaign(
                 f"interrupted; {driver.runs_done()} finished runs are in the journal. "
                 f"Continue with: frictiondisk resume {out_dir}"
             ) from None
+
+
+def _run_trajectory(campaign: Campaign, out_dir: Path) -> RunSummary:
+    """A trajectory campaign: one recorded run in this process (no Dask, no journal)."""
+    from frictiondisk.campaign.orbit import run_trajectory
+
+    done = run_trajectory(campaign, out_dir, RESULTS_FILE, STATUS_FILE)
+    return RunSummary(
+        points=1,
+        points_failed=0,
+        runs_total=1,
+        runs_computed=done["computed"],
+        runs_saved_by_warm_start=0,
+        wall_s=done["wall_s"],
+        results=Path(done["results"]),
+        runs=Path(done["trajectory"]),
+    )
 
 
 class _Driver:

@@ -8,6 +8,8 @@ A campaign file holds a `name`, a base scene (the keys of a scene file: `scene`,
 - `scan`: run every point of a grid of mu (and optionally one more scene key) in
   `numerics.mode` `converge` (or `decide`), keeping each run's outcome and measures; this
   feeds size-versus-mu curves.
+- `trajectory`: one recorded run of the base scene (the orbit of the paper's Figs 4-5),
+  shown whole or as its last converged limit cycle.
 
 Varied values are a list of numbers or `{start, stop, num}` (numpy.linspace). Any numeric
 scene key may be varied, numerics ones included (`numerics.rtol`, `contact.stiffness`).
@@ -56,6 +58,7 @@ from frictiondisk.yamlio import StrictDumper, load_yaml_text, read_text_file
 __all__ = [
     "Campaign",
     "FindJump",
+    "Trajectory",
     "Point",
     "Scan",
     "campaign_from_dict",
@@ -64,7 +67,7 @@ __all__ = [
 ]
 
 SCENE_KEYS = ("scene", "params", "contact", "numerics")
-TASK_KEYS = ("find_jump", "scan")
+TASK_KEYS = ("find_jump", "scan", "trajectory")
 TOP_KEYS = ("name", *SCENE_KEYS, *TASK_KEYS)
 FIND_JUMP_KEYS = (
     "parameter",
@@ -75,8 +78,12 @@ FIND_JUMP_KEYS = (
     "horizon_factor",
     "lanes",
     "along",
+    "prescan",
 )
 SCAN_KEYS = ("mu", "along", "mode")
+PRESCAN_KEYS = ("mu", "mode")
+TRAJECTORY_KEYS = ("dt_out", "show")
+TRAJECTORY_SHOW = ("whole", "cycle")
 LINSPACE_KEYS = ("start", "stop", "num")
 
 # find_jump defaults (MODEL.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
@@ -86,6 +93,7 @@ DEFAULT_MAX_RETRIES = 2  # retries of an undetermined run with a longer horizon
 DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_max) by this
 DEFAULT_LANES = 2  # warm-start chains
 DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (MODEL.md section 6)
+DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)
 
 _NAME = re.compile(r"[A-Za-z0-9_-]+")
 _MODE_FIELD = Numerics.model_fields["mode"]
@@ -95,6 +103,18 @@ _COMPARE = {"gt": operator.gt, "ge": operator.ge, "lt": operator.lt, "le": opera
 
 
 # --- the campaign -----------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Prescan:
+    """Values of mu run at every point before bisecting, in numerics.mode `mode`; every
+    change between neighbours is then bisected (frictiondisk.jumps.JumpSearch)."""
+
+    mu: tuple[float, ...]
+    mode: str
+
+    def canonical(self) -> dict[str, Any]:
+        return {"mode": self.mode, "mu": list(self.mu)}
 
 
 @dataclass(frozen=True)
@@ -120,10 +140,12 @@ class FindJump:
     horizon_factor: float
     lanes: int
     along: dict[str, tuple[float, ...]]
+    prescan: Prescan | None = None
 
     def canonical(self) -> dict[str, Any]:
-        """JSON-able dict, keys sorted except `along`, whose order is the dims order."""
-        return {
+        """JSON-able dict, keys sorted except `along`, whose order is the dims order.
+        `prescan` appears only when given, so campaigns without one keep their hash."""
+        out = {
             "along": {key: list(values) for key, values in self.along.items()},
             "bracket": list(self.bracket),
             "horizon_factor": self.horizon_factor,
@@ -133,6 +155,9 @@ class FindJump:
             "parameter": self.parameter,
             "tol": self.tol,
         }
+        if self.prescan is not None:
+            out["prescan"] = self.prescan.canonical()
+        return {key: out[key] for key in sorted(out)}
 
 
 @dataclass(frozen=True)
@@ -158,6 +183,26 @@ class Scan:
 
 
 @dataclass(frozen=True)
+class Trajectory:
+    """Record one run of the base scene every `dt_out` seconds (plus every switching
+    instant) and show it `whole` (transient and cycle, paper Fig. 4) or only its last
+    converged limit cycle, `cycle` (paper Fig. 5; needs numerics.mode converge)."""
+
+    kind: ClassVar[str] = "trajectory"
+
+    dt_out: float
+    show: str
+
+    @property
+    def along(self) -> dict[str, tuple[float, ...]]:
+        return {}
+
+    def canonical(self) -> dict[str, Any]:
+        """JSON-able dict, keys sorted."""
+        return {"dt_out": self.dt_out, "show": self.show}
+
+
+@dataclass(frozen=True)
 class Point:
     """One grid point: its `index` in `Campaign.shape`, varied values and full scene."""
 
@@ -176,12 +221,12 @@ class Campaign:
 
     name: str
     base: SceneConfig
-    task: FindJump | Scan
+    task: FindJump | Scan | Trajectory
     text: str = dataclasses.field(default="", compare=False, repr=False)
 
     @property
     def kind(self) -> str:
-        """ "find_jump" or "scan"."""
+        """ "find_jump", "scan" or "trajectory"."""
         return self.task.kind
 
     @property
@@ -284,15 +329,20 @@ def _read(data: Any, source: str, text: str | None) -> Campaign:
     except ConfigError as err:
         problems += err.problems
     tasks = [key for key in TASK_KEYS if key in top]
-    task: FindJump | Scan | None = None
+    task: FindJump | Scan | Trajectory | None = None
     if not tasks:
-        problems.append("(top level): no task: give exactly one of find_jump or scan")
+        problems.append(f"(top level): no task: give exactly one of {', '.join(TASK_KEYS)}")
     elif len(tasks) > 1:
-        problems.append("(top level): both find_jump and scan given: give exactly one task")
+        problems.append(
+            f"(top level): {' and '.join(tasks)} given: give exactly one task "
+            f"({', '.join(TASK_KEYS)})"
+        )
     elif tasks[0] == "find_jump":
         task = _find_jump(top["find_jump"], base, problems)
-    else:
+    elif tasks[0] == "scan":
         task = _scan(top["scan"], base, problems)
+    else:
+        task = _trajectory(top["trajectory"], base, problems)
     if problems:
         raise ConfigError(problems, source)
     campaign = Campaign(name=name, base=base, task=task)
@@ -314,7 +364,13 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
     parameter = spec.get("parameter", "mu")
     if parameter != "mu":
         problems.append(f"find_jump.parameter: {_show(parameter)} is not allowed: must be 'mu'")
-    bracket = _pair(spec.get("bracket", _MISSING), "find_jump.bracket", "lo, hi", problems)
+    prescan = None
+    if "prescan" in spec:
+        prescan = _prescan(spec["prescan"], base, problems)
+        if prescan is None:
+            return None
+    default_bracket = [min(prescan.mu), max(prescan.mu)] if prescan else _MISSING
+    bracket = _pair(spec.get("bracket", default_bracket), "find_jump.bracket", "lo, hi", problems)
     tol = _number(spec.get("tol", DEFAULT_TOL), "find_jump.tol", problems, gt=0)
     limits = _pair(spec.get("limits", DEFAULT_LIMITS), "find_jump.limits", "low, high", problems)
     max_retries = _number(
@@ -365,7 +421,30 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
         horizon_factor=horizon_factor,
         lanes=lanes,
         along=along,
+        prescan=prescan,
     )
+
+
+def _prescan(data: Any, base: SceneConfig | None, problems: list[str]) -> Prescan | None:
+    spec = _mapping(data, "find_jump.prescan", PRESCAN_KEYS, problems)
+    if spec is None:
+        return None
+    mu = _values(spec.get("mu", _MISSING), "find_jump.prescan.mu", problems)
+    if mu is not None:
+        if len(mu) < 2:
+            problems.append("find_jump.prescan.mu: one value given: give at least 2")
+            mu = None
+        elif base is not None:
+            for i, value in enumerate(mu):
+                _check_scene(base, "params.mu", value, f"find_jump.prescan.mu[{i}]", problems)
+    mode = spec.get("mode", "decide")
+    if mode not in get_args(_MODE_FIELD.annotation):
+        must = _requirement(_MODE_FIELD)
+        problems.append(f"find_jump.prescan.mode: {_show(mode)} is not allowed: must be {must}")
+        mode = None
+    if None in (mu, mode):
+        return None
+    return Prescan(mu=tuple(sorted(mu)), mode=mode)
 
 
 def _scan(data: Any, base: SceneConfig | None, problems: list[str]) -> Scan | None:
@@ -392,6 +471,27 @@ def _scan(data: Any, base: SceneConfig | None, problems: list[str]) -> Scan | No
     if None in (mu, along, mode):
         return None
     return Scan(mu=mu, along=along, mode=mode)
+
+
+def _trajectory(data: Any, base: SceneConfig | None, problems: list[str]) -> Trajectory | None:
+    spec = _mapping({} if data is None else data, "trajectory", TRAJECTORY_KEYS, problems)
+    if spec is None:
+        return None
+    dt_out = _number(spec.get("dt_out", DEFAULT_DT_OUT), "trajectory.dt_out", problems, gt=0)
+    show = spec.get("show", "whole")
+    if show not in TRAJECTORY_SHOW:
+        allowed = " or ".join(repr(item) for item in TRAJECTORY_SHOW)
+        problems.append(f"trajectory.show: {_show(show)} is not allowed: must be {allowed}")
+        show = None
+    elif show == "cycle" and base is not None and base.numerics.mode != "converge":
+        problems.append(
+            "trajectory.show: 'cycle' needs the converged limit cycle: "
+            f"set numerics.mode: converge (got {base.numerics.mode!r})"
+        )
+        show = None
+    if None in (dt_out, show):
+        return None
+    return Trajectory(dt_out=dt_out, show=show)
 
 
 def _along(

@@ -1,0 +1,60 @@
+"""`make figures`: run every figure campaign (campaigns/fig*.yaml) and draw its figure.
+
+    python -m frictiondisk.gallery [--campaigns campaigns] [--out out/figures] [--figures figures]
+
+Each campaign runs into OUT/<name> (resuming whatever is already there, like
+`frictiondisk run`), and its figure is written as FIGURES/<name>.png and .pdf from the
+netCDF files alone (like `frictiondisk plot`; size-versus-mu figures get their bisection
+runs). The wall time of each figure is printed, and the total.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from frictiondisk.campaign.runner import run_campaign
+from frictiondisk.campaign.spec import load_campaign
+
+
+def make_figure(campaign_file: Path, out_root: Path, figure_root: Path) -> tuple[str, float]:
+    """Run one campaign and save its figure; returns (name, wall time [s])."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from frictiondisk.campaign.plot_cli import figure_for_dir
+    from frictiondisk.plotting import save_figure
+
+    t0 = time.perf_counter()
+    campaign = load_campaign(campaign_file)
+    out_dir = out_root / campaign.name
+    run_campaign(campaign, out_dir, workers=2, progress=False)
+    show_runs = campaign.kind == "find_jump" and campaign.task.prescan is not None
+    fig = figure_for_dir(out_dir, show_runs=show_runs)
+    for suffix in (".png", ".pdf"):
+        save_figure(fig, figure_root / f"{campaign.name}{suffix}")
+    return campaign.name, time.perf_counter() - t0
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--campaigns", type=Path, default=Path("campaigns"))
+    parser.add_argument("--out", type=Path, default=Path("out/figures"))
+    parser.add_argument("--figures", type=Path, default=Path("figures"))
+    args = parser.parse_args(argv)
+    files = sorted(args.campaigns.glob("fig*.yaml"))
+    if not files:
+        print(f"no figure campaigns (fig*.yaml) in {args.campaigns}", file=sys.stderr)
+        return 2
+    total = time.perf_counter()
+    for path in files:
+        name, wall = make_figure(path, args.out, args.figures)
+        print(f"{name:<24} {wall:7.1f} s   {args.figures / name}.png, .pdf", flush=True)
+    print(f"{'all figures':<24} {time.perf_counter() - total:7.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

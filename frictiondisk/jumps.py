@@ -1,0 +1,196 @@
+"""Every jump of one parameter point: scan mu first, then bisect each change. Pure Python.
+
+Where the sticking set in mu is not an interval (a disk starting at rest, MODEL.md
+section 7), a single bisection reports one jump as if it were the only one. `JumpSearch`
+runs a prescan over given values of mu, then bisects every pair of neighbouring prescan
+values whose outcomes differ in stick / not stick: a *rising* jump (not stick below,
+stick above) or a *falling* one (stick below, not stick above). Jumps narrower than the
+prescan spacing are not seen; the spacing is the campaign's resolution and is reported.
+
+Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
+nothing of simulation, I/O or Dask. Prescan runs may use their own numerics.mode (e.g.
+`converge`, for size-versus-mu curves); the bisections always decide.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+from frictiondisk.bisection import (
+    STICK,
+    UNDETERMINED,
+    Bisection,
+    BisectionResult,
+    RunRecord,
+    RunRequest,
+)
+
+
+@dataclasses.dataclass(frozen=True)
+class JumpSearchResult:
+    """All jumps of one point. The attributes of `BisectionResult` describe the *primary*
+    jump (the lowest rising one, else the lowest jump), so code written for one jump
+    keeps working; `jumps` holds every one, in increasing mu."""
+
+    status: str  # "converged" if the prescan settled and every jump converged
+    reason: str
+    jumps: tuple[BisectionResult, ...]
+    scan: tuple[RunRecord, ...]  # the prescan runs, one per mu (its last retry level)
+    runs: tuple[RunRecord, ...]  # every run made: prescan, then each bisection's own
+    primary: BisectionResult | None
+
+    @property
+    def mu_lo(self) -> float:
+        return self.primary.mu_lo if self.primary else float("nan")
+
+    @property
+    def mu_hi(self) -> float:
+        return self.primary.mu_hi if self.primary else float("nan")
+
+    @property
+    def mu_star(self) -> float:
+        return 0.5 * (self.mu_lo + self.mu_hi)
+
+    @property
+    def contradictions(self) -> tuple[tuple[float, float], ...]:
+        return tuple(c for jump in self.jumps for c in jump.contradictions)
+
+    @property
+    def monotone(self) -> bool:
+        """One rising jump and nothing that contradicts it."""
+        return len(self.jumps) == 1 and self.jumps[0].rising and not self.contradictions
+
+    def end_result(self, which: str) -> dict[str, Any] | None:
+        return self.primary.end_result(which) if self.primary else None
+
+
+class JumpSearch:
+    """Prescan `mus`, then bisect every stick / not-stick change to `tol`."""
+
+    def __init__(
+        self,
+        mus: tuple[float, ...],
+        tol: float,
+        max_retries: int,
+        scan_mode: str | None = None,
+    ):
+        if len(mus) < 2 or len(set(mus)) != len(mus):
+            raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
+        self.mus = tuple(sorted(mus))
+        self.tol = tol
+        self.max_retries = max_retries
+        self.scan_mode = scan_mode
+        self._scan: dict[float, RunRecord] = {}  # mu -> its last prescan run
+        self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
+        self._failure: str | None = None
+        self._level: dict[float, int] = {}
+        self._settled: set[float] = set()  # determined, or undetermined after every retry
+        self.bisections: list[Bisection] = []
+        self._bisection_runs: list[RunRecord] = []
+        self._issued: dict[RunRequest, int] = {}
+
+    # ---- what to run ------------------------------------------------------------------
+    @property
+    def scanning(self) -> bool:
+        return len(self._settled) < len(self.mus)
+
+    @property
+    def done(self) -> bool:
+        return not self.scanning and all(b.done for b in self.bisections)
+
+    def pending(self) -> list[RunRequest]:
+        if self.scanning:
+            requests = [
+                RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
+                for mu in self.mus
+                if mu not in self._settled
+            ]
+        else:
+            requests = [r for b in self.bisections if not b.done for r in b.pending()]
+        for request in requests:
+            self._issued.setdefault(request, len(self._issued))
+        return requests
+
+    # ---- what came back ---------------------------------------------------------------
+    def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
+        if request not in self.pending():
+            raise ValueError(f"unexpected run {request}")
+        if self.scanning:
+            self._scan[request.mu] = RunRecord(request, result)
+            self._scan_runs.append(self._scan[request.mu])
+            if result["outcome"] != UNDETERMINED or request.level >= self.max_retries:
+                self._settled.add(request.mu)
+            else:
+                self._level[request.mu] = request.level + 1
+            if not self.scanning:
+                self._start_bisections()
+            return
+        self._bisection_runs.append(RunRecord(request, result))
+        for bisection in self.bisections:
+            if not bisection.done and request in bisection.pending():
+                bisection.feed(request, result)
+
+    def abort(self, reason: str) -> None:
+        """End as failed without more runs (e.g. its worker kept dying)."""
+        self._failure = reason
+        self._settled.update(self.mus)
+        for bisection in self.bisections:
+            bisection.abort(reason)
+
+    def _start_bisections(self) -> None:
+        """One bisection per neighbouring pair of determined prescan values that differ."""
+        known = [
+            (mu, self._scan[mu].outcome == STICK)
+            for mu in self.mus
+            if self._scan.get(mu) and self._scan[mu].outcome != UNDETERMINED
+        ]
+        for (mu_a, stick_a), (mu_b, stick_b) in zip(known, known[1:], strict=False):
+            if stick_a == stick_b:
+                continue
+            bisection = Bisection((mu_a, mu_b), self.tol, (mu_a, mu_b), self.max_retries, stick_b)
+            # its end checks are the prescan runs: fed, not run again
+            for mu in (mu_a, mu_b):
+                bisection.feed(RunRequest(mu, 0), self._scan[mu].result)
+            self.bisections.append(bisection)
+
+    # ---- the answer -------------------------------------------------------------------
+    def result(self) -> JumpSearchResult:
+        if not self.done:
+            raise ValueError("jump search not finished")
+        jumps = tuple(b.result() for b in self.bisections)
+        scan = tuple(self._scan[mu] for mu in self.mus if mu in self._scan)
+        lost = [mu for mu in self.mus if self._scan.get(mu) is None]
+        undetermined = [r.request.mu for r in scan if r.outcome == UNDETERMINED]
+        failed = [j for j in jumps if j.status != "converged"]
+        rising = [j for j in jumps if j.rising]
+        primary = (rising or list(jumps) or [None])[0]
+        problems = []
+        if self._failure:
+            problems.append(self._failure)
+        if lost:
+            problems.append(f"{len(lost)} prescan value(s) never ran")
+        if undetermined:
+            mus = ", ".join(f"{mu:.6g}" for mu in undetermined)
+            problems.append(f"prescan undetermined at mu = {mus} after every retry")
+        problems += [f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" for j in failed]
+        if not jumps and not problems:
+            kinds = {r.outcome == STICK for r in scan}
+            which = "stick" if kinds == {True} else "not stick"
+            problems.append(
+                f"no jump: every prescan value from mu = {self.mus[0]:.6g} to "
+                f"{self.mus[-1]:.6g} gave {which}"
+            )
+        if problems:
+            status, reason = "failed", "; ".join(problems)
+        else:
+            kinds = ", ".join(
+                f"{'rising' if j.rising else 'falling'} at {j.mu_star:.6g}" for j in jumps
+            )
+            status = "converged"
+            reason = f"{len(jumps)} jump(s) to tol {self.tol:.3g}: {kinds}"
+        runs = tuple(sorted([*self._scan_runs, *self._bisection_runs], key=self._order))
+        return JumpSearchResult(status, reason, jumps, scan, runs, primary)
+
+    def _order(self, run: RunRecord) -> int:
+        return self._issued.get(run.request, len(self._issued))
