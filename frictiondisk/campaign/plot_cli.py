@@ -17,9 +17,19 @@ from frictiondisk.cli_options import check_figure_suffix, fail
 DEFAULT_FIGURE = "figure.png"
 
 
+class CampaignFileError(Exception):
+    """A campaign file that is missing, damaged or cannot be drawn: `headline` names the
+    file, `details` say what to do."""
+
+    def __init__(self, headline: str, details: list[str]):
+        super().__init__("\n  ".join([headline, *details]))
+        self.headline = headline
+        self.details = details
+
+
 def _load(path: Path, out_dir: Path):
-    """The Dataset in `path`, fully loaded and closed; exit 2 naming the file if it is
-    missing or does not load completely (e.g. truncated)."""
+    """The Dataset in `path`, fully loaded and closed; CampaignFileError naming the file if
+    it is missing or does not load completely (e.g. truncated)."""
     import xarray as xr
 
     from frictiondisk.campaign.runner import CAMPAIGN_FILE
@@ -27,20 +37,22 @@ def _load(path: Path, out_dir: Path):
     remedy = f"rebuild it from the journal: frictiondisk resume {out_dir}"
     if not path.is_file():
         if not (out_dir / CAMPAIGN_FILE).is_file():
-            fail(
+            raise CampaignFileError(
                 f"{path}: not found",
                 [
                     f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE}); "
                     f"make one with: frictiondisk run CAMPAIGN.yaml -o {out_dir}"
                 ],
             )
-        fail(f"{path}: not found", [f"the campaign has not finished writing it; {remedy}"])
+        raise CampaignFileError(
+            f"{path}: not found", [f"the campaign has not finished writing it; {remedy}"]
+        )
     try:
         with xr.open_dataset(path, cache=False) as ds:
             return ds.load()
     except Exception as exc:  # any reader error: truncated, corrupted, not netCDF
         detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        fail(f"{path}: damaged, cannot be read ({detail})", [remedy])
+        raise CampaignFileError(f"{path}: damaged, cannot be read ({detail})", [remedy]) from None
 
 
 @click.command()
@@ -75,15 +87,21 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
     matplotlib.use("Agg")
     from frictiondisk.plotting import save_figure
 
-    fig = figure_for_dir(out_dir, show_runs)
+    try:
+        fig = figure_for_dir(out_dir, show_runs, note=lambda text: click.echo(text, err=True))
+    except CampaignFileError as exc:
+        fail(exc.headline, exc.details)
     target = output if output is not None else out_dir / DEFAULT_FIGURE
     written = save_figure(fig, target)
     click.echo(f"figure: {written.resolve()}")
 
 
-def figure_for_dir(out_dir: Path, show_runs: bool = False):
-    """The Figure of the campaign in `out_dir`, from its netCDF files alone (exit 2 via
-    `fail` naming the file if one is missing, damaged or cannot be drawn)."""
+def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None):
+    """The Figure of the campaign in `out_dir`, from its netCDF files alone.
+
+    `show_runs` overlays the runs of a find_jump campaign (ignored for other tasks, with
+    a message to `note`, a callable taking text, if given). Raises CampaignFileError
+    naming the file if one is missing, damaged or cannot be drawn."""
     from frictiondisk.campaign.figures import plot_campaign
     from frictiondisk.campaign.orbit import TRAJECTORY_FILE
     from frictiondisk.campaign.orbit_figure import plot_trajectory
@@ -97,19 +115,21 @@ def figure_for_dir(out_dir: Path, show_runs: bool = False):
         try:
             return plot_trajectory(results, trajectory)
         except ValueError as exc:
-            fail(f"{out_dir / TRAJECTORY_FILE}: cannot draw this file", [str(exc)])
+            raise CampaignFileError(
+                f"{out_dir / TRAJECTORY_FILE}: cannot draw this file", [str(exc)]
+            ) from None
     runs = None
     if show_runs and task == "find_jump":
         runs = _load(out_dir / RUNS_FILE, out_dir)
     elif show_runs:
-        click.echo(
-            f"note: --runs applies to find_jump campaigns; in a {task} every run is a point "
-            "already",
-            err=True,
-        )
+        if note is not None:
+            note(
+                f"note: --runs applies to find_jump campaigns; in a {task} every run is a "
+                "point already"
+            )
         show_runs = False
     try:
         return plot_campaign(results, runs, show_runs=show_runs)
     except ValueError as exc:
         path = out_dir / (RUNS_FILE if str(exc).startswith("runs") else RESULTS_FILE)
-        fail(f"{path}: cannot draw this file", [str(exc)])
+        raise CampaignFileError(f"{path}: cannot draw this file", [str(exc)]) from None
