@@ -87,10 +87,16 @@ class NumpyModel:
     stribeck_r: float  # mu_kinetic / mu_static
     stribeck_v_s: float  # [m/s]
     stribeck_delta: float
+    # True: u_i = v_i + omega_m e_z x z_i (MODEL.md 3, the model). False: u_i = v_i, the
+    # contact state integrated without the rotation term -- a study variant only
+    # (benchmarks/study_brake.py), reachable from Python, never from a scene file.
+    objective_rate: bool = True
 
     @classmethod
-    def from_config(cls, config) -> NumpyModel:
-        """Read the parameters from a SceneConfig (MODEL.md section 3: totals spread over N)."""
+    def from_config(cls, config, objective_rate: bool = True) -> NumpyModel:
+        """Read the parameters from a SceneConfig (MODEL.md section 3: totals spread over N).
+
+        objective_rate=False drops the rotation term of the contact rate (study only)."""
         par = config.params
         con = config.contact
         n = config.n_contacts
@@ -113,6 +119,7 @@ class NumpyModel:
             stribeck_r=con.stribeck.r,
             stribeck_v_s=con.stribeck.v_s,
             stribeck_delta=con.stribeck.delta,
+            objective_rate=objective_rate,
         )
 
     @property
@@ -166,8 +173,11 @@ class NumpyModel:
         master_vx, master_vy = -om * qy, om * qx
         vx, vy = slave_vx - master_vx, slave_vy - master_vy
         # exact relative displacement rate u = v + omega_m e_z x z, z = Z / c_i (MODEL.md 3)
-        zx, zy = Zx / self.c_i, Zy / self.c_i
-        ux, uy = vx - om * zy, vy + om * zx
+        if self.objective_rate:
+            zx, zy = Zx / self.c_i, Zy / self.c_i
+            ux, uy = vx - om * zy, vy + om * zx
+        else:  # the variant without the rotation term (study_brake.py)
+            ux, uy = vx, vy
         kx, ky = Zx + self.beta_i * ux, Zy + self.beta_i * uy
         speed = np.sqrt(vx * vx + vy * vy)  # sqrt, not hypot: analytic for the complex step
         return ax, ay, vx, vy, ux, uy, kx, ky, self.friction_limit(speed), Zx, Zy
@@ -588,7 +598,9 @@ class _RadauRun:
                 self._rec(t, y)
 
 
-def simulate_radau(config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
+def simulate_radau(
+    config, record: bool = False, dt_out: float = 0.0, objective_rate: bool = True
+) -> SimulationResult:
     """Run one scene with scipy's Radau (the cross-check and slow baseline of the kernel).
 
     Same model, switching rules, stopping rules and classification as the numba kernel
@@ -598,9 +610,11 @@ def simulate_radau(config, record: bool = False, dt_out: float = 0.0) -> Simulat
     record: keep the trajectory: every solver step, or dense-output samples every dt_out
     seconds if dt_out > 0; switching instants are recorded twice (old and new modes).
     Numerical failure never raises: it ends the run as `undetermined` with the reason.
+    objective_rate=False integrates the contact state without the rotation term of MODEL.md
+    section 3 (u_i = v_i): a study variant (benchmarks/study_brake.py), not the model.
     """
     wall0 = time.perf_counter()
-    model = NumpyModel.from_config(config)
+    model = NumpyModel.from_config(config, objective_rate=objective_rate)
     y0 = initial_state(config).astype(float)
     run = _RadauRun(config, model, record, dt_out)
     status, t_end, y_end = run.run(y0, model.initial_modes(y0))

@@ -31,7 +31,10 @@ def make_figure(campaign_file: Path, out_root: Path, figure_root: Path) -> tuple
     campaign = load_campaign(campaign_file)
     out_dir = out_root / campaign.name
     run_campaign(campaign, out_dir, workers=2, progress=False)
-    show_runs = campaign.kind == "find_jump" and campaign.task.prescan is not None
+    # the bisection runs belong to size-versus-mu figures (a converge prescan, Figs 7-8);
+    # on a dense jump line they would hide it
+    prescan = getattr(campaign.task, "prescan", None)
+    show_runs = prescan is not None and prescan.mode == "converge"
     fig = figure_for_dir(out_dir, show_runs=show_runs)
     for suffix in (".png", ".pdf"):
         save_figure(fig, figure_root / f"{campaign.name}{suffix}")
