@@ -84,6 +84,11 @@ class SimulationResult:
     wall_s: float  # wall time of the run [s]
     method: str  # numerics.method used
     trajectory: Trajectory | None = None
+    # Energy balance E(t_end) - E(0) = energy_in - energy_dissipated (kernel/energy.py);
+    # NaN for integrators without the diagnostic (scipy-radau, coulomb).
+    energy_in: float = math.nan  # work the driven master put in [J]
+    energy_dissipated: float = math.nan  # work of the dampers and friction [J]
+    energy_residual: float = math.nan  # (dE - in + dissipated) / largest term [1]
 
     def summary(self) -> dict[str, Any]:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""

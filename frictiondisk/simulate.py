@@ -9,6 +9,7 @@ import numpy as np
 
 from .classify import RunFacts, classify, revolution
 from .kernel import driver
+from .kernel import energy as ken
 from .kernel import model as km
 from .kernel import monitor as mon
 from .result import SimulationResult, Trajectory
@@ -129,13 +130,35 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     ring_all = np.empty((mon.RING, 2))
     ring_any = np.empty((mon.RING, 2))
     out_i = np.zeros(driver.N_OUT_I, dtype=np.int64)
+    out_f = np.zeros(ken.N_OUT_F)
+    energy_0 = float(ken.stored_energy(p, pts, y0))
 
     wall0 = time.perf_counter()
     state = y0  # the kernel integrates in place: this holds the final state afterwards
     status, t_end = driver.run(
-        p, pts, state, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i
+        p,
+        pts,
+        state,
+        modes,
+        iopt,
+        fopt,
+        rec_t,
+        rec_y,
+        rec_m,
+        mf,
+        mi,
+        ring_all,
+        ring_any,
+        out_i,
+        out_f,
     )
     wall = time.perf_counter() - wall0
+    energy = energy_balance(
+        energy_0,
+        float(ken.stored_energy(p, pts, state)),
+        float(out_f[ken.E_W_IN]),
+        float(out_f[ken.E_W_DISS]),
+    )
 
     trajectory = None
     if record:
@@ -160,13 +183,51 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
         counters,
         wall,
         trajectory,
+        energy,
     )
 
 
+def energy_balance(
+    energy_0: float, energy_end: float, work_in: float, work_diss: float
+) -> dict[str, float]:
+    """Energy diagnostic of a run (kernel/energy.py): `energy_in`, `energy_dissipated` [J]
+    and the relative residual of  E(t_end) - E(0) = W_in - W_diss.
+
+    The residual is divided by the largest of |W_in|, W_diss and |E(t_end) - E(0)|: the
+    size of the terms being balanced. Starting from rest the stored energy can be 0, and
+    on a limit cycle W_in and W_diss grow with the run while E stays bounded, so dividing
+    by E would say nothing; the largest term makes it an error per joule put through the
+    system, comparable across run lengths. It is 0 when no energy moves at all.
+    """
+    delta = energy_end - energy_0
+    scale = max(abs(work_in), abs(work_diss), abs(delta))
+    residual = (delta - work_in + work_diss) / scale if scale > 0.0 else 0.0
+    return {
+        "energy_in": work_in,
+        "energy_dissipated": work_diss,
+        "energy_residual": residual,
+    }
+
+
 def build_result(
-    config, status, t_end, y_end, mf, mi, ring_all, ring_any, counters, wall, trajectory
+    config,
+    status,
+    t_end,
+    y_end,
+    mf,
+    mi,
+    ring_all,
+    ring_any,
+    counters,
+    wall,
+    trajectory,
+    energy: dict[str, float] | None = None,
 ) -> SimulationResult:
-    """Classify a finished run from its monitor state (shared by every integrator)."""
+    """Classify a finished run from its monitor state (shared by every integrator).
+
+    energy: the fields of `energy_balance`; None (an integrator without the diagnostic)
+    leaves them NaN.
+    """
     num = config.numerics
     rev = revolution(config.params.omega_m)
     window = num.window_revs * rev
@@ -211,4 +272,5 @@ def build_result(
         wall_s=wall,
         method=num.method,
         trajectory=trajectory,
+        **(energy or {}),
     )

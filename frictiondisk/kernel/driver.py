@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from . import energy as en
 from . import monitor as mon
 from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
@@ -129,11 +130,15 @@ def _check_entries(p, pts, modes, y, f, entered, band, out_i):
 
 
 @kernel_jit
-def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i):
+def run(
+    p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i, out_f
+):
     """Integrate one scene from t = 0 until a stopping rule fires.
 
     Returns (status code, final time [s]). y (initial state) and modes (int8, one per
-    contact) are updated in place and hold the final state and modes.
+    contact) are updated in place and hold the final state and modes. out_f (float64,
+    energy.N_OUT_F) receives the work put in and dissipated up to the final time
+    (kernel/energy.py).
     """
     n = y.shape[0]
     ncon = modes.shape[0]
@@ -154,6 +159,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
     f1 = np.empty(n)
     ftmp = np.empty(n)
     ybuf = np.empty(n)
+    ymid = np.empty(n)
     jac = np.empty((n, n))
     lu = np.empty((n, n))
     piv = np.empty(n, dtype=np.int64)
@@ -167,6 +173,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
 
     t = 0.0
     rhs(p, pts, modes, y, f)
+    en.begin(p, pts, modes, y, out_f)
     for i in range(ncon):
         band[i] = 1 if _in_band(p, pts, modes, y, i) else 0
     mon.monitor_begin(
@@ -285,6 +292,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
                     rec_t, rec_y, rec_m, out_i, t, h, s_event, y, y1, wk, modes, dt_out, ybuf
                 )
             dense_eval(y, y1, wk, s_event, ybuf)
+            en.integrate_piece(p, pts, modes, y, y1, wk, s_event, h, ybuf, ymid, out_f)
             mon.monitor_step(mf, mi, y, ybuf, s_event * h)
             if record:
                 _record(rec_t, rec_y, rec_m, out_i, t_ev, ybuf, modes)
@@ -306,6 +314,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
                 modes[i] = SLIDE if modes[i] == STICK else STICK
                 fresh[i] = 1
             _check_entries(p, pts, modes, y, f, entered, band, out_i)
+            en.refresh(p, pts, modes, y, out_f)  # the integrand changes with the modes
             n_sw = 0
             for i in range(ncon):
                 n_sw += 1 if entered[i] > 0 else 0
@@ -329,6 +338,7 @@ def run(p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, rin
         # ---- accept the whole step ---------------------------------------------------------
         if record and dt_out > 0.0:
             _record_dense(rec_t, rec_y, rec_m, out_i, t, h, 1.0, y, y1, wk, modes, dt_out, ybuf)
+        en.integrate_piece(p, pts, modes, y, y1, wk, 1.0, h, y1, ymid, out_f)
         mon.monitor_step(mf, mi, y, y1, h)
         t += h
         y[:] = y1

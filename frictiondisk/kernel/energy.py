@@ -1,0 +1,177 @@
+"""Energy balance of the pin and disk scenes: stored energy, input power, dissipation (numba).
+
+Stored energy [J] (kernel/model.py state layout):
+    E = 1/2 m_s |r'|^2 + 1/2 J_s phi'^2 + 1/2 c_s |r - r0|^2 + sum_i |Z_i|^2 / (2 c_i)
+(the phi' term only for the disk; r0 = (x_ms, 0)). Along any solution of model.rhs, in any
+fixed contact modes,
+    dE/dt = P_in - D                                                           (*)
+exactly, with
+    P_in = sum_i F_i . v_m,i           power the driven master puts in [W],
+    D    = beta_s |r'|^2 + beta_b phi'^2 + sum_i D_i  >= 0 (up to the band)  [W].
+Contact element i (spring c_i || dashpot beta_i, in series with the plastic slider) joins
+the slave material point at q_i (velocity v_s,i) to the master material point it is glued
+to, at q_i - z_i, with velocity v_m,i = omega_m e_z x (q_i - z_i). Its rate of extension is
+u_i = v_s,i - v_m,i = v_i + omega_m e_z x z_i (the objective rate of model.py). The element
+exerts F_i on the slave and -F_i on the master, so the slave gains F_i . v_s,i and the master
+puts in F_i . v_m,i; what the element keeps is d/dt |Z_i|^2/(2 c_i), the rest it dissipates:
+    D_i = -F_i . u_i - Z_i . Z_i' / c_i.
+With F_i = -G_i, Z_i' = (c_i/beta_i)(G_i - Z_i) and beta_i u_i = k_i - Z_i (model.py):
+    D_i = (|G_i - Z_i|^2 + G_i . (k_i - G_i)) / beta_i,
+    stick (G = k):            D_i = beta_i |u_i|^2                       (dashpot)
+    slide (G = F_St k/|k|):   D_i = |G_i - Z_i|^2/beta_i + F_St,i (|k_i| - F_St,i)/beta_i
+                              (dashpot + slider: F_St times the plastic rate, paper eq. 9).
+The remaining terms of dE/dt are the support and brake dampers; the support spring and
+the inertia terms cancel against the equations of motion.
+
+The run diagnostic integrates P_in and D over each accepted (partial) step by Simpson's
+rule, with the midpoint from the step's dense output, in the modes the piece was integrated
+in (integrate_piece).
+"""
+
+import math
+
+from .jit import kernel_jit
+from .model import (
+    P_BETAB,
+    P_BETAI,
+    P_BETAS,
+    P_CI,
+    P_CS,
+    P_JS,
+    P_MS,
+    P_OMEGA,
+    P_XMS,
+    STICK,
+    friction_limit,
+    n_coords,
+)
+from .rodas import dense_eval
+
+# Indices into the driver's float outputs out_f
+E_W_IN = 0  # work put in by the master, integral of P_in [J]
+E_W_DISS = 1  # energy dissipated, integral of D [J]
+E_P_IN = 2  # P_in at the current state and modes [W] (start value of the next piece)
+E_D = 3  # D at the current state and modes [W]
+N_OUT_F = 4
+
+
+@kernel_jit
+def stored_energy(p, pts, y):
+    """Kinetic + support-spring + contact-spring energy E of state y [J]."""
+    nq = n_coords(p)
+    ncon = pts.shape[0]
+    vx = y[nq]
+    vy = y[nq + 1]
+    dx = y[0] - p[P_XMS]
+    dy = y[1]
+    e = 0.5 * p[P_MS] * (vx * vx + vy * vy) + 0.5 * p[P_CS] * (dx * dx + dy * dy)
+    if nq == 3:
+        e += 0.5 * p[P_JS] * y[nq + 2] * y[nq + 2]
+    acc = 0.0
+    for i in range(ncon):
+        zi = 2 * nq + 2 * i
+        acc += y[zi] * y[zi] + y[zi + 1] * y[zi + 1]
+    return e + 0.5 * acc / p[P_CI]
+
+
+@kernel_jit
+def power_balance(p, pts, modes, y):
+    """(P_in, D) at state y in the given contact modes [W]: the power the master puts in
+    and the power the dampers and friction dissipate (module docstring, eq. *).
+
+    The contact kinematics are model.contact_state's, inlined: this runs twice per step,
+    and computing cos/sin of phi once and F_St only in slide keeps it cheaper than an rhs
+    evaluation (tests/test_energy.py checks eq. * against model.rhs).
+    """
+    nq = n_coords(p)
+    om = p[P_OMEGA]
+    inv_c = 1.0 / p[P_CI]
+    bi = p[P_BETAI]
+    inv_b = 1.0 / bi
+    x = y[0]
+    yy = y[1]
+    vx0 = y[nq]
+    vy0 = y[nq + 1]
+    diss = p[P_BETAS] * (vx0 * vx0 + vy0 * vy0)
+    phid = 0.0
+    cph = 1.0
+    sph = 0.0
+    if nq == 3:
+        phid = y[nq + 2]
+        diss += p[P_BETAB] * phid * phid
+        cph = math.cos(y[2])
+        sph = math.sin(y[2])
+    p_in = 0.0
+    for i in range(modes.shape[0]):
+        ax = 0.0
+        ay = 0.0
+        if nq == 3:
+            ax = cph * pts[i, 0] - sph * pts[i, 1]
+            ay = sph * pts[i, 0] + cph * pts[i, 1]
+        # sliding velocity v and objective rate u = v + omega_m e_z x z (model.contact_state)
+        vx = vx0 - phid * ay + om * (yy + ay)
+        vy = vy0 + phid * ax - om * (x + ax)
+        zi = 2 * nq + 2 * i
+        Zx = y[zi]
+        Zy = y[zi + 1]
+        ux = vx - om * Zy * inv_c
+        uy = vy + om * Zx * inv_c
+        gx = Zx + bi * ux  # k; G = k in stick
+        gy = Zy + bi * uy
+        if modes[i] == STICK:
+            diss += bi * (ux * ux + uy * uy)
+        else:
+            kn = math.sqrt(gx * gx + gy * gy)
+            if kn > 0.0:
+                fst, _ = friction_limit(p, math.sqrt(vx * vx + vy * vy))
+                gx *= fst / kn
+                gy *= fst / kn
+                diss += fst * (kn - fst) * inv_b
+            else:
+                gx = 0.0
+                gy = 0.0
+            ex = gx - Zx
+            ey = gy - Zy
+            diss += (ex * ex + ey * ey) * inv_b
+        # master material point under the contact: q - z, q = r + a, z = Z / c;
+        # F . v_m with F = -G and v_m = omega_m (-(q - z)_y, (q - z)_x)
+        mx = x + ax - Zx * inv_c
+        my = yy + ay - Zy * inv_c
+        p_in += om * (gx * my - gy * mx)
+    return p_in, diss
+
+
+@kernel_jit
+def begin(p, pts, modes, y, out_f):
+    """Zero the work integrals and store the powers at the start state."""
+    out_f[E_W_IN] = 0.0
+    out_f[E_W_DISS] = 0.0
+    refresh(p, pts, modes, y, out_f)
+
+
+@kernel_jit
+def refresh(p, pts, modes, y, out_f):
+    """Store the powers at state y in the (possibly new) modes, after a switch."""
+    p_in, diss = power_balance(p, pts, modes, y)
+    out_f[E_P_IN] = p_in
+    out_f[E_D] = diss
+
+
+@kernel_jit
+def integrate_piece(p, pts, modes, y0, y1, wk, s_end, h, y_end, ymid, out_f):
+    """Add the integrals of P_in and D over [t, t + s_end h] of the last step.
+
+    Simpson's rule: the end values are exact step states (y0, and y_end = y1 or the dense
+    output at an event), the midpoint comes from the step's dense output (order 3), so the
+    quadrature error per step is of the order of the step's local error and falls with
+    rtol like it. out_f[E_P_IN], out_f[E_D] hold the powers at y0 on entry and at y_end on
+    return. ymid is scratch space.
+    """
+    dense_eval(y0, y1, wk, 0.5 * s_end, ymid)
+    pm, dm = power_balance(p, pts, modes, ymid)
+    pe, de = power_balance(p, pts, modes, y_end)
+    w = s_end * h / 6.0
+    out_f[E_W_IN] += w * (out_f[E_P_IN] + 4.0 * pm + pe)
+    out_f[E_W_DISS] += w * (out_f[E_D] + 4.0 * dm + de)
+    out_f[E_P_IN] = pe
+    out_f[E_D] = de
