@@ -180,12 +180,14 @@ def simulate(
     click.echo("\n".join(lines))
 
 
-# Campaign commands live in frictiondisk/campaign/cli.py, `plot` in campaign/plot_cli.py.
+# Campaign commands live in frictiondisk/campaign/cli.py, `plot` in campaign/plot_cli.py,
+# `accuracy` in accuracy/cli.py.
 def _add_campaign_commands() -> None:
+    from frictiondisk.accuracy.cli import accuracy
     from frictiondisk.campaign.cli import resume, run, status
     from frictiondisk.campaign.plot_cli import plot
 
-    for command in (run, resume, status, plot):
+    for command in (run, resume, status, plot, accuracy):
         main.add_command(command)
 
 

@@ -26,6 +26,7 @@ from pydantic_core import ErrorDetails, PydanticCustomError
 from frictiondisk.yamlio import ConfigError, dump_yaml, load_yaml_file, load_yaml_text
 
 __all__ = [
+    "NUMERICS_PRESETS",
     "ConfigError",
     "Contact",
     "Numerics",
@@ -110,8 +111,39 @@ class Contact(BaseModel):
     stribeck: Stribeck = Field(default_factory=Stribeck, description="Stribeck curve")
 
 
+# Numerics presets (issue 5): each sets every key it names unless the scene gives that key
+# explicitly (explicit keys win). `default` is the field defaults, so a scene without a preset
+# is unchanged. Chosen from the accuracy study (`frictiondisk accuracy` on
+# campaigns/accuracy_pin.yaml and accuracy_disk.yaml, bisection tol 1e-9): |mu* - mu*_ref|
+# against rodas4 at rtol 1e-9 on the default pin / co-rotating disk, and kernel steps of the
+# whole bisection relative to `default`:
+#   fast       rtol 1e-4, atol 1e-7   7.0e-6 / 1.9e-8   0.64x / 0.37x
+#   default    rtol 1e-6, atol 1e-9   5.7e-7 / 1.9e-9   1
+#   reference  rtol 1e-9, atol 1e-12  the reference     6.8x / 6.7x
+# All well below the campaigns' bisection tol 1e-4. atol = 1e-3 rtol throughout (states are
+# O(0.1) m, m/s, N). t_decide is not part of a preset: a horizon that is too short misses a
+# late permanent stick whatever the integrator (t_decide = 2 s misplaces mu* by 1e-2).
+NUMERICS_PRESETS: dict[str, dict[str, Any]] = {
+    "fast": {"method": "rodas4", "rtol": 1.0e-4, "atol": 1.0e-7, "dt": 1.0e-2, "h_max": 0.1},
+    "default": {"method": "rodas4", "rtol": 1.0e-6, "atol": 1.0e-9, "dt": 1.0e-2, "h_max": 0.1},
+    "reference": {
+        "method": "rodas4",
+        "rtol": 1.0e-9,
+        "atol": 1.0e-12,
+        "dt": 1.0e-2,
+        "h_max": 0.1,
+    },
+}
+
+
 class Numerics(BaseModel):
-    """Integrator, tolerances, horizons and limit-cycle detection."""
+    """Integrator, tolerances, horizons and limit-cycle detection.
+
+    `preset` (fast, default, reference) fills method, rtol, atol, dt and h_max from
+    NUMERICS_PRESETS; a key given explicitly next to it wins. The preset name itself is not
+    part of the canonical form (SceneConfig.canonical): only the values it resolved to are,
+    so equal numerics give equal content hashes and journal keys however they were written.
+    """
 
     model_config = _MODEL_CONFIG
 
@@ -137,6 +169,21 @@ class Numerics(BaseModel):
     cycle_count: int = _field(3, "1", "successive section points that must agree", ge=2)
     max_steps: int = _field(2_000_000, "1", "step budget of one run", ge=1)
     max_events: int = _field(200_000, "1", "mode-switch event budget of one run", ge=1)
+    preset: Literal["fast", "default", "reference"] = _field(
+        "default",
+        None,
+        "numerics preset: sets method, rtol, atol, dt, h_max unless given explicitly",
+    )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _resolve_preset(cls, data: Any) -> Any:
+        """Fill the preset's keys that `data` does not give (explicit keys win)."""
+        if isinstance(data, Mapping):
+            name = data.get("preset", "default")
+            if isinstance(name, str) and name in NUMERICS_PRESETS:
+                return {**NUMERICS_PRESETS[name], **data}
+        return data  # not a mapping or a bad preset: field validation reports it
 
 
 class SceneConfig(BaseModel):
@@ -193,6 +240,8 @@ class SceneConfig(BaseModel):
         """Plain JSON-able dict, every default filled in, `points` resolved, keys sorted."""
         data = self.model_dump(mode="json")
         data["contact"]["points"] = self.n_contacts
+        # the preset is resolved into concrete values; its name is not content
+        del data["numerics"]["preset"]
         return _sorted(data)
 
     def content_hash(self) -> str:
@@ -205,7 +254,15 @@ class SceneConfig(BaseModel):
         return dump_yaml(self.canonical())
 
     def with_overrides(self, overrides: Mapping[str, Any]) -> SceneConfig:
-        """New validated config with dotted keys set, e.g. {"params.mu": 0.12}."""
+        """New validated config with dotted keys set, e.g. {"params.mu": 0.12}.
+
+        Setting "numerics.preset" sets every key of that preset too (the values of this
+        config are all explicit by now), except keys given in the same `overrides`.
+        """
+        name = overrides.get("numerics.preset")
+        if isinstance(name, str) and name in NUMERICS_PRESETS:
+            implied = {f"numerics.{key}": value for key, value in NUMERICS_PRESETS[name].items()}
+            overrides = {**implied, **overrides}
         origins = {key: f"override {key}" for key in overrides}
         data = _apply(self.model_dump(), overrides.items(), "<overrides>")
         return _validate(data, "<overrides>", origins)

@@ -56,6 +56,7 @@ DEFAULTS = {
         "cycle_count": 3,
         "max_steps": 2_000_000,
         "max_events": 200_000,
+        "preset": "default",  # resolved into the values above; not in the canonical form
     },
 }
 

@@ -1,0 +1,1 @@
+"""Accuracy study of the jump search: mu* against numerics and regularization settings."""
