@@ -121,7 +121,8 @@ def status(out_dir: Path) -> None:
         except ValueError:
             info = {}
     holder = CampaignLock.holder(out_dir)
-    runs_done = Journal.count(out_dir)
+    # a trajectory campaign keeps no journal: its one run is counted in status.json
+    runs_done = Journal.count(out_dir) or int(info.get("runs_done", 0))
     state = info.get("state", "not started")
     if holder is not None:
         state = f"running (pid {holder})"
