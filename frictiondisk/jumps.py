@@ -81,7 +81,6 @@ class JumpSearch:
         self.tol = tol
         self.max_retries = max_retries
         self.scan_mode = scan_mode
-        self._scan: dict[float, RunRecord] = {}  # mu -> its last prescan run
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}
@@ -117,8 +116,7 @@ class JumpSearch:
         if request not in self.pending():
             raise ValueError(f"unexpected run {request}")
         if self.scanning:
-            self._scan[request.mu] = RunRecord(request, result)
-            self._scan_runs.append(self._scan[request.mu])
+            self._scan_runs.append(RunRecord(request, result))
             if result["outcome"] != UNDETERMINED or request.level >= self.max_retries:
                 self._settled.add(request.mu)
             else:
@@ -140,10 +138,11 @@ class JumpSearch:
 
     def _start_bisections(self) -> None:
         """One bisection per neighbouring pair of determined prescan values that differ."""
+        last = self._last_scan()
         known = [
-            (mu, self._scan[mu].outcome == STICK)
+            (mu, last[mu].outcome == STICK)
             for mu in self.mus
-            if self._scan.get(mu) and self._scan[mu].outcome != UNDETERMINED
+            if mu in last and last[mu].outcome != UNDETERMINED
         ]
         for (mu_a, stick_a), (mu_b, stick_b) in zip(known, known[1:], strict=False):
             if stick_a == stick_b:
@@ -151,7 +150,7 @@ class JumpSearch:
             bisection = Bisection((mu_a, mu_b), self.tol, (mu_a, mu_b), self.max_retries, stick_b)
             # its end checks are the prescan runs: fed, not run again
             for mu in (mu_a, mu_b):
-                bisection.feed(RunRequest(mu, 0), self._scan[mu].result)
+                bisection.feed(RunRequest(mu, 0), last[mu].result)
             self.bisections.append(bisection)
 
     # ---- the answer -------------------------------------------------------------------
@@ -159,8 +158,9 @@ class JumpSearch:
         if not self.done:
             raise ValueError("jump search not finished")
         jumps = tuple(b.result() for b in self.bisections)
-        scan = tuple(self._scan[mu] for mu in self.mus if mu in self._scan)
-        lost = [mu for mu in self.mus if self._scan.get(mu) is None]
+        last = self._last_scan()
+        scan = tuple(last[mu] for mu in self.mus if mu in last)
+        lost = [mu for mu in self.mus if mu not in last]
         undetermined = [r.request.mu for r in scan if r.outcome == UNDETERMINED]
         failed = [j for j in jumps if j.status != "converged"]
         rising = [j for j in jumps if j.rising]
@@ -191,6 +191,10 @@ class JumpSearch:
             reason = f"{len(jumps)} jump(s) to tol {self.tol:.3g}: {kinds}"
         runs = tuple(sorted([*self._scan_runs, *self._bisection_runs], key=self._order))
         return JumpSearchResult(status, reason, jumps, scan, runs, primary)
+
+    def _last_scan(self) -> dict[float, RunRecord]:
+        """mu -> its last prescan run (the one at the highest retry level)."""
+        return {run.request.mu: run for run in self._scan_runs}
 
     def _order(self, run: RunRecord) -> int:
         return self._issued.get(run.request, len(self._issued))

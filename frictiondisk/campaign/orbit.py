@@ -8,8 +8,6 @@ missing or damaged.
 
 from __future__ import annotations
 
-import json
-import time
 from pathlib import Path
 from typing import Any
 
@@ -17,7 +15,7 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.campaign.datasets import RUN_MEASURES, campaign_attrs
-from frictiondisk.files import atomic_write_netcdf, atomic_write_text, netcdf_is_valid
+from frictiondisk.files import atomic_write_netcdf, netcdf_is_valid
 from frictiondisk.simulate import simulate
 from frictiondisk.trajectory import write_trajectory
 
@@ -45,11 +43,11 @@ def summary_dataset(campaign, summary: dict[str, Any]) -> xr.Dataset:
     return xr.Dataset(data, attrs=attrs)
 
 
-def run_trajectory(campaign, out_dir: Path, results_file: str, status_file: str) -> dict:
-    """Simulate the base scene with recording on and write trajectory.nc and results.nc.
+def run_trajectory(campaign, out_dir: Path, results_file: str) -> dict:
+    """Simulate the base scene with recording on and write trajectory.nc and results.nc,
+    unless both are already there and readable.
 
-    Returns {"computed": 0 or 1, "wall_s", "results", "trajectory"}."""
-    t0 = time.perf_counter()
+    Returns {"computed": 0 or 1, "results", "trajectory"} (the two paths)."""
     results = out_dir / results_file
     trajectory = out_dir / TRAJECTORY_FILE
     computed = 0
@@ -59,19 +57,4 @@ def run_trajectory(campaign, out_dir: Path, results_file: str, status_file: str)
         write_trajectory(trajectory, result, config)
         atomic_write_netcdf(summary_dataset(campaign, result.summary()), results)
         computed = 1
-    wall = time.perf_counter() - t0
-    status = {
-        "state": "complete",
-        "campaign": campaign.name,
-        "points_total": 1,
-        "points_done": 1,
-        "points_failed": 0,
-        "runs_done": 1,
-        "jobs_in_flight": 0,
-        "runs_computed_now": computed,
-        "elapsed_s": wall,
-        "eta_s": None,
-        "updated": time.time(),
-    }
-    atomic_write_text(out_dir / status_file, json.dumps(status, indent=1))
-    return {"computed": computed, "wall_s": wall, "results": results, "trajectory": trajectory}
+    return {"computed": computed, "results": results, "trajectory": trajectory}

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+import yaml
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
@@ -39,7 +40,7 @@ def plot_trajectory(results: xr.Dataset, trajectory: xr.Dataset) -> Figure:
     x = np.asarray(trajectory["x"].values, dtype=float)
     y = np.asarray(trajectory["y"].values, dtype=float)
     all_stick = np.all(np.asarray(trajectory["mode"].values) == 1, axis=1)
-    x_ms = _x_ms(trajectory)
+    scene, x_ms = _headline(trajectory)
     outcome = str(results["outcome"].values)
     mu = float(results.attrs.get("mu", np.nan))
 
@@ -54,7 +55,6 @@ def plot_trajectory(results: xr.Dataset, trajectory: xr.Dataset) -> Figure:
     else:
         draw_orbit(ax, x, y, all_stick, x_ms)
         span = f"t = 0 to {t[-1]:.1f} s"
-    scene = _scene(trajectory)
     ax.set_title(f"{scene}: \u03bc = {mu:g}, x_ms = {x_ms:g} m, {span}\noutcome: {outcome}")
     return fig
 
@@ -96,12 +96,7 @@ def _mark_deviation(ax, x, y, stick, size: float) -> None:
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
 
 
-def _x_ms(trajectory: xr.Dataset) -> float:
-    import yaml
-
+def _headline(trajectory: xr.Dataset) -> tuple[str, float]:
+    """Scene name and x_ms [m] from the configuration stored with the trajectory."""
     scene = yaml.safe_load(str(trajectory.attrs.get("scene_yaml", ""))) or {}
-    return float((scene.get("params") or {}).get("x_ms", 0.1))
-
-
-def _scene(trajectory: xr.Dataset) -> str:
-    return str(trajectory.attrs.get("scene", "pin"))
+    return str(scene.get("scene", "?")), float((scene.get("params") or {}).get("x_ms", 0.0))

@@ -108,18 +108,65 @@ def run_campaign(
             ) from None
 
 
+def write_status(
+    out_dir: Path,
+    state: str,
+    campaign: Campaign,
+    *,
+    points_total: int,
+    points_done: int,
+    points_failed: int,
+    runs_done: int,
+    jobs_in_flight: int,
+    runs_computed_now: int,
+    elapsed_s: float,
+    eta_s: float | None,
+) -> None:
+    """Rewrite DIR/status.json (read by `frictiondisk status`), atomically."""
+    status = {
+        "state": state,
+        "pid": os.getpid(),
+        "campaign": campaign.name,
+        "points_total": points_total,
+        "points_done": points_done,
+        "points_failed": points_failed,
+        "runs_done": runs_done,
+        "jobs_in_flight": jobs_in_flight,  # points (find_jump) or runs (scan)
+        "runs_computed_now": runs_computed_now,
+        "elapsed_s": elapsed_s,
+        "eta_s": eta_s,
+        "updated": time.time(),
+    }
+    atomic_write_text(out_dir / STATUS_FILE, json.dumps(status, indent=1))
+
+
 def _run_trajectory(campaign: Campaign, out_dir: Path) -> RunSummary:
     """A trajectory campaign: one recorded run in this process (no Dask, no journal)."""
     from frictiondisk.campaign.orbit import run_trajectory
 
-    done = run_trajectory(campaign, out_dir, RESULTS_FILE, STATUS_FILE)
+    t0 = time.perf_counter()
+    done = run_trajectory(campaign, out_dir, RESULTS_FILE)
+    wall = time.perf_counter() - t0
+    write_status(
+        out_dir,
+        "complete",
+        campaign,
+        points_total=1,
+        points_done=1,
+        points_failed=0,
+        runs_done=1,
+        jobs_in_flight=0,
+        runs_computed_now=done["computed"],
+        elapsed_s=wall,
+        eta_s=None,
+    )
     return RunSummary(
         points=1,
         points_failed=0,
         runs_total=1,
         runs_computed=done["computed"],
         runs_saved_by_warm_start=0,
-        wall_s=done["wall_s"],
+        wall_s=wall,
         results=Path(done["results"]),
         runs=Path(done["trajectory"]),
     )
@@ -283,21 +330,19 @@ class _Driver:
         total = len(self.planner.points)
         elapsed = time.perf_counter() - self.t0
         rate = done / elapsed if done and elapsed > 0 else 0.0
-        status = {
-            "state": state,
-            "pid": os.getpid(),
-            "campaign": self.campaign.name,
-            "points_total": total,
-            "points_done": done,
-            "points_failed": self._points_failed(),
-            "runs_done": self.runs_done(),
-            "jobs_in_flight": len(self.in_flight),  # points (find_jump) or runs (scan)
-            "runs_computed_now": self.computed,
-            "elapsed_s": elapsed,
-            "eta_s": (total - done) / rate if rate > 0 else None,
-            "updated": time.time(),
-        }
-        atomic_write_text(self.out_dir / STATUS_FILE, json.dumps(status, indent=1))
+        write_status(
+            self.out_dir,
+            state,
+            self.campaign,
+            points_total=total,
+            points_done=done,
+            points_failed=self._points_failed(),
+            runs_done=self.runs_done(),
+            jobs_in_flight=len(self.in_flight),
+            runs_computed_now=self.computed,
+            elapsed_s=elapsed,
+            eta_s=(total - done) / rate if rate > 0 else None,
+        )
 
     def _points_failed(self) -> int:
         results = self.planner.results.values()
