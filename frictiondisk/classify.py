@@ -17,6 +17,23 @@ ERROR_REASONS = {
 
 
 @dataclasses.dataclass(frozen=True)
+class Revolutions:
+    """The per-revolution measures behind the co-rotation verdict (kernel/monitor.py)."""
+
+    count: int  # whole master revolutions completed
+    slip: float  # net plastic slip over the last revolution [m]
+    drift: float  # drift of the slave centre over it, in the master frame [m]
+    spin_drift: float  # drift of the spin phase phi - omega_m t over it [rad] (NaN: pin)
+    decay: float  # mean log ratio of successive slips over the verdict window [1/rev]
+    decay_se: float  # its standard error [1/rev]
+    remaining: float  # slip still to come under that decay [m]
+    limit: float  # extrapolated limit of the slip per revolution [m] (NaN: none)
+    on_orbit: bool  # some contact stuck at every instant of the last revolution
+    settling: bool  # the run is still on its way to a decision (monitor.still_settling)
+    tol: float  # slip per revolution that counts as none (numerics.atol) [m]
+
+
+@dataclasses.dataclass(frozen=True)
 class RunFacts:
     """What the kernel reports about one run, in the units of the model (s, m)."""
 
@@ -30,17 +47,54 @@ class RunFacts:
     converge_mode: bool
     max_steps: int
     max_events: int
+    stick_rule: str = "contacts"  # numerics.stick_rule
+    revs: Revolutions | None = None
+
+
+def _rates(r: Revolutions) -> str:
+    spin = "" if math.isnan(r.spin_drift) else f", spin drift {r.spin_drift:.3g} rad"
+    return f"slip {r.slip:.3g} m, centre drift {r.drift:.3g} m{spin} per revolution"
+
+
+def _trend(r: Revolutions) -> str:
+    if math.isnan(r.decay):
+        return "no slip trend (a revolution without slip)"
+    return (
+        f"slip per revolution changes by a factor exp({r.decay:.3g} \u00b1 {r.decay_se:.2g}) "
+        "per revolution"
+    )
 
 
 def classify(facts: RunFacts) -> tuple[str, str]:
     """Return (outcome, reason); never guesses: anything unclear is `undetermined`."""
     t = facts.t_end
+    revs = facts.revs
     if facts.status in ERROR_REASONS:
         reason = ERROR_REASONS[facts.status].format(
             t=t, max_steps=facts.max_steps, max_events=facts.max_events
         )
         return "undetermined", reason
-    if facts.status == st.STICK_HELD or facts.stuck_for >= facts.hold:
+    if facts.status == st.COROTATING:
+        how = (
+            "every contact stuck throughout it and it repeated within the integrator's tolerance"
+            if revs.remaining == 0.0
+            else f"shakedown: {_trend(revs)} towards a limit of "
+            f"{revs.limit:.3g} m <= atol = {revs.tol:.3g} m (slip still to come "
+            f"{revs.remaining:.3g} m)"
+        )
+        return "stick", (
+            f"co-rotates with the master without net slip at t = {t:.6g} s: last revolution "
+            f"{_rates(revs)}; {how}"
+        )
+    if facts.status == st.CREEPING:
+        limit = "" if math.isnan(revs.limit) else f", extrapolated limit {revs.limit:.3g} m"
+        return "creep", (
+            f"ratchets on its small orbit at t = {t:.6g} s: {_rates(revs)}, not decaying "
+            f"to zero ({_trend(revs)}{limit})"
+        )
+    if facts.status == st.STICK_HELD or (
+        facts.stick_rule == "contacts" and facts.stuck_for >= facts.hold
+    ):
         return "stick", (
             f"every contact stuck without interruption for one master revolution "
             f"({facts.hold:.6g} s) from t = {t - facts.stuck_for:.6g} s"
@@ -48,6 +102,16 @@ def classify(facts: RunFacts) -> tuple[str, str]:
     lo, hi = facts.window
     if facts.status == st.CYCLE_CONVERGED:
         return "stick_slip", f"limit cycle with sticking and sliding converged at t = {t:.6g} s"
+    if revs is not None and revs.settling:
+        where = (
+            "on its small orbit, co-rotation not yet decided"
+            if revs.on_orbit and facts.stick_rule == "corotation"
+            else "still sliding towards a sticking circle"
+        )
+        return "undetermined", (
+            f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}; "
+            f"{_trend(revs)} (raise numerics.horizon_budget or t_decide)"
+        )
     if facts.frac_all == 0.0:
         # outcome, stick_fraction and size all mean whole-body sticking (every contact)
         partial = (
@@ -64,7 +128,7 @@ def classify(facts: RunFacts) -> tuple[str, str]:
     if facts.status == st.HORIZON_REACHED:
         return "stick_slip", (
             f"sticking and sliding alternate in the final window [{lo:.6g}, {hi:.6g}] s "
-            f"(stick fraction {facts.frac_all:.3g}); no permanent sticking by the horizon"
+            f"(stick fraction {facts.frac_all:.3g})"
         )
     return "undetermined", f"unknown kernel status {facts.status} at t = {t:.6g} s"
 

@@ -167,6 +167,21 @@ class Numerics(BaseModel):
     window_revs: float = _field(2.0, "1", "final window, in master revolutions", gt=0)
     cycle_tol: float = _field(1.0e-6, "m", "limit-cycle section points agreement", gt=0)
     cycle_count: int = _field(3, "1", "successive section points that must agree", ge=2)
+    stick_rule: Literal["corotation", "contacts"] = _field(
+        "corotation",
+        None,
+        "what `stick` means: corotation = the slave co-rotates with the master without net "
+        "slip (slip per revolution decays to zero; docs/model.md); contacts = every contact "
+        "stays in stick mode for one whole revolution",
+    )
+    horizon_budget: float = _field(
+        8.0,
+        "1",
+        "stick_rule corotation: a run still settling at its horizon may extend it, one "
+        "revolution at a time, up to this multiple of t_decide (t_max in mode converge)",
+        ge=1,
+        le=1000,
+    )
     max_steps: int = _field(2_000_000, "1", "step budget of one run", ge=1)
     max_events: int = _field(200_000, "1", "mode-switch event budget of one run", ge=1)
     preset: Literal["fast", "default", "reference"] = _field(
@@ -205,6 +220,17 @@ class SceneConfig(BaseModel):
                 "scene_rule",
                 "a pin has exactly one contact; use 1 or null",
                 {"path": "contact.points", "value": self.contact.points, "scene": self.scene},
+            )
+        if (
+            self.scene == "disk"
+            and self.numerics.method == "scipy-radau"
+            and self.numerics.stick_rule == "corotation"
+        ):
+            raise PydanticCustomError(
+                "scene_rule",
+                "the scipy-radau cross-check measures no slip per revolution; set "
+                "numerics.stick_rule: contacts for a disk (the rules agree for the pin)",
+                {"path": "numerics.stick_rule", "value": "corotation", "scene": self.scene},
             )
         if self.scene != "pin" and self.numerics.method == "coulomb":
             raise PydanticCustomError(

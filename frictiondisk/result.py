@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-OUTCOMES = ("stick", "stick_slip", "slide", "undetermined")
+OUTCOMES = ("stick", "creep", "stick_slip", "slide", "undetermined")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -84,17 +84,28 @@ class SimulationResult:
     wall_s: float  # wall time of the run [s]
     method: str  # numerics.method used
     trajectory: Trajectory | None = None
+    # per-revolution measures of the last revolutions (kernel/monitor.py RV_* columns)
+    revolutions: np.ndarray | None = None
     # Energy balance E(t_end) - E(0) = energy_in - energy_dissipated (kernel/energy.py);
     # NaN for integrators without the diagnostic (scipy-radau, coulomb).
     energy_in: float = math.nan  # work the driven master put in [J]
     energy_dissipated: float = math.nan  # work of the dampers and friction [J]
     energy_residual: float = math.nan  # (dE - in + dissipated) / largest term [1]
+    # Co-rotation measures (kernel/monitor.py), over the last whole master revolution; NaN
+    # before the first one and for integrators without them (scipy-radau, coulomb).
+    n_revolutions: int = 0  # whole master revolutions completed
+    slip_per_rev: float = math.nan  # net plastic slip sum_i int |w_i'| dt [m]
+    drift_per_rev: float = math.nan  # drift of the slave centre in the master frame [m]
+    spin_drift_per_rev: float = math.nan  # drift of the spin phase phi - omega_m t [rad]
+    slip_decay: float = math.nan  # mean log ratio of successive slips per revolution [1/rev]
+    slip_limit: float = math.nan  # extrapolated limit of slip_per_rev (Aitken) [m]
+    slip_total: float = math.nan  # net plastic slip over the whole run [m]
 
     def summary(self) -> dict[str, Any]:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
         out: dict[str, Any] = {}
         for field in dataclasses.fields(self):
-            if field.name == "trajectory":
+            if field.name in ("trajectory", "revolutions"):
                 continue
             value = getattr(self, field.name)
             if isinstance(value, float) and not math.isfinite(value):

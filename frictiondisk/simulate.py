@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from .classify import RunFacts, classify, revolution
+from .classify import Revolutions, RunFacts, classify, revolution
 from .kernel import driver
 from .kernel import energy as ken
 from .kernel import model as km
@@ -15,6 +15,7 @@ from .kernel import monitor as mon
 from .result import SimulationResult, Trajectory
 
 METHOD_CODES = {"rodas4": 0, "rodas4-fixed": 1}
+STICK_RULE_CODES = {"contacts": driver.RULE_CONTACTS, "corotation": driver.RULE_COROTATION}
 
 
 def record_capacity(t_span: float, dt_out: float) -> int:
@@ -111,6 +112,7 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     iopt[driver.O_CONVERGE] = 1 if num.mode == "converge" else 0
     iopt[driver.O_STOP_ON_STICK] = 1 if num.stop_on_stick else 0
     iopt[driver.O_RECORD] = 1 if record else 0
+    iopt[driver.O_STICK_RULE] = STICK_RULE_CODES[num.stick_rule]
     fopt = np.zeros(driver.N_FOPT)
     fopt[driver.O_RTOL] = num.rtol
     fopt[driver.O_ATOL] = num.atol
@@ -120,6 +122,7 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     fopt[driver.O_CYCLE_TOL] = num.cycle_tol
     fopt[driver.O_HOLD] = rev
     fopt[driver.O_DT_OUT] = dt_out
+    fopt[driver.O_BUDGET] = horizon_of(config) * num.horizon_budget
 
     cap = record_capacity(horizon_of(config) + rev, dt_out) if record else 1
     rec_t = np.empty(cap)
@@ -129,6 +132,8 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     mi = np.empty(mon.N_MI, dtype=np.int64)
     ring_all = np.empty((mon.RING, 2))
     ring_any = np.empty((mon.RING, 2))
+    rv = np.zeros((mon.REV_RING, mon.N_RV))
+    yrev = np.empty_like(y0)
     out_i = np.zeros(driver.N_OUT_I, dtype=np.int64)
     out_f = np.zeros(ken.N_OUT_F)
     energy_0 = float(ken.stored_energy(p, pts, y0))
@@ -149,6 +154,8 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
         mi,
         ring_all,
         ring_any,
+        rv,
+        yrev,
         out_i,
         out_f,
     )
@@ -184,7 +191,16 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
         wall,
         trajectory,
         energy,
+        (rv, out_f[ken.E_SLIP]),
     )
+
+
+def revolution_log(rv: np.ndarray, mi: np.ndarray) -> np.ndarray:
+    """The kept rows of the revolution ring (monitor.RV_* columns), oldest first."""
+    n = int(mi[mon.I_NREV])
+    keep = min(n, mon.REV_RING)
+    order = [(n - keep + j) % mon.REV_RING for j in range(keep)]
+    return rv[order].copy()
 
 
 def energy_balance(
@@ -222,11 +238,14 @@ def build_result(
     wall,
     trajectory,
     energy: dict[str, float] | None = None,
+    revolution_ring: tuple[np.ndarray, float] | None = None,
 ) -> SimulationResult:
     """Classify a finished run from its monitor state (shared by every integrator).
 
     energy: the fields of `energy_balance`; None (an integrator without the diagnostic)
-    leaves them NaN.
+    leaves them NaN. revolution_ring: the kernel's revolution ring rv and the run's total
+    plastic slip [m]; None for an integrator without them, which then supports
+    stick_rule contacts only.
     """
     num = config.numerics
     rev = revolution(config.params.omega_m)
@@ -243,8 +262,11 @@ def build_result(
         converge_mode=num.mode == "converge",
         max_steps=num.max_steps,
         max_events=num.max_events,
+        stick_rule=num.stick_rule,
+        revs=None if revolution_ring is None else _revolutions(config, mf, mi, revolution_ring[0]),
     )
     outcome, reason = classify(facts)
+    revs = facts.revs
     radius_end = math.hypot(y_end[0], y_end[1])
     size = math.nan
     a = math.nan
@@ -272,5 +294,40 @@ def build_result(
         wall_s=wall,
         method=num.method,
         trajectory=trajectory,
+        revolutions=None if revolution_ring is None else revolution_log(revolution_ring[0], mi),
+        slip_total=math.nan if revolution_ring is None else float(revolution_ring[1]),
+        **_revolution_measures(revs),
         **(energy or {}),
     )
+
+
+def _revolutions(config, mf, mi, rv) -> Revolutions:
+    """The classifier's view of the revolution ring (NaN measures before one revolution)."""
+    n = int(mi[mon.I_NREV])
+    last = rv[(n - 1) % mon.REV_RING] if n > 0 else np.full(mon.N_RV, np.nan)
+    return Revolutions(
+        count=n,
+        slip=float(last[mon.RV_SLIP]),
+        drift=float(last[mon.RV_DRIFT_R]),
+        spin_drift=float(last[mon.RV_DRIFT_PHI]) if config.scene == "disk" else math.nan,
+        decay=float(mf[mon.F_LAMBDA]),
+        decay_se=float(mf[mon.F_LAMBDA_SE]),
+        remaining=float(mf[mon.F_REMAIN]),
+        limit=float(mf[mon.F_S_INF]),
+        on_orbit=bool(n > 0 and last[mon.RV_ANY_STUCK] == 1.0),
+        settling=bool(mon.still_settling(mf, mi, rv, config.numerics.stick_rule == "corotation")),
+        tol=config.numerics.atol,
+    )
+
+
+def _revolution_measures(revs: Revolutions | None) -> dict[str, float | int]:
+    if revs is None:
+        return {}
+    return {
+        "n_revolutions": revs.count,
+        "slip_per_rev": revs.slip,
+        "drift_per_rev": revs.drift,
+        "spin_drift_per_rev": revs.spin_drift,
+        "slip_decay": revs.decay,
+        "slip_limit": revs.limit,
+    }

@@ -72,7 +72,7 @@ def test_energy_rate_equals_input_minus_dissipation(name, mode_kind):
         f = np.empty_like(y)
         km.rhs(p, pts, modes, y, f)
         terms = _energy_rate_terms(p, y, f, nq)
-        p_in, diss = ken.power_balance(p, pts, modes, y)
+        p_in, diss, _ = ken.power_balance(p, pts, modes, y)
         scale = np.abs(terms).sum() + abs(p_in) + abs(diss)
         err = abs(terms.sum() - (p_in - diss)) / scale
         assert err < 1e-13, f"{name} {mode_kind} trial {trial}: relative mismatch {err:.2e}"

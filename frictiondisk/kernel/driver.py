@@ -25,7 +25,7 @@ from . import monitor as mon
 from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
-from .model import SLIDE, STICK, n_coords, rhs, stick_rate, switch_rate, switch_value
+from .model import P_OMEGA, SLIDE, STICK, n_coords, rhs, stick_rate, switch_rate, switch_value
 from .rodas import (
     N_WORK_ROWS,
     W_K6,
@@ -44,7 +44,11 @@ O_CYCLE_COUNT = 3
 O_CONVERGE = 4  # 1 = run until the limit cycle converged (or t_max)
 O_STOP_ON_STICK = 5
 O_RECORD = 6
-N_IOPT = 7
+O_STICK_RULE = 7  # RULE_CONTACTS or RULE_COROTATION
+N_IOPT = 8
+
+RULE_CONTACTS = 0  # stick = every contact stuck for one revolution
+RULE_COROTATION = 1  # stick = co-rotation without net slip (monitor.corotation_verdict)
 
 # Float options (fopt)
 O_RTOL = 0
@@ -55,7 +59,8 @@ O_HORIZON = 4  # t_decide or t_max [s]
 O_CYCLE_TOL = 5  # [m]
 O_HOLD = 6  # uninterrupted sticking that decides `stick` [s]
 O_DT_OUT = 7  # recording interval [s]; 0 = every step
-N_FOPT = 8
+O_BUDGET = 8  # largest horizon an undecided run may extend to [s]
+N_FOPT = 9
 
 # Driver counters (out_i)
 C_STEPS = 0
@@ -65,7 +70,8 @@ C_REFUSED = 3
 C_RECORDED = 4
 C_TRUNCATED = 5
 C_EXTENDED = 6  # 1 if the horizon was extended to finish a sticking phase
-N_OUT_I = 7
+C_SETTLE_REVS = 7  # revolutions the horizon was extended by for a run still settling
+N_OUT_I = 8
 
 SAME_TIME = 1e-12  # [s] events closer than this count as one instant (Zeno guard)
 SIMULTANEOUS = 1e-9  # [s] crossings this close are switched together
@@ -131,14 +137,32 @@ def _check_entries(p, pts, modes, y, f, entered, band, out_i):
 
 @kernel_jit
 def run(
-    p, pts, y, modes, iopt, fopt, rec_t, rec_y, rec_m, mf, mi, ring_all, ring_any, out_i, out_f
+    p,
+    pts,
+    y,
+    modes,
+    iopt,
+    fopt,
+    rec_t,
+    rec_y,
+    rec_m,
+    mf,
+    mi,
+    ring_all,
+    ring_any,
+    rv,
+    yrev,
+    out_i,
+    out_f,
 ):
     """Integrate one scene from t = 0 until a stopping rule fires.
 
     Returns (status code, final time [s]). y (initial state) and modes (int8, one per
     contact) are updated in place and hold the final state and modes. out_f (float64,
-    energy.N_OUT_F) receives the work put in and dissipated up to the final time
-    (kernel/energy.py).
+    energy.N_OUT_F) receives the work put in and dissipated and the net plastic slip up to
+    the final time (kernel/energy.py). rv (monitor.REV_RING, monitor.N_RV) receives the
+    per-revolution measures; yrev (like y) is scratch space for the state one revolution
+    back. Steps end exactly at every whole master revolution, where they are compared.
     """
     n = y.shape[0]
     ncon = modes.shape[0]
@@ -153,6 +177,9 @@ def run(
     record = iopt[O_RECORD] == 1
     converge = iopt[O_CONVERGE] == 1
     stop_on_stick = iopt[O_STOP_ON_STICK] == 1
+    corotation = iopt[O_STICK_RULE] == RULE_COROTATION
+    budget = fopt[O_BUDGET]
+    spin = p[P_OMEGA] * hold  # the master's turn over one revolution [rad]
 
     y1 = np.empty(n)
     f = np.empty(n)
@@ -179,6 +206,13 @@ def run(
     mon.monitor_begin(
         mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT]
     )
+    mon.begin_revolution(mf, mi, t, y, 0.0, yrev)
+    mf[mon.F_SLIP_TOL] = atol  # a slip per revolution below the position tolerance is none
+    mf[mon.F_ARM] = 0.0
+    if nq == 3:
+        for i in range(ncon):
+            mf[mon.F_ARM] = max(mf[mon.F_ARM], math.hypot(pts[i, 0], pts[i, 1]))
+    t_rev = hold  # end of the current revolution [s]
     if record:
         _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
 
@@ -194,19 +228,39 @@ def run(
     while True:
         # ---- stopping rules --------------------------------------------------------------
         t_eps = 1e-12 * max(1.0, abs(t))
-        if stop_on_stick and mon.stuck_for(mf, mi, t) >= hold - t_eps:
+        verdict = mon.VERDICT_NONE
+        if t >= t_rev - t_eps:
+            mon.monitor_revolution(mf, mi, rv, yrev, t, y, out_f[en.E_SLIP], spin, rtol, atol)
+            t_rev += hold
+            verdict = mon.corotation_verdict(mf, mi, rv)
+        if corotation:
+            if stop_on_stick and verdict == mon.VERDICT_STICK:
+                return st.COROTATING, t
+            if not converge and verdict == mon.VERDICT_CREEP:
+                return st.CREEPING, t
+        elif stop_on_stick and mon.stuck_for(mf, mi, t) >= hold - t_eps:
             return st.STICK_HELD, t
         if converge and mon.cycle_converged(mi):
             return st.CYCLE_CONVERGED, t
         if t >= t_stop - t_eps:
-            # Never stop inside a sticking phase that may still decide `stick`.
-            if mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
+            # An undecided run still settling extends its horizon, revolution by
+            # revolution, up to the budget.
+            if (
+                not converge
+                and mon.still_settling(mf, mi, rv, corotation)
+                and t_stop + hold <= budget + t_eps
+            ):
+                out_i[C_SETTLE_REVS] += 1
+                t_stop += hold
+                continue
+            if not corotation and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
+                # Never stop inside a sticking phase that may still decide `stick`.
                 out_i[C_EXTENDED] = 1
                 t_stop = mf[mon.F_T_ALL] + hold
                 if t < t_stop - t_eps:
                     continue
             return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
-        if out_i[C_EXTENDED] == 1 and mi[mon.I_ALL] == 0:
+        if not corotation and out_i[C_EXTENDED] == 1 and mi[mon.I_ALL] == 0:
             return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
         if out_i[C_STEPS] >= iopt[O_MAX_STEPS]:
             return st.MAX_STEPS, t
@@ -214,10 +268,11 @@ def run(
             return st.MAX_EVENTS, t
 
         # ---- one step -----------------------------------------------------------------------
-        t_target = t_stop
-        if stop_on_stick and mi[mon.I_ALL] == 1:
+        t_target = min(t_stop, t_rev)
+        if stop_on_stick and not corotation and mi[mon.I_ALL] == 1:
             t_target = min(t_target, mf[mon.F_T_ALL] + hold)  # end exactly at the decision
-        h = min(h, h_max, t_target - t)
+        h_free = min(h, h_max)  # the controller's step; a step cut short to land on
+        h = min(h_free, t_target - t)  # t_target must not shrink the next one
         if h <= 1e-14 * max(1.0, t):
             return st.STEP_TOO_SMALL, t
         ok = rodas_step(p, pts, modes, y, f, h, jac, lu, piv, wk, y1)
@@ -355,6 +410,8 @@ def run(
 
         if fixed:
             h = fopt[O_DT]
+        elif h < 0.5 * h_free:
+            h = h_free
         else:
             err_safe = max(err, 1e-10)
             fac = next_step_factor(err_safe, err_old, h, h_old, first)

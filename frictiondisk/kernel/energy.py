@@ -52,7 +52,9 @@ E_W_IN = 0  # work put in by the master, integral of P_in [J]
 E_W_DISS = 1  # energy dissipated, integral of D [J]
 E_P_IN = 2  # P_in at the current state and modes [W] (start value of the next piece)
 E_D = 3  # D at the current state and modes [W]
-N_OUT_F = 4
+E_SLIP = 4  # net plastic slip, integral of sum_i |w_i'| [m]
+E_S = 5  # plastic slip rate sum_i |w_i'| at the current state and modes [m/s]
+N_OUT_F = 6
 
 
 @kernel_jit
@@ -76,8 +78,10 @@ def stored_energy(p, pts, y):
 
 @kernel_jit
 def power_balance(p, pts, modes, y):
-    """(P_in, D) at state y in the given contact modes [W]: the power the master puts in
-    and the power the dampers and friction dissipate (module docstring, eq. *).
+    """(P_in [W], D [W], slip rate [m/s]) at state y in the given contact modes: the power
+    the master puts in, the power the dampers and friction dissipate (module docstring,
+    eq. *), and the net plastic slip rate sum_i |w_i'| = sum_i ||k_i| - F_St,i| / beta_i
+    over the sliding contacts (paper eq. 9; 0 in stick).
 
     The contact kinematics are model.contact_state's, inlined: this runs twice per step,
     and computing cos/sin of phi once and F_St only in slide keeps it cheaper than an rhs
@@ -102,6 +106,7 @@ def power_balance(p, pts, modes, y):
         cph = math.cos(y[2])
         sph = math.sin(y[2])
     p_in = 0.0
+    slip = 0.0
     for i in range(modes.shape[0]):
         ax = 0.0
         ay = 0.0
@@ -127,6 +132,7 @@ def power_balance(p, pts, modes, y):
                 gx *= fst / kn
                 gy *= fst / kn
                 diss += fst * (kn - fst) * inv_b
+                slip += abs(kn - fst) * inv_b
             else:
                 gx = 0.0
                 gy = 0.0
@@ -138,7 +144,7 @@ def power_balance(p, pts, modes, y):
         mx = x + ax - Zx * inv_c
         my = yy + ay - Zy * inv_c
         p_in += om * (gx * my - gy * mx)
-    return p_in, diss
+    return p_in, diss, slip
 
 
 @kernel_jit
@@ -146,20 +152,22 @@ def begin(p, pts, modes, y, out_f):
     """Zero the work integrals and store the powers at the start state."""
     out_f[E_W_IN] = 0.0
     out_f[E_W_DISS] = 0.0
+    out_f[E_SLIP] = 0.0
     refresh(p, pts, modes, y, out_f)
 
 
 @kernel_jit
 def refresh(p, pts, modes, y, out_f):
     """Store the powers at state y in the (possibly new) modes, after a switch."""
-    p_in, diss = power_balance(p, pts, modes, y)
+    p_in, diss, slip = power_balance(p, pts, modes, y)
     out_f[E_P_IN] = p_in
     out_f[E_D] = diss
+    out_f[E_S] = slip
 
 
 @kernel_jit
 def integrate_piece(p, pts, modes, y0, y1, wk, s_end, h, y_end, ymid, out_f):
-    """Add the integrals of P_in and D over [t, t + s_end h] of the last step.
+    """Add the integrals of P_in, D and the slip rate over [t, t + s_end h] of the last step.
 
     Simpson's rule: the end values are exact step states (y0, and y_end = y1 or the dense
     output at an event), the midpoint comes from the step's dense output (order 3), so the
@@ -168,10 +176,12 @@ def integrate_piece(p, pts, modes, y0, y1, wk, s_end, h, y_end, ymid, out_f):
     return. ymid is scratch space.
     """
     dense_eval(y0, y1, wk, 0.5 * s_end, ymid)
-    pm, dm = power_balance(p, pts, modes, ymid)
-    pe, de = power_balance(p, pts, modes, y_end)
+    pm, dm, sm = power_balance(p, pts, modes, ymid)
+    pe, de, se = power_balance(p, pts, modes, y_end)
     w = s_end * h / 6.0
     out_f[E_W_IN] += w * (out_f[E_P_IN] + 4.0 * pm + pe)
     out_f[E_W_DISS] += w * (out_f[E_D] + 4.0 * dm + de)
+    out_f[E_SLIP] += w * (out_f[E_S] + 4.0 * sm + se)
     out_f[E_P_IN] = pe
     out_f[E_D] = de
+    out_f[E_S] = se

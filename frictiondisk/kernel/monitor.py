@@ -6,8 +6,15 @@ the first sticking radius R1, section points at slide->stick entries for the lim
 convergence test, the largest radius while sliding, and the sticking intervals of the
 recent past (ring buffers) for the final-window stick fraction.
 
-All state lives in two arrays (mf: float64, mi: int64) and two ring buffers, so the same
-functions serve the numba driver and the scipy cross-check.
+It also compares the state one master revolution apart (monitor_revolution): the net
+plastic slip of the revolution, the drift of the slave centre and of the spin phase in the
+master frame, and whether the contacts stuck throughout. These per-revolution rates decide
+permanent co-rotation (`stick`) against ratcheting (`creep`) under stick_rule corotation
+(corotation_verdict).
+
+All state lives in two arrays (mf: float64, mi: int64), two ring buffers of sticking
+intervals and one of revolutions, so the same functions serve the numba driver and the
+scipy cross-check.
 """
 
 import math
@@ -30,7 +37,16 @@ F_SIZE = 8  # radius of the last sticking segment [m]
 F_DR1 = 9  # signed radius change between the last two section points [m]
 F_DR2 = 10  # the one before [m]
 F_CYCLE_TOL = 11
-N_MF = 12
+F_T_REV = 12  # start of the current revolution [s]
+F_SLIP_REV = 13  # slip integral at the start of the current revolution [m]
+F_Q = 14  # decay ratio of the slip per revolution behind the last verdict [1]
+F_LAMBDA = 15  # mean log decay of the slip per revolution over the verdict window [1/rev]
+F_LAMBDA_SE = 16  # its standard error [1/rev]
+F_REMAIN = 17  # predicted slip still to come under geometric decay [m]
+F_ARM = 18  # longest contact arm max |p_i| [m] (0 for the pin)
+F_SLIP_TOL = 19  # slip per revolution that counts as none: atol [m]
+F_S_INF = 20  # extrapolated limit of the slip per revolution [m]
+N_MF = 21
 
 # mi indices
 I_ALL = 0  # 1 while every contact sticks
@@ -42,7 +58,43 @@ I_RS_N = 5  # intervals pushed to the all-stick ring
 I_RA_N = 6  # intervals pushed to the any-stick ring
 I_CYCLE_COUNT = 7
 I_NQ = 8
-N_MI = 9
+I_NREV = 9  # revolutions completed
+I_REV_NOT_ALL = 10  # 1 once not every contact stuck during the current revolution
+I_REV_NONE = 11  # 1 once no contact stuck during the current revolution
+I_REV_NTRANS = 12  # mode switches before the current revolution
+I_REV_EVER_ALL = 13  # 1 once every contact stuck at some instant of the current revolution
+I_VERDICT = 14  # the last corotation_verdict (VERDICT_*)
+N_MI = 15
+
+# Columns of the revolution ring rv (one row per completed revolution, newest at
+# (I_NREV - 1) % REV_RING)
+RV_T = 0  # end of the revolution [s]
+RV_SLIP = 1  # net plastic slip sum_i int |w_i'| dt over the revolution [m]
+RV_DRIFT_R = 2  # |r(t) - r(t - T)|: drift of the slave centre in the master frame [m]
+RV_DRIFT_PHI = 3  # phi(t) - phi(t - T) - omega_m T: drift of the spin phase [rad]
+RV_REPEAT = 4  # largest change of any state over the revolution / its tolerance [1]
+RV_SWITCHES = 5  # contact mode switches during the revolution
+RV_ALL_STUCK = 6  # 1 if every contact stuck throughout the revolution
+RV_ANY_STUCK = 7  # 1 if some contact stuck at every instant of the revolution
+RV_EVER_ALL = 8  # 1 if every contact stuck at some instant of the revolution
+RV_STILL = 9  # 1 if centre and spin phase repeated within the integrator's tolerance
+N_RV = 10
+REV_RING = 64
+
+# corotation_verdict
+VERDICT_NONE = 0
+VERDICT_STICK = 1
+VERDICT_CREEP = 2
+
+# Revolutions behind a verdict on the slip trend. Five give four decay ratios, enough for
+# a standard error; fewer make one grazing contact's lumpy slip look like a trend.
+VERDICT_REVS = 5
+# Standard errors by which a decay must be established (about 97.5 % one-sided).
+VERDICT_Z = 2.0
+# Spacing (revolutions) below which Aitken's limit is not trusted: measured on the braked
+# disk, spacings of 2 revolutions still mistake the last fast transient for the limit
+# (from rest, beta_b = 0.005, mu = 0.22: limit 4.5e-8 m read at 51 s, true limit 0).
+AITKEN_MIN_SPACING = 4
 
 RING = 16384
 
@@ -68,6 +120,8 @@ def monitor_begin(mf, mi, ring_all, ring_any, t, y, modes, nq, cycle_tol, cycle_
     mf[F_CYCLE_TOL] = cycle_tol
     mi[I_CYCLE_COUNT] = cycle_count
     mi[I_NQ] = nq
+    mf[F_T_REV] = t
+    mf[F_SLIP_REV] = 0.0
     _update_phases(mf, mi, ring_all, ring_any, t, y, modes)
 
 
@@ -86,6 +140,12 @@ def _update_phases(mf, mi, ring_all, ring_any, t, y, modes):
         mi[I_RA_N] += 1
         mf[F_T_ANY] = np.nan
     mi[I_ANY] = 1 if any_now else 0
+    if not all_now:
+        mi[I_REV_NOT_ALL] = 1
+    if not any_now:
+        mi[I_REV_NONE] = 1
+    if all_now:
+        mi[I_REV_EVER_ALL] = 1
     if all_now and mi[I_ALL] == 0:
         _enter_body_stick(mf, mi, t, y)
     if not all_now and mi[I_ALL] == 1:
@@ -201,3 +261,187 @@ def window_fractions(mf, mi, ring_all, ring_any, t_end, window):
     frac_all = _overlap(ring_all, mi[I_RS_N], mf[F_T_ALL], t_lo, t_end) / span
     frac_any = _overlap(ring_any, mi[I_RA_N], mf[F_T_ANY], t_lo, t_end) / span
     return frac_all, frac_any
+
+
+@kernel_jit
+def begin_revolution(mf, mi, t, y, slip, yrev):
+    """Start a revolution at time t: remember the state (yrev) and the slip integral [m]."""
+    mf[F_T_REV] = t
+    mf[F_SLIP_REV] = slip
+    mi[I_REV_NOT_ALL] = 1 - mi[I_ALL]
+    mi[I_REV_NONE] = 1 - mi[I_ANY]
+    mi[I_REV_EVER_ALL] = mi[I_ALL]
+    mi[I_REV_NTRANS] = mi[I_NTRANS]
+    yrev[:] = y
+
+
+@kernel_jit
+def monitor_revolution(mf, mi, rv, yrev, t, y, slip, spin, rtol, atol):
+    """Close the revolution ending at t (state y, slip integral [m]) and start the next.
+
+    spin: the master's rotation over one revolution, omega_m T [rad]. The master frame has
+    turned by a whole number of turns, so its drift is the plain difference of the states.
+    RV_REPEAT measures every state's change against the integrator's own tolerance
+    atol + rtol |y|; for the spin phase, whose value grows without bound, against
+    atol + rtol 2 pi (its change over one revolution).
+    """
+    nq = mi[I_NQ]
+    k = mi[I_NREV] % REV_RING
+    dx = y[0] - yrev[0]
+    dy = y[1] - yrev[1]
+    dphi = (y[2] - yrev[2] - spin) if nq == 3 else 0.0
+    repeat = 0.0
+    for j in range(y.shape[0]):
+        d = y[j] - yrev[j]
+        if nq == 3 and j == 2:
+            d = dphi
+            scale = atol + rtol * 2.0 * math.pi
+        else:
+            scale = atol + rtol * max(abs(y[j]), abs(yrev[j]))
+        repeat = max(repeat, abs(d) / scale)
+    rv[k, RV_T] = t
+    rv[k, RV_SLIP] = slip - mf[F_SLIP_REV]
+    rv[k, RV_DRIFT_R] = math.sqrt(dx * dx + dy * dy)
+    rv[k, RV_DRIFT_PHI] = dphi
+    rv[k, RV_REPEAT] = repeat
+    rv[k, RV_SWITCHES] = mi[I_NTRANS] - mi[I_REV_NTRANS]
+    rv[k, RV_ALL_STUCK] = 1.0 - mi[I_REV_NOT_ALL]
+    rv[k, RV_ANY_STUCK] = 1.0 - mi[I_REV_NONE]
+    rv[k, RV_EVER_ALL] = mi[I_REV_EVER_ALL]
+    # integration error alone moves a stuck slave by up to about rtol |r| per revolution
+    arm = mf[F_ARM]
+    still_r = rv[k, RV_DRIFT_R] <= atol + rtol * math.sqrt(y[0] * y[0] + y[1] * y[1])
+    still_phi = abs(dphi) * arm <= atol + rtol * arm
+    rv[k, RV_STILL] = 1.0 if still_r and still_phi else 0.0
+    mi[I_NREV] += 1
+    begin_revolution(mf, mi, t, y, slip, yrev)
+
+
+@kernel_jit
+def _row(mi, back):
+    """Ring row of the revolution `back` revolutions before the newest (0 = newest)."""
+    return (mi[I_NREV] - 1 - back) % REV_RING
+
+
+@kernel_jit
+def _slip_trend(mf, mi, rv):
+    """Mean log ratio lambda of successive slips per revolution over the last VERDICT_REVS
+    revolutions, and its standard error [1/rev]; NaN, NaN if a slip is 0."""
+    n = VERDICT_REVS - 1
+    acc = 0.0
+    acc2 = 0.0
+    for back in range(n):
+        new = rv[_row(mi, back), RV_SLIP]
+        old = rv[_row(mi, back + 1), RV_SLIP]
+        if not (new > 0.0 and old > 0.0):
+            return math.nan, math.nan
+        r = math.log(new / old)
+        acc += r
+        acc2 += r * r
+    mean = acc / n
+    var = max(0.0, (acc2 - n * mean * mean) / (n - 1))
+    return mean, math.sqrt(var / n)
+
+
+@kernel_jit
+def _limit_slip(mi, rv, n_orbit):
+    """Aitken's extrapolated limit of the slip per revolution [m] from three revolutions m
+    apart over the newer half of the orbit history (m = n_orbit // 4 >= AITKEN_MIN_SPACING: the older half
+    holds the fast transients of the approach), and the decay ratio per revolution behind
+    it; (NaN, NaN) unless the slip falls and its fall slows down (the only shape a limit
+    can be read from). S = S_inf + A q^k gives S_inf exactly: 0 for
+    geometric decay to shakedown, > 0 for a ratchet settling to its steady rate."""
+    m = min(n_orbit // 4, (REV_RING - 1) // 2)
+    if m < AITKEN_MIN_SPACING:
+        return math.nan, math.nan
+    s_a = rv[_row(mi, 2 * m), RV_SLIP]
+    s_b = rv[_row(mi, m), RV_SLIP]
+    s_c = rv[_row(mi, 0), RV_SLIP]
+    d1 = s_a - s_b
+    d2 = s_b - s_c
+    if not (d1 > d2 > 0.0):
+        return math.nan, math.nan
+    return max(0.0, s_c - d2 * d2 / (d1 - d2)), (d2 / d1) ** (1.0 / m)
+
+
+@kernel_jit
+def corotation_verdict(mf, mi, rv):
+    """Permanent co-rotation (`stick`), ratcheting (`creep`) or not yet decided, from the
+    revolutions the slave spent on its small orbit (some contact stuck at every instant).
+    `tol` is atol read as a length [m]: a slip or drift per revolution below it is none.
+
+    stick: every contact stuck throughout the last revolution and it moved nothing (centre
+    drift and spin-phase drift, as the arc of the longest arm, within the integrator's
+    tolerance atol + rtol |r|, atol + rtol |arm|: RV_STILL); or the slip
+    per revolution decays geometrically (falling, its fall slowing as S_inf + A q^k) to
+    an extrapolated limit S_inf <= tol: shakedown.
+    creep: the slip per revolution exceeds tol and either no longer falls (over the newer
+    half of the orbit history) or falls towards a limit S_inf > tol that already holds
+    at least half of it: a steady ratchet.
+    Between the two (a limit above tol but well below today's slip) the verdict waits.
+    Needs VERDICT_REVS revolutions on the orbit.
+    """
+    mi[I_VERDICT] = VERDICT_NONE
+    n = mi[I_NREV]
+    if n < 1:
+        return VERDICT_NONE
+    tol = mf[F_SLIP_TOL]
+    last = _row(mi, 0)
+    slip = rv[last, RV_SLIP]
+    if rv[last, RV_ALL_STUCK] == 1.0 and rv[last, RV_STILL] == 1.0:
+        mf[F_REMAIN] = 0.0
+        mi[I_VERDICT] = VERDICT_STICK
+        return VERDICT_STICK
+    n_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0)
+    if n_orbit < VERDICT_REVS:
+        return VERDICT_NONE  # not (long enough) on the small orbit
+    lam, se = _slip_trend(mf, mi, rv)
+    mf[F_LAMBDA] = lam
+    mf[F_LAMBDA_SE] = se
+    s_inf, q = _limit_slip(mi, rv, n_orbit)
+    mf[F_S_INF] = s_inf
+    if math.isnan(s_inf):
+        m = n_orbit // 4
+        if m >= 1 and slip > tol and slip >= rv[_row(mi, m), RV_SLIP]:
+            mi[I_VERDICT] = VERDICT_CREEP  # not falling: steady or growing
+            return VERDICT_CREEP
+        return VERDICT_NONE
+    mf[F_REMAIN] = slip * q / (1.0 - q)
+    if s_inf > tol and s_inf >= 0.5 * slip:
+        # most of today's slip persists in the limit: the ratchet has settled
+        mi[I_VERDICT] = VERDICT_CREEP
+        return VERDICT_CREEP
+    if s_inf <= tol:
+        mi[I_VERDICT] = VERDICT_STICK  # geometric decay to no slip: shakedown
+        return VERDICT_STICK
+    return VERDICT_NONE
+
+
+@kernel_jit
+def _run_length(mi, rv, column, value):
+    """Consecutive revolutions, newest first, whose `column` equals value (at most the ring)."""
+    count = 0
+    for back in range(min(mi[I_NREV], REV_RING)):
+        if rv[_row(mi, back), column] != value:
+            break
+        count += 1
+    return count
+
+
+@kernel_jit
+def still_settling(mf, mi, rv, corotation):
+    """Whether an undecided run at its horizon is still on its way to a decision: sliding
+    as a whole (never all contacts stuck) for VERDICT_REVS revolutions with its slip per
+    revolution decaying towards a sticking circle, or (corotation: the stick_rule) on the
+    small orbit (some contact stuck at every instant), where corotation_verdict has not
+    spoken yet."""
+    if mi[I_NREV] < 1:
+        return False
+    on_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0) if corotation else 0
+    sliding = _run_length(mi, rv, RV_EVER_ALL, 0.0)
+    if on_orbit > 0:
+        return True  # corotation_verdict decides every orbit in time; until then, wait
+    if sliding < VERDICT_REVS:
+        return False
+    lam, se = _slip_trend(mf, mi, rv)
+    return not math.isnan(lam) and lam + VERDICT_Z * se < 0.0
