@@ -29,8 +29,8 @@ class Revolutions:
     remaining: float  # slip still to come under that decay [m]
     limit: float  # extrapolated limit of the slip per revolution [m] (NaN: none)
     on_orbit: bool  # some contact stuck at every instant of the last revolution
-    settling: bool  # the run is still on its way to a decision (monitor.still_settling)
-    tol: float  # slip per revolution that counts as none (numerics.atol) [m]
+    settling: bool  # still on its way to a decision when the horizon budget ran out
+    tol: float  # slip per revolution that counts as none, atol + eps T [m]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -79,7 +79,7 @@ def classify(facts: RunFacts) -> tuple[str, str]:
             "every contact stuck throughout it and it repeated within the integrator's tolerance"
             if revs.remaining == 0.0
             else f"shakedown: {_trend(revs)} towards a limit of "
-            f"{revs.limit:.3g} m <= atol = {revs.tol:.3g} m (slip still to come "
+            f"{revs.limit:.3g} m <= atol + eps T = {revs.tol:.3g} m (slip still to come "
             f"{revs.remaining:.3g} m)"
         )
         return "stick", (
@@ -92,9 +92,9 @@ def classify(facts: RunFacts) -> tuple[str, str]:
             f"ratchets on its small orbit at t = {t:.6g} s: {_rates(revs)}, not decaying "
             f"to zero ({_trend(revs)}{limit})"
         )
-    if facts.status == st.STICK_HELD or (
-        facts.stick_rule == "contacts" and facts.stuck_for >= facts.hold
-    ):
+    # integrators without revolution measures apply the contacts rule (the pin only)
+    contacts_rule = facts.stick_rule == "contacts" or revs is None
+    if facts.status == st.STICK_HELD or (contacts_rule and facts.stuck_for >= facts.hold):
         return "stick", (
             f"every contact stuck without interruption for one master revolution "
             f"({facts.hold:.6g} s) from t = {t - facts.stuck_for:.6g} s"

@@ -25,7 +25,7 @@ def main() -> None:
     """frictiondisk: stick-slip and permanent sticking of rigid friction disks.
 
     Simulates a pin or a slave disk on a driven master disk with elasto-visco-plastic
-    friction contacts, and classifies each run as stick, stick_slip, slide or undetermined.
+    friction contacts, and classifies each run as stick, creep, stick_slip, slide or undetermined.
     """
 
 
@@ -101,7 +101,7 @@ def simulate(
 ) -> None:
     """Simulate one SCENE (a YAML file) and report its outcome.
 
-    The outcome is one of stick, stick_slip, slide or undetermined (always with a reason),
+    The outcome is one of stick, creep, stick_slip, slide or undetermined (always with a reason),
     reported with the first sticking radius R1, the cycle size and a, the number of
     stick/slide transitions and the stick fraction of the final window.
     """

@@ -177,6 +177,7 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
         "n_steps": int(out_i[driver.C_STEPS]),
         "n_rejected": int(out_i[driver.C_REJECTED]),
         "n_refused": int(out_i[driver.C_REFUSED]),
+        "budget_spent": bool(out_i[driver.C_BUDGET_SPENT]),
     }
     return build_result(
         config,
@@ -263,7 +264,9 @@ def build_result(
         max_steps=num.max_steps,
         max_events=num.max_events,
         stick_rule=num.stick_rule,
-        revs=None if revolution_ring is None else _revolutions(config, mf, mi, revolution_ring[0]),
+        revs=None
+        if revolution_ring is None
+        else _revolutions(config, mf, mi, revolution_ring[0], counters["budget_spent"]),
     )
     outcome, reason = classify(facts)
     revs = facts.revs
@@ -301,7 +304,7 @@ def build_result(
     )
 
 
-def _revolutions(config, mf, mi, rv) -> Revolutions:
+def _revolutions(config, mf, mi, rv, budget_spent: bool) -> Revolutions:
     """The classifier's view of the revolution ring (NaN measures before one revolution)."""
     n = int(mi[mon.I_NREV])
     last = rv[(n - 1) % mon.REV_RING] if n > 0 else np.full(mon.N_RV, np.nan)
@@ -315,8 +318,8 @@ def _revolutions(config, mf, mi, rv) -> Revolutions:
         remaining=float(mf[mon.F_REMAIN]),
         limit=float(mf[mon.F_S_INF]),
         on_orbit=bool(n > 0 and last[mon.RV_ANY_STUCK] == 1.0),
-        settling=bool(mon.still_settling(mf, mi, rv, config.numerics.stick_rule == "corotation")),
-        tol=config.numerics.atol,
+        settling=budget_spent,
+        tol=float(mf[mon.F_SLIP_TOL]),
     )
 
 

@@ -54,6 +54,8 @@ DEFAULTS = {
         "window_revs": 2.0,
         "cycle_tol": 1.0e-6,
         "cycle_count": 3,
+        "stick_rule": "corotation",
+        "horizon_budget": 8.0,
         "max_steps": 2_000_000,
         "max_events": 200_000,
         "preset": "default",  # resolved into the values above; not in the canonical form

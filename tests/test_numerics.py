@@ -219,21 +219,32 @@ def test_adaptive_error_falls_with_the_tolerance():
 # ---- stopping rules ------------------------------------------------------------------
 
 
+@pytest.mark.parametrize("rule", ["contacts", "corotation"])
 @pytest.mark.parametrize("stop_on_stick", [True, False])
-def test_a_sticking_phase_open_at_the_horizon_is_finished_before_deciding(stop_on_stick):
+def test_a_sticking_phase_open_at_the_horizon_is_finished_before_deciding(stop_on_stick, rule):
     """The pin sticks for good from t ~ 1.85 s; a 4 s horizon falls inside that phase, so
-    the run goes on until it has stuck for one revolution (MODEL.md 6: never guess)."""
+    the run goes on until it is decided (docs/model.md: never guess): `contacts` after one
+    revolution of sticking, `corotation` at the end of the first whole revolution (on the
+    grid of revolutions from t = 0) spent stuck."""
+    rev = 2 * math.pi / 1.1
     res = simulate(
         scene_from_dict(
             {
                 "scene": "pin",
                 "params": {"mu": 0.14},
-                "numerics": {"t_decide": 4.0, "stop_on_stick": stop_on_stick},
+                "numerics": {"t_decide": 4.0, "stop_on_stick": stop_on_stick, "stick_rule": rule},
             }
         )
     )
     assert res.outcome == "stick", res.reason
-    assert res.t_end == pytest.approx(res.t_R1 + 2 * math.pi / 1.1, abs=1e-9)
+    if rule == "contacts":
+        assert res.t_end == pytest.approx(res.t_R1 + rev, abs=1e-9)
+    else:
+        decided = (math.floor(res.t_R1 / rev) + 2) * rev
+        if stop_on_stick:
+            assert res.t_end == pytest.approx(decided, abs=1e-9)
+        else:  # the horizon, extended a revolution at a time until decided
+            assert res.t_end >= decided - 1e-9
 
 
 def test_size_and_a_come_only_from_a_converged_cycle():

@@ -29,6 +29,17 @@ RUN_MEASURES = {  # summary field -> (units, long name)
     "n_refused": ("1", "refused slide->stick entries"),
     # integration quality of each run (kernel/energy.py); NaN for scipy-radau and coulomb
     "energy_residual": ("1", "relative residual of the energy balance over the run"),
+    # co-rotation measures over the last whole master revolution (kernel/monitor.py);
+    # NaN for scipy-radau and coulomb
+    "n_revolutions": ("1", "whole master revolutions completed"),
+    "slip_per_rev": ("m", "net plastic slip over the last revolution"),
+    "drift_per_rev": ("m", "drift of the slave centre over the last revolution, master frame"),
+    "spin_drift_per_rev": (
+        "rad",
+        "drift of the spin phase phi - omega_m t over the last revolution",
+    ),
+    "slip_decay": ("1", "mean log ratio of successive slips per revolution"),
+    "slip_limit": ("m", "extrapolated limit of the slip per revolution"),
 }
 
 
@@ -244,7 +255,7 @@ def _scan_results(campaign, planner) -> xr.Dataset:
         "outcome": (
             dims,
             np.asarray([r["outcome"] for r in results], dtype=str).reshape(shape),
-            {"long_name": "stick, stick_slip, slide or undetermined"},
+            {"long_name": "stick, creep, stick_slip, slide or undetermined"},
         ),
         "reason": (
             dims,

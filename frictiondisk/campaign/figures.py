@@ -77,12 +77,14 @@ CAPTION_SEP = " | "
 # marker style of each outcome (face colour, edge colour, marker)
 OUTCOME_STYLE: dict[str, dict[str, Any]] = {
     "stick": {"color": STICK_COLOR, "edge": STICK_COLOR, "marker": "o"},
+    "creep": {"color": "#e0a040", "edge": "#9a6a1c", "marker": "D"},
     "stick_slip": {"color": SLIDE_COLOR, "edge": "#3f6e8c", "marker": "o"},
     "slide": {"color": SLIDE_GREY, "edge": "0.35", "marker": "s"},
     "undetermined": {"color": FAIL_COLOR, "edge": FAIL_COLOR, "marker": "x"},
 }
 OUTCOME_LABEL = {
     "stick": "stick",
+    "creep": "creep (ratchets on the small orbit)",
     "stick_slip": "stick_slip (limit cycle)",
     "slide": "slide",
     "undetermined": "undetermined",
@@ -338,7 +340,12 @@ def _run_dots(ax: Axes, x: np.ndarray, mu: np.ndarray, outcome: np.ndarray) -> l
     handles = []
     groups = (
         (outcome == "stick", "o", STICK_COLOR, "run: stick"),
-        ((outcome == "stick_slip") | (outcome == "slide"), "o", SLIDE_COLOR, "run: not stick"),
+        (
+            (outcome == "stick_slip") | (outcome == "slide") | (outcome == "creep"),
+            "o",
+            SLIDE_COLOR,
+            "run: not stick",
+        ),
         (outcome == "undetermined", "x", FAIL_COLOR, "run: undetermined"),
     )
     for mask, marker, color, label in groups:

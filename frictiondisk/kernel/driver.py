@@ -25,7 +25,17 @@ from . import monitor as mon
 from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
-from .model import P_OMEGA, SLIDE, STICK, n_coords, rhs, stick_rate, switch_rate, switch_value
+from .model import (
+    P_EPS,
+    P_OMEGA,
+    SLIDE,
+    STICK,
+    n_coords,
+    rhs,
+    stick_rate,
+    switch_rate,
+    switch_value,
+)
 from .rodas import (
     N_WORK_ROWS,
     W_K6,
@@ -71,7 +81,8 @@ C_RECORDED = 4
 C_TRUNCATED = 5
 C_EXTENDED = 6  # 1 if the horizon was extended to finish a sticking phase
 C_SETTLE_REVS = 7  # revolutions the horizon was extended by for a run still settling
-N_OUT_I = 8
+C_BUDGET_SPENT = 8  # 1 if a run still settling hit the horizon budget
+N_OUT_I = 9
 
 SAME_TIME = 1e-12  # [s] events closer than this count as one instant (Zeno guard)
 SIMULTANEOUS = 1e-9  # [s] crossings this close are switched together
@@ -207,7 +218,9 @@ def run(
         mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT]
     )
     mon.begin_revolution(mf, mi, t, y, 0.0, yrev)
-    mf[mon.F_SLIP_TOL] = atol  # a slip per revolution below the position tolerance is none
+    # A slip per revolution below the position tolerance plus what the slide->stick
+    # threshold eps lets slide unresolved over a revolution is none (kernel/monitor.py).
+    mf[mon.F_SLIP_TOL] = atol + p[P_EPS] * hold
     mf[mon.F_ARM] = 0.0
     if nq == 3:
         for i in range(ncon):
@@ -243,16 +256,26 @@ def run(
         if converge and mon.cycle_converged(mi):
             return st.CYCLE_CONVERGED, t
         if t >= t_stop - t_eps:
+            if corotation and mi[mon.I_VERDICT] == mon.VERDICT_STICK:
+                return st.COROTATING, t  # decided, kept running for stop_on_stick false
+            if corotation and mi[mon.I_VERDICT] == mon.VERDICT_CREEP:
+                return st.CREEPING, t
             # An undecided run still settling extends its horizon, revolution by
             # revolution, up to the budget.
-            if (
-                not converge
-                and mon.still_settling(mf, mi, rv, corotation)
-                and t_stop + hold <= budget + t_eps
-            ):
-                out_i[C_SETTLE_REVS] += 1
-                t_stop += hold
-                continue
+            if not converge and mon.still_settling(mf, mi, rv, corotation):
+                if t_stop + hold <= budget + t_eps:
+                    out_i[C_SETTLE_REVS] += 1
+                    t_stop += hold
+                    continue
+                out_i[C_BUDGET_SPENT] = 1
+            if corotation and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
+                # Never stop inside a sticking phase that may still decide `stick`: it
+                # must cover the first whole revolution of the grid after it began.
+                out_i[C_EXTENDED] = 1
+                t_stop = (math.floor(mf[mon.F_T_ALL] / hold) + 2.0) * hold
+                if t < t_stop - t_eps:
+                    out_i[C_BUDGET_SPENT] = 0
+                    continue
             if not corotation and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
                 # Never stop inside a sticking phase that may still decide `stick`.
                 out_i[C_EXTENDED] = 1

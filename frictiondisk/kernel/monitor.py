@@ -44,7 +44,7 @@ F_LAMBDA = 15  # mean log decay of the slip per revolution over the verdict wind
 F_LAMBDA_SE = 16  # its standard error [1/rev]
 F_REMAIN = 17  # predicted slip still to come under geometric decay [m]
 F_ARM = 18  # longest contact arm max |p_i| [m] (0 for the pin)
-F_SLIP_TOL = 19  # slip per revolution that counts as none: atol [m]
+F_SLIP_TOL = 19  # slip per revolution that counts as none: atol + eps T [m]
 F_S_INF = 20  # extrapolated limit of the slip per revolution [m]
 N_MF = 21
 
@@ -368,7 +368,10 @@ def _limit_slip(mi, rv, n_orbit):
 def corotation_verdict(mf, mi, rv):
     """Permanent co-rotation (`stick`), ratcheting (`creep`) or not yet decided, from the
     revolutions the slave spent on its small orbit (some contact stuck at every instant).
-    `tol` is atol read as a length [m]: a slip or drift per revolution below it is none.
+    `tol` = atol + eps T [m] is the slip per revolution that counts as none: the position
+    tolerance, plus the slip that the slide->stick threshold eps [m/s] leaves unresolved
+    over one revolution T (a contact re-sticks only once its plastic rate falls below
+    eps, so slower slip is below the friction law's own resolution).
 
     stick: every contact stuck throughout the last revolution and it moved nothing (centre
     drift and spin-phase drift, as the arc of the longest arm, within the integrator's
@@ -433,8 +436,10 @@ def still_settling(mf, mi, rv, corotation):
     """Whether an undecided run at its horizon is still on its way to a decision: sliding
     as a whole (never all contacts stuck) for VERDICT_REVS revolutions with its slip per
     revolution decaying towards a sticking circle, or (corotation: the stick_rule) on the
-    small orbit (some contact stuck at every instant), where corotation_verdict has not
-    spoken yet."""
+    small orbit (some contact stuck at every instant of the last revolution), where
+    corotation_verdict has not spoken yet."""
+    if corotation and mi[I_VERDICT] != VERDICT_NONE:
+        return False
     if mi[I_NREV] < 1:
         return False
     on_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0) if corotation else 0
