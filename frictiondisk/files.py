@@ -23,6 +23,8 @@ from typing import Any
 
 import xarray as xr
 
+from frictiondisk.paths import netcdf_write_error
+
 __all__ = [
     "atomic_write_bytes",
     "atomic_write_netcdf",
@@ -114,13 +116,16 @@ def atomic_write_netcdf(
     """
 
     def write(tmp: Path) -> None:
-        ds.to_netcdf(
-            tmp,
-            mode="w",
-            format="NETCDF4",
-            engine="netcdf4",
-            encoding=dict(encoding) if encoding is not None else None,
-        )
+        try:
+            ds.to_netcdf(
+                tmp,
+                mode="w",
+                format="NETCDF4",
+                engine="netcdf4",
+                encoding=dict(encoding) if encoding is not None else None,
+            )
+        except (OSError, RuntimeError) as err:  # "NetCDF: HDF error" on a full disk
+            raise netcdf_write_error(path, err) from err
 
     return _atomic_write(path, write)
 

@@ -245,6 +245,10 @@ def build_result(
         max_events=num.max_events,
     )
     outcome, reason = classify(facts)
+    if outcome == "stick" and counters["n_steps"] == 0:
+        # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
+        # itself (a revolution shorter than round-off); never report it (issue 14)
+        outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
     radius_end = math.hypot(y_end[0], y_end[1])
     size = math.nan
     a = math.nan
