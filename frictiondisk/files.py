@@ -71,9 +71,11 @@ def _atomic_write(path: str | os.PathLike[str], write: Callable[[Path], None]) -
         write(tmp)
         _fsync_file(tmp)
         os.replace(tmp, path)
-    except BaseException:  # also KeyboardInterrupt: never leave a temporary file behind
+    except BaseException as err:  # also KeyboardInterrupt: never leave a temporary file behind
         with contextlib.suppress(OSError):
             tmp.unlink()
+        if isinstance(err, OSError) and err.filename is None:  # name the file (issue 14)
+            raise OSError(err.errno, err.strerror, str(path)) from err
         raise
     fsync_directory(path.parent)
     return path

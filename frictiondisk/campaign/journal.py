@@ -475,9 +475,11 @@ class Journal:
             with open(fd, "wb") as fh:
                 fh.write(data)
             os.replace(tmp, path)
-        except BaseException:
+        except BaseException as err:
             with contextlib.suppress(OSError):
                 tmp.unlink()
+            if isinstance(err, OSError) and err.filename is None:  # name the file (issue 14)
+                raise OSError(err.errno, err.strerror, str(path)) from err
             raise
         self._log(key)
 
