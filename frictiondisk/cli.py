@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import json
 import math
+import os
 import sys
 import threading
 from pathlib import Path
@@ -225,7 +226,12 @@ def _interruptible(function, *args, **kwargs):
         while worker.is_alive():
             worker.join(0.05)
     except KeyboardInterrupt:
-        fail("interrupted (Ctrl-C); nothing was written", [], 130)
+        click.echo("error: interrupted (Ctrl-C); nothing was written", err=True)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        # No interpreter shutdown: it takes seconds (numba, llvmlite) and nothing is left
+        # to save, since outputs are written after the run.
+        os._exit(130)
     if "error" in outcome:
         raise outcome["error"]
     return outcome["value"]

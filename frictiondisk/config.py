@@ -352,7 +352,8 @@ def _parse_override(text: str, source: str) -> tuple[str, Any]:
             "e.g. params.mu=0.13",
             source,
         )
-    return key, load_yaml_text(value, source=f"--set {_repr.repr(text)}")
+    shown = text if len(text) <= 80 else text[:60] + "..."
+    return key, load_yaml_text(value, source=f"--set {shown}")
 
 
 def _apply(data: Any, pairs: Iterable[tuple[str, Any]], source: str) -> Any:
@@ -448,7 +449,7 @@ def _field_problem(kind: str, value: Any, field: FieldInfo | None, msg: str) -> 
     if kind == "finite_number" or kind == "literal_error":
         return f"{_show(value)} is not allowed: {must}"
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
-        return f"{_show(value)} is out of range: must be {_bounds(field)}"
+        return f"{_show(value)} is out of range: must be {_bounds(field, value)}"
     if value is None:
         return f"missing value (null); {must}"
     if kind in _TYPE_NOUNS:
@@ -473,13 +474,17 @@ def _requirement(field: FieldInfo) -> str:
     return f"null or {text}" if nullable else text
 
 
-def _bounds(field: FieldInfo) -> str:
-    """The field's bounds and unit, e.g. "> 0 and < 1", ">= 0 rad/s"; "" if unbounded."""
+def _bounds(field: FieldInfo, value: Any = None) -> str:
+    """The field's bounds and unit, e.g. "> 0 and < 1", ">= 0 rad/s"; "" if unbounded.
+
+    The int64 limit of integer fields is shown only to a `value` beyond it."""
+    beyond_int64 = isinstance(value, int) and value > INT64_MAX
     parts = [
         f"{symbol} {getattr(item, name)}"
         for item in field.metadata
         for name, symbol in _BOUNDS.items()
         if getattr(item, name, None) is not None
+        and (getattr(item, name) != INT64_MAX or beyond_int64)
     ]
     extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
     unit = extra.get("unit")

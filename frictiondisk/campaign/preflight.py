@@ -27,14 +27,14 @@ def scheduler_problem(address: str, timeout: float = SCHEDULER_TIMEOUT) -> str |
 
     try:
         scheme, location = parse_address(address, strict=False)
+        if scheme not in ("tcp", "tls"):
+            return None  # other transports (inproc, ucx, ws) are checked by the client
         host, port = parse_host_port(location)
     except (ValueError, TypeError) as err:
         return (
             f"--scheduler: {address!r} is not a scheduler address ({err}): expected "
             "e.g. tcp://host:8786"
         )
-    if scheme not in ("tcp", "tls"):
-        return None  # other transports are checked when the client connects
     try:
         with socket.create_connection((host or "127.0.0.1", port), timeout=timeout):
             pass
