@@ -22,7 +22,21 @@ from frictiondisk import __version__
 from frictiondisk.cli_options import check_figure_suffix, fail
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _Main(click.Group):
+    """The command group; an OSError no command caught is still reported as the path and
+    its cause (no space left, read-only, not a directory) with exit code 2, never as a
+    traceback."""
+
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except OSError as exc:
+            from frictiondisk.paths import describe_os_error
+
+            fail(describe_os_error(exc), [])
+
+
+@click.group(cls=_Main, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, "--version", prog_name="frictiondisk")
 def main() -> None:
     """frictiondisk: stick-slip and permanent sticking of rigid friction disks.

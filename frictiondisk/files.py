@@ -74,7 +74,7 @@ def _atomic_write(path: str | os.PathLike[str], write: Callable[[Path], None]) -
     except BaseException as err:  # also KeyboardInterrupt: never leave a temporary file behind
         with contextlib.suppress(OSError):
             tmp.unlink()
-        if isinstance(err, OSError) and err.filename is None:  # name the file (issue 14)
+        if isinstance(err, OSError) and err.filename in (None, str(tmp), tmp):  # name the target
             raise OSError(err.errno, err.strerror, str(path)) from err
         raise
     fsync_directory(path.parent)

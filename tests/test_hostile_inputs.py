@@ -418,6 +418,19 @@ def test_recording_stops_when_its_buffer_is_full():
     assert result.t_end > 1.0
 
 
+def test_stick_after_zero_steps_is_undetermined():
+    """Past validation (model_copy skips it), x_ms = omega_m = vx0 = 1e300 made a revolution
+    of 6e-300 s and 'stuck' at t = 0; a stick needs steps, so it is undetermined."""
+    from frictiondisk.simulate import simulate
+
+    config = scene_from_dict({"scene": "pin"})
+    huge = {"omega_m": 1e300, "x_ms": 1e300, "vx0": 1e300}
+    config = config.model_copy(update={"params": config.params.model_copy(update=huge)})
+    result = simulate(config)
+    assert result.outcome == "undetermined" and result.n_steps == 0
+    assert "0 steps" in result.reason
+
+
 def test_ctrl_c_stops_simulate_within_two_seconds(tmp_path):
     scene = _write(
         tmp_path / "s.yaml",
