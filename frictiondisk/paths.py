@@ -104,19 +104,17 @@ def check_output_dir(path: str | os.PathLike[str], what: str = "output directory
 
 
 def check_output_file(path: str | os.PathLike[str], min_free_bytes: int = 1 << 20) -> None:
-    """Raise OSError unless a file `path` can be written: an existing parent directory that
-    is writable and has at least `min_free_bytes` free, and `path` not a directory."""
+    """Raise OSError unless a file `path` can be written: `path` not a directory, its
+    directory writable or creatable (`check_output_dir`), with at least `min_free_bytes`
+    free on its file system."""
     path = Path(path)
     if path.is_dir():
         raise IsADirectoryError(errno.EISDIR, "is a directory", str(path))
     parent = path.absolute().parent
-    if not parent.exists():
-        raise FileNotFoundError(errno.ENOENT, "the directory does not exist", str(parent))
-    if not parent.is_dir():
-        raise NotADirectoryError(errno.ENOTDIR, "is not a directory", str(parent))
-    _probe_writable(parent)
-    if shutil.disk_usage(parent).free < min_free_bytes:
-        raise OSError(errno.ENOSPC, "no space left on the device", str(parent))
+    check_output_dir(parent, "directory of the output")
+    existing = _existing_ancestor(parent)
+    if shutil.disk_usage(existing).free < min_free_bytes:
+        raise OSError(errno.ENOSPC, "no space left on the device", str(existing))
 
 
 def netcdf_write_error(path: str | os.PathLike[str], err: Exception) -> OSError:

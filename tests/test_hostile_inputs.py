@@ -218,7 +218,8 @@ def test_output_under_a_file_is_refused_before_anything_is_created(tmp_path, no_
     refused(["run", campaign, "-o", tmp_path / "afile" / "sub"], "afile", "not a directory")
     scene = _write(tmp_path / "s.yaml", "scene: pin\n")
     refused(["simulate", scene, "-o", tmp_path / "afile" / "t.nc"], "afile", "not a directory")
-    refused(["simulate", scene, "--plot", tmp_path / "nodir" / "t.png"], "nodir", "not exist")
+    refused(["simulate", scene, "--plot", tmp_path / "afile" / "d" / "t.png"], "afile")
+    refused(["simulate", scene, "-o", tmp_path], str(tmp_path), "is a directory")
 
 
 @contextlib.contextmanager
