@@ -368,6 +368,8 @@ def test_hand_edited_campaign_yaml_is_refused(campaign_dir):
     original = stored.read_text()
     stored.write_text(original.replace("tol: 1.0e-2", "tol: 2.0e-2"))
     refused(["resume", campaign_dir], "was edited", "find_jump.tol: 0.01 -> 0.02")
+    code, status, _ = cli("status", campaign_dir)
+    assert code == 0 and "resume will refuse" in status and "find_jump.tol" in status
     stored.write_text(original + "# a comment changes nothing\n")
     code, output, _ = cli("resume", campaign_dir)
     assert code == 0 and "0 computed now" in output, output

@@ -217,7 +217,25 @@ def status(out_dir: Path) -> None:
     elif state in ("interrupted", "not started"):
         lines.append(f"continue with: frictiondisk resume {out_dir}")
     lines += _journal_report(out_dir)
+    lines += _edit_report(out_dir)
     click.echo("\n".join(lines))
+
+
+def _edit_report(out_dir: Path) -> list[str]:
+    """Lines saying that DIR/campaign.yaml was edited by hand (resume refuses it)."""
+    from frictiondisk.campaign.runner import CAMPAIGN_FILE, record_differences
+    from frictiondisk.campaign.spec import load_campaign
+    from frictiondisk.config import ConfigError
+
+    try:
+        differences = record_differences(out_dir, load_campaign(out_dir / CAMPAIGN_FILE))
+    except ConfigError as exc:
+        differences = [f"{out_dir / CAMPAIGN_FILE} no longer validates:", *exc.problems]
+    if not differences:
+        return []
+    return [f"campaign:  resume will refuse: {differences[0]}"] + [
+        f"  {line}" for line in differences[1:]
+    ]
 
 
 def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:

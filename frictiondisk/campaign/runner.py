@@ -122,34 +122,39 @@ def _write_record(out_dir: Path, campaign: Campaign) -> None:
 
 def _check_record(out_dir: Path, stored: Campaign) -> None:
     """Refuse a DIR/campaign.yaml edited since the campaign started, naming each change.
+    A DIR from before the record existed gets one now."""
+    if not (out_dir / RECORD_FILE).exists():
+        _write_record(out_dir, stored)
+        return
+    differences = record_differences(out_dir, stored)
+    if differences:
+        raise CampaignChanged(out_dir, differences)
+
+
+def record_differences(out_dir: Path, stored: Campaign) -> list[str]:
+    """Read-only: how DIR/campaign.yaml (`stored`) differs from its record, one line per
+    changed field after a header line; [] if unedited or if there is no record.
 
     Its text matching the recorded sha256 is the fast path. Otherwise the recorded
     canonical form decides, like a changed campaign file: an edit that changes nothing
-    (a comment) is accepted, anything else refused. A DIR from before the record existed
-    gets one now."""
+    (a comment) is accepted, anything else is a difference."""
     path = out_dir / RECORD_FILE
     if not path.exists():
-        _write_record(out_dir, stored)
-        return
+        return []
     try:
-        record = json.loads(path.read_text(encoding="utf-8"))
+        record = json.loads(refuse_symlink(path).read_text(encoding="utf-8"))
         if record["sha256"] == _text_digest(stored):
-            return
+            return []
         original = campaign_from_dict(record["canonical"], source=str(path))
     except (ValueError, KeyError, TypeError, ConfigError) as err:
-        raise CampaignChanged(
-            out_dir,
-            [
-                f"{path} is damaged ({type(err).__name__}); cannot tell whether "
-                f"{CAMPAIGN_FILE} was edited"
-            ],
-        ) from None
+        return [
+            f"{path} is damaged ({type(err).__name__}); cannot tell whether "
+            f"{CAMPAIGN_FILE} was edited"
+        ]
     differences = original.diff(stored)
-    if differences:
-        raise CampaignChanged(
-            out_dir,
-            [f"{out_dir / CAMPAIGN_FILE} was edited after the campaign started:"] + differences,
-        )
+    if not differences:
+        return []
+    return [f"{out_dir / CAMPAIGN_FILE} was edited after the campaign started:", *differences]
 
 
 def _refuse_links(out_dir: Path) -> None:
