@@ -527,7 +527,11 @@ def _campaigns(draw):
 
 
 _FUZZ = settings(
-    max_examples=100, deadline=2000, suppress_health_check=[HealthCheck.too_slow], derandomize=True
+    max_examples=100,
+    deadline=2000,
+    suppress_health_check=[HealthCheck.too_slow],
+    derandomize=True,
+    database=None,
 )
 
 

@@ -87,7 +87,7 @@ _workers = click.option(
     type=click.IntRange(1, 256),
     default=2,
     show_default=True,
-    help="Local Dask workers (ignored with --scheduler).",
+    help="Local Dask workers (ignored with --scheduler); at most 4 per CPU core.",
 )
 _scheduler = click.option(
     "--scheduler",
