@@ -1,7 +1,8 @@
 """Command line interface: thin click commands over config, simulate, trajectory and plotting.
 
-Exit codes: 0 on a completed run (whatever its outcome), 2 on a bad command line or a bad
-scene file (the message names the field; no traceback), 1 on any other failure.
+Exit codes: 0 on a completed run (whatever its outcome), 2 on a bad command line, a bad
+scene file (the message names the field; no traceback) or an output path that cannot be
+written (named, with the cause), 130 on Ctrl-C, 1 on any other failure.
 """
 
 from __future__ import annotations
@@ -9,7 +10,9 @@ from __future__ import annotations
 import contextlib
 import json
 import math
+import os
 import sys
+import threading
 from pathlib import Path
 from typing import Any
 
@@ -19,7 +22,21 @@ from frictiondisk import __version__
 from frictiondisk.cli_options import check_figure_suffix, fail
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _Main(click.Group):
+    """The command group; an OSError no command caught is still reported as the path and
+    its cause (no space left, read-only, not a directory) with exit code 2, never as a
+    traceback."""
+
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except OSError as exc:
+            from frictiondisk.paths import describe_os_error
+
+            fail(describe_os_error(exc), [])
+
+
+@click.group(cls=_Main, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, "--version", prog_name="frictiondisk")
 def main() -> None:
     """frictiondisk: stick-slip and permanent sticking of rigid friction disks.
@@ -107,6 +124,8 @@ def simulate(
     """
     # Imported here so that `--help` and `--version` stay fast (the kernel compiles with numba).
     from frictiondisk.config import ConfigError, load_scene
+    from frictiondisk.limits import recording_problem
+    from frictiondisk.paths import check_output_file, describe_os_error
 
     if not scene.is_file():
         fail(str(scene), [f"scene file not found: {scene}"])
@@ -116,14 +135,23 @@ def simulate(
         fail(str(scene), list(exc.problems))
     except OSError as exc:
         fail(str(scene), [f"cannot read the scene file: {exc.strerror or exc}"])
+    record = output is not None or plot_path is not None
+    problems = [recording_problem(config, dt_out, "--dt-out")] if record else []
+    for path in (output, plot_path):
+        try:
+            if path is not None:
+                check_output_file(path)
+        except OSError as exc:
+            problems.append(describe_os_error(exc))
+    if any(problems):
+        fail(str(scene), [problem for problem in problems if problem])
 
     from frictiondisk.simulate import simulate as run_simulation
 
-    record = output is not None or plot_path is not None
     # With --json, stdout carries the JSON object and nothing else.
     redirect = contextlib.redirect_stdout(sys.stderr) if as_json else contextlib.nullcontext()
-    with redirect:
-        result = run_simulation(config, record=record, dt_out=dt_out)
+    with redirect, _os_errors_reported():
+        result = _interruptible(run_simulation, config, record=record, dt_out=dt_out)
         if record and result.trajectory is None:
             raise click.ClickException("the simulation returned no trajectory to write or plot")
         if record and result.trajectory.truncated:
@@ -178,6 +206,49 @@ def simulate(
     if outputs["plot"]:
         lines.append(f"plot:         {outputs['plot']}")
     click.echo("\n".join(lines))
+
+
+@contextlib.contextmanager
+def _os_errors_reported():
+    """An OSError while writing outputs: exit 2 naming the path and the cause."""
+    from frictiondisk.paths import describe_os_error
+
+    try:
+        yield
+    except OSError as exc:
+        fail(describe_os_error(exc), [])
+
+
+def _interruptible(function, *args, **kwargs):
+    """`function(*args, **kwargs)` in a daemon thread, so Ctrl-C stops the command at once.
+
+    The numba kernel releases the GIL (kernel/jit.py: nogil) but never returns to the
+    interpreter, so a SIGINT would wait for the whole run; the main thread waits here in
+    short slices instead and gets the KeyboardInterrupt, and the daemon thread dies with
+    the process (exit 130)."""
+    outcome: dict[str, Any] = {}
+
+    def target() -> None:
+        try:
+            outcome["value"] = function(*args, **kwargs)
+        except BaseException as exc:  # handed to the main thread
+            outcome["error"] = exc
+
+    worker = threading.Thread(target=target, name="frictiondisk-simulate", daemon=True)
+    worker.start()
+    try:
+        while worker.is_alive():
+            worker.join(0.05)
+    except KeyboardInterrupt:
+        click.echo("error: interrupted (Ctrl-C); nothing was written", err=True)
+        sys.stdout.flush()
+        sys.stderr.flush()
+        # No interpreter shutdown: it takes seconds (numba, llvmlite) and nothing is left
+        # to save, since outputs are written after the run.
+        os._exit(130)
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["value"]
 
 
 # Campaign commands live in frictiondisk/campaign/cli.py, `plot` in campaign/plot_cli.py,

@@ -39,6 +39,17 @@ __all__ = [
 
 DEFAULT_DISK_POINTS = 12  # contact points of a disk when contact.points is null
 
+# Upper bounds that keep the kernel's arithmetic meaningful (issue 14). Integers go to the
+# kernel as int64. Lengths, speeds and the master speed are bounded far beyond any friction
+# disk, so that squared terms stay finite and one revolution stays longer than a step:
+# x_ms = omega_m = vx0 = 1e300 made a revolution 6e-300 s, "decided" stick after 0 steps.
+INT64_MAX = 2**63 - 1
+MAX_LENGTH = 1.0e3  # [m]
+MAX_SPEED = 1.0e4  # [m/s]
+MAX_OMEGA = 1.0e4  # [rad/s]
+MAX_HORIZON = 1.0e9  # [s] simulated time of one run, retries included
+MAX_KEY_PARTS = 8  # parts of a dotted --set key (the deepest scene key has 3)
+
 # strict: no "0.1" -> 0.1, no true -> 1.0, no 1.5 -> int; allow_inf_nan: reject inf/nan.
 _MODEL_CONFIG = ConfigDict(extra="forbid", frozen=True, strict=True, allow_inf_nan=False)
 
@@ -69,19 +80,37 @@ class Params(BaseModel):
     model_config = _MODEL_CONFIG
 
     mu: float = _field(0.13, "1", "static friction coefficient", gt=0)
-    omega_m: float = _field(1.1, "rad/s", "angular velocity of the master disk", ge=0)
+    omega_m: float = _field(1.1, "rad/s", "angular velocity of the master disk", ge=0, le=MAX_OMEGA)
     c_s: float = _field(1.0, "N/m", "stiffness of the slave's support spring", ge=0)
     beta_s: float = _field(0.1, "N s/m", "damping of the slave's support", ge=0)
     m_s: float = _field(1.0, "kg", "slave mass", gt=0)
     F_n: float = _field(1.0, "N", "total normal force", gt=0)
     J_s: float = _field(0.02, "kg m^2", "moment of inertia of the slave disk", gt=0)
     beta_b: float = _field(0.0, "N m s/rad", "brake (rotational viscous) damping", ge=0)
-    x_ms: float = _field(0.1, "m", "axes offset: the slave's rest position is (x_ms, 0)")
-    x0: float = _field(0.0, "m", "initial spring deflection: the slave starts at x_ms + x0")
-    y0: float = _field(0.0, "m", "initial y position of the slave")
-    vx0: float = _field(0.0, "m/s", "initial x velocity of the slave")
-    vy0: float = _field(0.0, "m/s", "initial y velocity of the slave")
-    phidot0: float = _field(0.0, "rad/s", "initial angular velocity of the slave disk")
+    x_ms: float = _field(
+        0.1,
+        "m",
+        "axes offset: the slave's rest position is (x_ms, 0)",
+        ge=-MAX_LENGTH,
+        le=MAX_LENGTH,
+    )
+    x0: float = _field(
+        0.0,
+        "m",
+        "initial spring deflection: the slave starts at x_ms + x0",
+        ge=-MAX_LENGTH,
+        le=MAX_LENGTH,
+    )
+    y0: float = _field(0.0, "m", "initial y position of the slave", ge=-MAX_LENGTH, le=MAX_LENGTH)
+    vx0: float = _field(0.0, "m/s", "initial x velocity of the slave", ge=-MAX_SPEED, le=MAX_SPEED)
+    vy0: float = _field(0.0, "m/s", "initial y velocity of the slave", ge=-MAX_SPEED, le=MAX_SPEED)
+    phidot0: float = _field(
+        0.0,
+        "rad/s",
+        "initial angular velocity of the slave disk",
+        ge=-MAX_OMEGA,
+        le=MAX_OMEGA,
+    )
 
 
 class Contact(BaseModel):
@@ -161,12 +190,18 @@ class Numerics(BaseModel):
     )
     # Measured: over 930 pin and disk runs (x_ms 0.02-0.2 m, x0 -0.05-0.05 m, mu 0.5-2 x the
     # oracle) with a 600 s horizon, every permanent stick began before t = 4.8 s.
-    t_decide: float = _field(30.0, "s", "decision horizon (simulated time) in mode decide", gt=0)
-    t_max: float = _field(3000.0, "s", "simulated-time horizon in mode converge", gt=0)
+    t_decide: float = _field(
+        30.0, "s", "decision horizon (simulated time) in mode decide", gt=0, le=MAX_HORIZON
+    )
+    t_max: float = _field(
+        3000.0, "s", "simulated-time horizon in mode converge", gt=0, le=MAX_HORIZON
+    )
     stop_on_stick: bool = _field(True, None, "stop the run at permanent stick")
     window_revs: float = _field(2.0, "1", "final window, in master revolutions", gt=0)
     cycle_tol: float = _field(1.0e-6, "m", "limit-cycle section points agreement", gt=0)
-    cycle_count: int = _field(3, "1", "successive section points that must agree", ge=2)
+    cycle_count: int = _field(
+        3, "1", "successive section points that must agree", ge=2, le=INT64_MAX
+    )
     stick_rule: Literal["corotation", "contacts"] = _field(
         "corotation",
         None,
@@ -182,8 +217,10 @@ class Numerics(BaseModel):
         ge=1,
         le=1000,
     )
-    max_steps: int = _field(2_000_000, "1", "step budget of one run", ge=1)
-    max_events: int = _field(200_000, "1", "mode-switch event budget of one run", ge=1)
+    max_steps: int = _field(2_000_000, "1", "step budget of one run", ge=1, le=INT64_MAX)
+    max_events: int = _field(
+        200_000, "1", "mode-switch event budget of one run", ge=1, le=INT64_MAX
+    )
     preset: Literal["fast", "default", "reference"] = _field(
         "default",
         None,
@@ -329,18 +366,30 @@ def _parse_override(text: str, source: str) -> tuple[str, Any]:
     """`"params.mu=0.13"` -> ("params.mu", 0.13); VALUE is read as strict YAML."""
     key, sep, value = text.partition("=")
     key = key.strip()
+    if key.count(".") >= MAX_KEY_PARTS:
+        raise ConfigError(
+            f"--set {_repr.repr(text)}: key has {key.count('.') + 1} dotted parts: "
+            f"allowed at most {MAX_KEY_PARTS} (scene keys have 2 or 3, e.g. params.mu)",
+            source,
+        )
     if not sep or not _DOTTED_KEY.fullmatch(key):
         raise ConfigError(
             f"--set {text!r}: malformed override: expected KEY=VALUE with a dotted KEY, "
             "e.g. params.mu=0.13",
             source,
         )
-    return key, load_yaml_text(value, source=f"--set {text}")
+    shown = text if len(text) <= 80 else text[:60] + "..."
+    return key, load_yaml_text(value, source=f"--set {shown}")
 
 
 def _apply(data: Any, pairs: Iterable[tuple[str, Any]], source: str) -> Any:
     """Copy of `data` with each dotted key set to its value."""
     for key, value in pairs:
+        if isinstance(key, str) and key.count(".") >= MAX_KEY_PARTS:
+            raise ConfigError(
+                f"{_repr.repr(key)}: override key has more than {MAX_KEY_PARTS} dotted parts",
+                source,
+            )
         if not isinstance(key, str) or not _DOTTED_KEY.fullmatch(key):
             raise ConfigError(
                 f"{key!r}: malformed override key: expected a dotted key, e.g. params.mu", source
@@ -426,7 +475,7 @@ def _field_problem(kind: str, value: Any, field: FieldInfo | None, msg: str) -> 
     if kind == "finite_number" or kind == "literal_error":
         return f"{_show(value)} is not allowed: {must}"
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
-        return f"{_show(value)} is out of range: must be {_bounds(field)}"
+        return f"{_show(value)} is out of range: must be {_bounds(field, value)}"
     if value is None:
         return f"missing value (null); {must}"
     if kind in _TYPE_NOUNS:
@@ -451,13 +500,17 @@ def _requirement(field: FieldInfo) -> str:
     return f"null or {text}" if nullable else text
 
 
-def _bounds(field: FieldInfo) -> str:
-    """The field's bounds and unit, e.g. "> 0 and < 1", ">= 0 rad/s"; "" if unbounded."""
+def _bounds(field: FieldInfo, value: Any = None) -> str:
+    """The field's bounds and unit, e.g. "> 0 and < 1", ">= 0 rad/s"; "" if unbounded.
+
+    The int64 limit of integer fields is shown only to a `value` beyond it."""
+    beyond_int64 = isinstance(value, int) and value > INT64_MAX
     parts = [
         f"{symbol} {getattr(item, name)}"
         for item in field.metadata
         for name, symbol in _BOUNDS.items()
         if getattr(item, name, None) is not None
+        and (getattr(item, name) != INT64_MAX or beyond_int64)
     ]
     extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
     unit = extra.get("unit")

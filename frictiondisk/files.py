@@ -23,6 +23,8 @@ from typing import Any
 
 import xarray as xr
 
+from frictiondisk.paths import netcdf_write_error
+
 __all__ = [
     "atomic_write_bytes",
     "atomic_write_netcdf",
@@ -69,9 +71,11 @@ def _atomic_write(path: str | os.PathLike[str], write: Callable[[Path], None]) -
         write(tmp)
         _fsync_file(tmp)
         os.replace(tmp, path)
-    except BaseException:  # also KeyboardInterrupt: never leave a temporary file behind
+    except BaseException as err:  # also KeyboardInterrupt: never leave a temporary file behind
         with contextlib.suppress(OSError):
             tmp.unlink()
+        if isinstance(err, OSError) and err.filename in (None, str(tmp), tmp):  # name the target
+            raise OSError(err.errno, err.strerror, str(path)) from err
         raise
     fsync_directory(path.parent)
     return path
@@ -114,13 +118,16 @@ def atomic_write_netcdf(
     """
 
     def write(tmp: Path) -> None:
-        ds.to_netcdf(
-            tmp,
-            mode="w",
-            format="NETCDF4",
-            engine="netcdf4",
-            encoding=dict(encoding) if encoding is not None else None,
-        )
+        try:
+            ds.to_netcdf(
+                tmp,
+                mode="w",
+                format="NETCDF4",
+                engine="netcdf4",
+                encoding=dict(encoding) if encoding is not None else None,
+            )
+        except (OSError, RuntimeError) as err:  # "NetCDF: HDF error" on a full disk
+            raise netcdf_write_error(path, err) from err
 
     return _atomic_write(path, write)
 

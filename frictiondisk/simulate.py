@@ -12,18 +12,20 @@ from .kernel import driver
 from .kernel import energy as ken
 from .kernel import model as km
 from .kernel import monitor as mon
+from .limits import MAX_RECORD_ROWS, record_rows_limit
 from .result import SimulationResult, Trajectory
 
 METHOD_CODES = {"rodas4": 0, "rodas4-fixed": 1}
 STICK_RULE_CODES = {"contacts": driver.RULE_CONTACTS, "corotation": driver.RULE_COROTATION}
 
 
-def record_capacity(t_span: float, dt_out: float) -> int:
+def record_capacity(t_span: float, dt_out: float, limit: int = MAX_RECORD_ROWS) -> int:
     """Rows to reserve for a recorded trajectory over t_span [s]: every dt_out sample plus
-    room for the rows written at switches (or 200 000 step ends when dt_out = 0)."""
+    room for the rows written at switches (or 200 000 step ends when dt_out = 0), at most
+    `limit` (limits.record_rows_limit: wide rows get fewer)."""
     if dt_out <= 0.0:
-        return 200_000
-    return int(min(2_000_000, t_span / dt_out + 50_000))
+        return min(200_000, limit)
+    return int(min(limit, t_span / dt_out + 50_000))
 
 
 def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
@@ -124,7 +126,8 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     fopt[driver.O_DT_OUT] = dt_out
     fopt[driver.O_BUDGET] = horizon_of(config) * num.horizon_budget
 
-    cap = record_capacity(horizon_of(config) + rev, dt_out) if record else 1
+    limit = record_rows_limit(y0.shape[0], pts.shape[0])
+    cap = record_capacity(horizon_of(config) + rev, dt_out, limit) if record else 1
     rec_t = np.empty(cap)
     rec_y = np.empty((cap, y0.shape[0]))
     rec_m = np.empty((cap, pts.shape[0]), dtype=np.int8)
@@ -270,6 +273,10 @@ def build_result(
     )
     outcome, reason = classify(facts)
     revs = facts.revs
+    if outcome == "stick" and counters["n_steps"] == 0:
+        # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
+        # itself (a revolution shorter than round-off); never report it (issue 14)
+        outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
     radius_end = math.hypot(y_end[0], y_end[1])
     size = math.nan
     a = math.nan

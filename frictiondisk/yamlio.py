@@ -50,15 +50,40 @@ _RESOLVERS = (
 )
 
 
+class _TooDeep(ConfigError):
+    """Nesting beyond MAX_DEPTH (load_yaml_text prefixes the source)."""
+
+
+# Bounds on what a configuration file may be (issue 14): a scene or campaign needs a depth
+# of 4 and a few kB; these stop a hostile file long before recursion or memory run out.
+MAX_DEPTH = 32  # nested mappings/lists
+MAX_FILE_BYTES = 4 * 1024 * 1024
+
+
 class StrictLoader(yaml.SafeLoader):
     """SafeLoader with YAML 1.2 core-schema scalars that rejects duplicate mapping keys.
 
     Booleans are only true/false, integers are decimal, floats include exponent forms
     (`1e-4`) and inf/nan words; YAML 1.1 timestamps, sexagesimals and `<<` merges are
-    plain strings.
+    plain strings. Nesting deeper than MAX_DEPTH is a ConfigError, raised while composing
+    (PyYAML's composer recurses once per level).
     """
 
     yaml_implicit_resolvers: dict = {}
+    _depth = 0
+
+    def compose_node(self, parent: yaml.Node | None, index: Any) -> yaml.Node:
+        self._depth += 1
+        try:
+            if self._depth > MAX_DEPTH:
+                mark = self.peek_event().start_mark
+                raise _TooDeep(
+                    f"line {mark.line + 1}, column {mark.column + 1}: nested more than "
+                    f"{MAX_DEPTH} levels deep; a configuration needs at most a few"
+                )
+            return super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
 
     def construct_document(self, node: yaml.Node) -> Any:
         problems = _duplicate_keys(node, (), set())
@@ -112,6 +137,8 @@ def load_yaml_text(text: str, source: str = "<string>") -> Any:
     """Parse one YAML document with `StrictLoader`; any problem is a `ConfigError`."""
     try:
         return yaml.load(text, Loader=StrictLoader)
+    except _TooDeep as err:
+        raise ConfigError([f"{source}, {problem}" for problem in err.problems], source) from None
     except ConfigError as err:
         raise ConfigError(err.problems, source) from None
     except yaml.MarkedYAMLError as err:
@@ -127,9 +154,15 @@ def read_text_file(path: str | PathLike[str]) -> str:
     """The UTF-8 text of a configuration file; an unreadable file is a `ConfigError`."""
     try:
         with open(path, encoding="utf-8") as stream:
-            return stream.read()
+            text = stream.read(MAX_FILE_BYTES + 1)
     except (OSError, UnicodeDecodeError) as err:
         raise ConfigError(f"{path}: cannot read: {err}", str(path)) from None
+    if len(text) > MAX_FILE_BYTES:
+        raise ConfigError(
+            f"{path}: larger than {MAX_FILE_BYTES // (1024 * 1024)} MiB: not a configuration file",
+            str(path),
+        )
+    return text
 
 
 def load_yaml_file(path: str | PathLike[str]) -> Any:

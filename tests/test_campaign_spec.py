@@ -708,12 +708,16 @@ def test_along_value_checked_against_the_scene_rules():
 def test_base_scene_error_keeps_its_scene_path():
     with pytest.raises(ConfigError) as info:
         campaign_from_text(LINE.replace("{x0: 0.0}", "{x0: 0.0, x_ms: -.inf}"), "c.yaml")
-    assert info.value.problems == ["params.x_ms: -inf is not allowed: must be a finite number"]
+    assert info.value.problems == [
+        "params.x_ms: -inf is not allowed: must be a finite number >= -1000.0 and <= 1000.0 m"
+    ]
 
 
 def test_values_are_checked_once_the_base_scene_is_valid():
     data = {**find_jump(along={"params.m_s": [-1.0]}), "params": {"x_ms": float("inf")}}
-    assert problems(data) == ["params.x_ms: inf is not allowed: must be a finite number"]
+    assert problems(data) == [
+        "params.x_ms: inf is not allowed: must be a finite number >= -1000.0 and <= 1000.0 m"
+    ]
 
 
 def test_base_scene_problems_are_the_scene_file_problems():

@@ -270,7 +270,8 @@ def test_non_string_key(tmp_path):
 )
 def test_non_finite_values_are_rejected(tmp_path, word, shown):
     found = problems(tmp_path, f"scene: pin\nparams:\n  x_ms: {word}\n")
-    assert found == [f"params.x_ms: {shown} is not allowed: must be a finite number"]
+    assert len(found) == 1
+    assert found[0].startswith(f"params.x_ms: {shown} is not allowed: must be a finite number")
 
 
 @pytest.mark.parametrize(
@@ -279,7 +280,7 @@ def test_non_finite_values_are_rejected(tmp_path, word, shown):
         ("params", "m_s", "a finite number > 0 kg"),
         ("contact", "stiffness", "a finite number > 0 N/m"),
         ("contact", "damping", "null or a finite number > 0 N s/m"),
-        ("numerics", "t_max", "a finite number > 0 s"),
+        ("numerics", "t_max", "a finite number > 0 and <= 1000000000.0 s"),
     ],
 )
 def test_infinite_value_message_names_the_range(tmp_path, section, key, allowed):
@@ -308,7 +309,7 @@ def test_non_positive_stiffness(tmp_path, value):
         ("cycle_tol", "> 0 m"),
         ("dt", "> 0 s"),
         ("h_max", "> 0 s"),
-        ("t_decide", "> 0 s"),
+        ("t_decide", "> 0 and <= 1000000000.0 s"),
         ("window_revs", "> 0"),
     ],
 )
@@ -327,7 +328,7 @@ def test_rtol_must_be_below_one(tmp_path, value):
     ("key", "value", "bound"),
     [
         ("mu", "0.0", "> 0"),
-        ("omega_m", "-1.1", ">= 0 rad/s"),
+        ("omega_m", "-1.1", ">= 0 and <= 10000.0 rad/s"),
         ("c_s", "-1", ">= 0 N/m"),
         ("beta_s", "-0.1", ">= 0 N s/m"),
         ("F_n", "0", "> 0 N"),

@@ -34,12 +34,21 @@ from frictiondisk.files import (
     netcdf_is_valid,
 )
 
-INPUTS = {"scene": {"scene": "pin", "params": {"mu": 0.13}}, "kernel": "0123456789abcdef"}
 RESULT = {"outcome": "stick_slip", "t_stick": None, "x_amplitude": 0.0123456789, "n_events": 42}
+_CANONICAL: dict[str, dict] = {}  # key -> the canonical scene it was made from
 
 
 def _key(n: int) -> str:
-    return f"{n:064x}"
+    """The run key of the n-th test scene (a pin with its own mu); `_inputs` gives its
+    canonical inputs, which a verified entry must hold (the key is recomputed from them)."""
+    config = scene_from_dict({"scene": "pin", "params": {"mu": 1e-3 * (n + 1)}})
+    key = run_key(config)
+    _CANONICAL[key] = config.canonical()
+    return key
+
+
+def _inputs(key: str) -> dict:
+    return _CANONICAL[key]
 
 
 # --- keys ---------------------------------------------------------------------------------
@@ -106,14 +115,14 @@ def test_run_key_changes_with_kernel_version(monkeypatch):
 
 def test_put_get_round_trip(tmp_path):
     journal = Journal(tmp_path)
-    key = run_key(scene_from_dict({"scene": "pin"}))
+    key = _key(0)
     assert journal.get(key) is None and len(journal) == 0
-    journal.put(key, INPUTS, RESULT)
+    journal.put(key, _inputs(key), RESULT)
     assert journal.get(key) == RESULT
     assert Journal(tmp_path).get(key) == RESULT  # a fresh reader, e.g. after a restart
     assert journal.keys() == [key] and len(journal) == 1 and key in journal
     entry = json.loads(journal.entry_path(key).read_text())
-    assert entry["version"] == 1 and entry["key"] == key and entry["inputs"] == INPUTS
+    assert entry["version"] == 1 and entry["key"] == key and entry["inputs"] == _inputs(key)
     assert journal.entry_path(key) == tmp_path / "journal" / key[:2] / f"{key}.json"
     assert journal.n_corrupt == 0
     assert _temp_files(tmp_path) == []
@@ -122,13 +131,13 @@ def test_put_get_round_trip(tmp_path):
 def test_put_rejects_nan_with_the_field_named(tmp_path):
     journal = Journal(tmp_path)
     with pytest.raises(ValueError, match=r"result\.x_amplitude is NaN or infinite.*pass None"):
-        journal.put(_key(1), INPUTS, {**RESULT, "x_amplitude": float("nan")})
+        journal.put(_key(1), _inputs(_key(1)), {**RESULT, "x_amplitude": float("nan")})
     with pytest.raises(ValueError, match=r"inputs\.mu\.1 is NaN or infinite"):
         journal.put(_key(1), {"mu": [0.1, np.inf]}, RESULT)
     with pytest.raises(TypeError, match=r"not JSON serializable"):
-        journal.put(_key(1), INPUTS, {"x": object()})
+        journal.put(_key(1), _inputs(_key(1)), {"x": object()})
     with pytest.raises(ValueError, match=r"not valid: expected a sha256 hex digest"):
-        journal.put("../../etc", INPUTS, RESULT)
+        journal.put("../../etc", {}, RESULT)
     assert journal.get(_key(1)) is None and journal.keys() == []
     assert _temp_files(tmp_path) == []
 
@@ -149,6 +158,14 @@ def _wrong_key_field(path: Path) -> None:
     path.write_text(json.dumps(entry))
 
 
+def _inputs_of_another_run(path: Path) -> None:
+    """A mix-up: another run's inputs, with the sha256 made consistent again."""
+    entry = json.loads(path.read_text())
+    entry["inputs"] = _inputs(_key(999))
+    entry["sha256"] = journal_module._entry_digest(entry["key"], entry["inputs"], entry["result"])
+    path.write_text(json.dumps(entry))
+
+
 def _not_json(path: Path) -> None:
     path.write_bytes(b"\x00\xff garbage, not JSON\n")
 
@@ -159,14 +176,15 @@ def _not_json(path: Path) -> None:
         (_truncate, "truncated or not JSON"),
         (_flip_result_digit, "sha256 mismatch"),
         (_wrong_key_field, "differs from the file's key"),
+        (_inputs_of_another_run, "its inputs give key"),
         (_not_json, "truncated or not JSON"),
     ],
 )
 def test_damaged_entry_is_detected_moved_and_recomputable(tmp_path, damage, reason):
     journal = Journal(tmp_path)
     key, other = _key(0xABC), _key(0xDEF)
-    journal.put(key, INPUTS, RESULT)
-    journal.put(other, INPUTS, RESULT)
+    journal.put(key, _inputs(key), RESULT)
+    journal.put(other, _inputs(other), RESULT)
     damage(journal.entry_path(key))
 
     assert journal.get(key) is None
@@ -174,11 +192,13 @@ def test_damaged_entry_is_detected_moved_and_recomputable(tmp_path, damage, reas
     assert len(journal.corrupt_reasons) == 1 and journal.corrupt_reasons[0].startswith(key)
     assert reason in journal.corrupt_reasons[0]
     assert not journal.entry_path(key).exists()
-    assert [p.name for p in (tmp_path / "journal" / "corrupt").iterdir()] == [f"{key}.1.json"]
+    moved = sorted(p.name for p in (tmp_path / "journal" / "corrupt").iterdir())
+    assert moved == [f"{key}.1.json", "reasons.log"]
+    assert Journal.moved_aside(tmp_path) == [f"{key}.1.json: {journal.corrupt_reasons[0][66:]}"]
     assert journal.keys() == [other] and journal.get(other) == RESULT
 
     assert journal.get(key) is None and journal.n_corrupt == 1  # now missing, not corrupt
-    journal.put(key, INPUTS, RESULT)  # the recomputed run
+    journal.put(key, _inputs(key), RESULT)  # the recomputed run
     assert journal.get(key) == RESULT and journal.n_corrupt == 1
 
     damage(journal.entry_path(key))  # damaged again: kept next to the first one
@@ -188,7 +208,7 @@ def test_damaged_entry_is_detected_moved_and_recomputable(tmp_path, damage, reas
 
 def test_peek_verifies_but_never_writes(tmp_path):
     journal = Journal(tmp_path)
-    journal.put(_key(1), {"a": 1}, {"outcome": "stick", "R1": 0.0123456789})
+    journal.put(_key(1), _inputs(_key(1)), {"outcome": "stick", "R1": 0.0123456789})
     assert Journal.peek(tmp_path, _key(1)) == {"outcome": "stick", "R1": 0.0123456789}
     assert Journal.peek(tmp_path, _key(2)) is None
     assert Journal.peek(tmp_path / "elsewhere", _key(1)) is None
@@ -201,11 +221,11 @@ def test_peek_verifies_but_never_writes(tmp_path):
 
 def test_entry_with_missing_field_or_empty_file_is_corrupt(tmp_path):
     journal = Journal(tmp_path)
-    journal.put(_key(1), INPUTS, RESULT)
+    journal.put(_key(1), _inputs(_key(1)), RESULT)
     entry = json.loads(journal.entry_path(_key(1)).read_text())
     del entry["sha256"]
     journal.entry_path(_key(1)).write_text(json.dumps(entry))
-    journal.put(_key(2), INPUTS, RESULT)
+    journal.put(_key(2), _inputs(_key(2)), RESULT)
     journal.entry_path(_key(2)).write_bytes(b"")
     assert journal.get(_key(1)) is None and journal.get(_key(2)) is None
     assert journal.n_corrupt == 2
@@ -217,7 +237,7 @@ def test_computed_counts_counts_repeated_puts(tmp_path):
     journal = Journal(tmp_path)
     assert journal.computed_counts() == {}
     for key in (_key(1), _key(2), _key(1), _key(1)):
-        journal.put(key, INPUTS, RESULT)
+        journal.put(key, _inputs(key), RESULT)
     assert journal.computed_counts() == {_key(1): 3, _key(2): 1}
     assert len(journal) == 2 and journal.get(_key(1)) == RESULT  # overwritten atomically
     assert Journal(tmp_path).computed_counts() == {_key(1): 3, _key(2): 1}
@@ -225,11 +245,11 @@ def test_computed_counts_counts_repeated_puts(tmp_path):
 
 def test_truncated_last_log_line_is_ignored_and_next_put_still_logged(tmp_path):
     journal = Journal(tmp_path)
-    journal.put(_key(1), INPUTS, RESULT)
+    journal.put(_key(1), _inputs(_key(1)), RESULT)
     with open(journal.log_path, "ab") as fh:
         fh.write(_key(2)[:30].encode())  # a write cut short by a crash
     assert journal.computed_counts() == {_key(1): 1}
-    journal.put(_key(3), INPUTS, RESULT)
+    journal.put(_key(3), _inputs(_key(3)), RESULT)
     assert journal.computed_counts() == {_key(1): 1, _key(3): 1}
 
 

@@ -1,7 +1,9 @@
 """Campaign commands: `run`, `resume`, `status` (thin; the work is in runner.py).
 
-Exit codes: 0 done, 2 bad campaign file or a different campaign in DIR, 3 DIR is in use
-by another run, 130 interrupted (Ctrl-C; resume continues).
+Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
+path that cannot be written (named, with the cause), a symbolic link in DIR, an
+unreachable scheduler or a campaign over its size limits; 3 DIR is in use by another run,
+130 interrupted (Ctrl-C; resume continues).
 """
 
 from __future__ import annotations
@@ -18,13 +20,33 @@ EXIT_LOCKED = 3
 EXIT_INTERRUPTED = 130
 
 
-def _execute(campaign, out_dir: Path, workers: int, scheduler: str | None, processes: bool):
+def _execute(
+    campaign,
+    out_dir: Path,
+    workers: int,
+    scheduler: str | None,
+    processes: bool,
+    worker_wait: float,
+    force: bool = False,
+):
     from frictiondisk.campaign.journal import CampaignLocked
-    from frictiondisk.campaign.runner import CampaignChanged, CampaignInterrupted, run_campaign
+    from frictiondisk.campaign.preflight import preflight
+    from frictiondisk.campaign.runner import (
+        CampaignChanged,
+        CampaignInterrupted,
+        SchedulerFailed,
+        run_campaign,
+    )
     from frictiondisk.config import ConfigError
+    from frictiondisk.paths import describe_os_error
 
+    problems = preflight(campaign, out_dir, workers, scheduler, force)
+    if problems:
+        fail(f"{out_dir}: cannot start (nothing was created)", problems)
     try:
-        summary = run_campaign(campaign, out_dir, workers, scheduler, processes)
+        summary = run_campaign(
+            campaign, out_dir, workers, scheduler, processes, worker_wait=worker_wait
+        )
     except CampaignChanged as exc:
         fail(f"{out_dir}: the campaign differs from the one this directory holds", exc.differences)
     except CampaignLocked as exc:
@@ -33,8 +55,23 @@ def _execute(campaign, out_dir: Path, workers: int, scheduler: str | None, proce
         fail(str(exc), [], EXIT_INTERRUPTED)
     except ConfigError as exc:
         fail(f"{out_dir}/campaign.yaml", list(exc.problems))
+    except SchedulerFailed as exc:
+        fail(str(exc), [f"continue with: frictiondisk resume {out_dir}"])
     except FileNotFoundError as exc:
-        fail(str(exc), [])
+        fail(str(exc) if exc.filename is None else describe_os_error(exc), [])
+    except OSError as exc:
+        fail(
+            describe_os_error(exc, exc.filename or out_dir),
+            [f"finished runs are in the journal; fix this, then: frictiondisk resume {out_dir}"],
+        )
+    for line in summary.moved_aside:
+        click.echo(f"journal: rejected and recomputed: {line}", err=True)
+    if summary.moved_aside:
+        click.echo(
+            f"journal: {len(summary.moved_aside)} entries failed verification; they are kept "
+            f"in {out_dir / 'journal' / 'corrupt'}",
+            err=True,
+        )
     click.echo(
         f"done: {summary.points} points ({summary.points_failed} failed), "
         f"{summary.runs_total} runs used, {summary.runs_computed} computed now, "
@@ -50,13 +87,21 @@ _workers = click.option(
     type=click.IntRange(1, 256),
     default=2,
     show_default=True,
-    help="Local Dask workers (ignored with --scheduler).",
+    help="Local Dask workers (ignored with --scheduler); at most 4 per CPU core.",
 )
 _scheduler = click.option(
     "--scheduler",
     metavar="ADDRESS",
     default=None,
     help="Use an existing Dask scheduler (e.g. tcp://host:8786) instead of a local cluster.",
+)
+_worker_wait = click.option(
+    "--worker-wait",
+    type=click.FloatRange(0, 86_400),
+    default=60.0,
+    show_default=True,
+    metavar="SECONDS",
+    help="With --scheduler: fail after this long without a live worker (warns at once).",
 )
 _processes = click.option(
     "--processes/--threads",
@@ -78,8 +123,22 @@ _processes = click.option(
 )
 @_workers
 @_scheduler
+@_worker_wait
 @_processes
-def run(campaign_file: Path, out_dir: Path, workers: int, scheduler, processes: bool) -> None:
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run a campaign over the size limits (points, runs, memory) anyway.",
+)
+def run(
+    campaign_file: Path,
+    out_dir: Path,
+    workers: int,
+    scheduler,
+    worker_wait: float,
+    processes: bool,
+    force: bool,
+) -> None:
     """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it."""
     from frictiondisk.campaign.spec import load_campaign
     from frictiondisk.config import ConfigError
@@ -90,17 +149,20 @@ def run(campaign_file: Path, out_dir: Path, workers: int, scheduler, processes: 
         campaign = load_campaign(campaign_file)
     except ConfigError as exc:
         fail(str(campaign_file), list(exc.problems))
-    _execute(campaign, out_dir, workers, scheduler, processes)
+    _execute(campaign, out_dir, workers, scheduler, processes, worker_wait, force)
 
 
 @click.command()
 @click.argument("out_dir", type=click.Path(file_okay=False, path_type=Path))
 @_workers
 @_scheduler
+@_worker_wait
 @_processes
-def resume(out_dir: Path, workers: int, scheduler, processes: bool) -> None:
+def resume(out_dir: Path, workers: int, scheduler, worker_wait: float, processes: bool) -> None:
     """Continue the campaign in DIR from its journal (no finished run is computed again)."""
-    _execute(None, out_dir, workers, scheduler, processes)
+    if not (out_dir / "campaign.yaml").is_file():
+        fail(f"{out_dir} is not a campaign directory (no campaign.yaml)", [])
+    _execute(None, out_dir, workers, scheduler, processes, worker_wait)
 
 
 @click.command()
@@ -110,17 +172,21 @@ def status(out_dir: Path) -> None:
     from frictiondisk.campaign.journal import CampaignLock, Journal
     from frictiondisk.campaign.runner import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
     from frictiondisk.files import netcdf_is_valid
+    from frictiondisk.paths import describe_os_error, refuse_symlink
 
     if not (out_dir / CAMPAIGN_FILE).is_file():
         fail(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})", [])
     info = {}
     status_file = out_dir / STATUS_FILE
-    if status_file.is_file():
-        try:
+    try:
+        refuse_symlink(status_file)
+        if status_file.is_file():
             info = json.loads(status_file.read_text())
-        except ValueError:
-            info = {}
-    holder = CampaignLock.holder(out_dir)
+        holder = CampaignLock.holder(out_dir)
+    except ValueError:
+        info, holder = {}, CampaignLock.holder(out_dir)
+    except OSError as exc:
+        fail(describe_os_error(exc), [])
     # a trajectory campaign keeps no journal: its one run is counted in status.json
     runs_done = Journal.count(out_dir) or int(info.get("runs_done", 0))
     state = info.get("state", "not started")
@@ -150,4 +216,42 @@ def status(out_dir: Path) -> None:
         lines.append(f"results.nc is missing or damaged; rebuild it: frictiondisk resume {out_dir}")
     elif state in ("interrupted", "not started"):
         lines.append(f"continue with: frictiondisk resume {out_dir}")
+    lines += _journal_report(out_dir)
+    lines += _edit_report(out_dir)
     click.echo("\n".join(lines))
+
+
+def _edit_report(out_dir: Path) -> list[str]:
+    """Lines saying that DIR/campaign.yaml was edited by hand (resume refuses it)."""
+    from frictiondisk.campaign.runner import CAMPAIGN_FILE, record_differences
+    from frictiondisk.campaign.spec import load_campaign
+    from frictiondisk.config import ConfigError
+
+    try:
+        differences = record_differences(out_dir, load_campaign(out_dir / CAMPAIGN_FILE))
+    except ConfigError as exc:
+        differences = [f"{out_dir / CAMPAIGN_FILE} no longer validates:", *exc.problems]
+    if not differences:
+        return []
+    return [f"campaign:  resume will refuse: {differences[0]}"] + [
+        f"  {line}" for line in differences[1:]
+    ]
+
+
+def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
+    """Lines on journal entries that fail verification now, and those moved aside before."""
+    from frictiondisk.campaign.journal import Journal
+
+    failing, moved = Journal.audit(out_dir)
+    lines = []
+    if failing:
+        lines.append(
+            f"journal:   {len(failing)} entries fail verification and will not be used "
+            "(resume moves each one it needs to journal/corrupt/ and recomputes it):"
+        )
+        lines += [f"  {line}" for line in failing[:shown]]
+        lines += [f"  ... and {len(failing) - shown} more"] if len(failing) > shown else []
+    if moved:
+        lines.append(f"journal:   {len(moved)} entries were moved aside to journal/corrupt/:")
+        lines += [f"  {line}" for line in moved[-shown:]]
+    return lines

@@ -6,12 +6,20 @@ Layout of a campaign directory DIR::
     DIR/journal/<kk>/<key>.json     one entry per finished run, kk = key[:2]
     DIR/journal/computed.log        one line "<key>" appended per put (what was computed, when)
     DIR/journal/corrupt/<key>.<n>.json   entries that failed verification, kept for inspection
+    DIR/journal/corrupt/reasons.log      one line "<key>.<n>.json<TAB><reason>" per entry moved
 
 A run is addressed by its key (`run_key`): the sha256 of its canonical scene plus the
 kernel version, so a changed input or changed numerics give a new key and an old entry is
 simply never looked up again. Each entry is written to a temporary file and renamed
 (`Journal.put`), so a crash leaves either no entry or a complete one; a reader still verifies
 every entry (`Journal.get`) and treats anything that fails as absent, i.e. to be recomputed.
+
+Integrity (issue 14). An entry stores its run's full canonical scene (`inputs`); on read the
+key is recomputed from them, so an entry filed under another run's key (a copy, a mix-up, an
+edited input) is rejected. No symbolic link inside DIR is followed: the lock, the log and
+every entry are opened with O_NOFOLLOW, and a linked journal folder is refused. Threat model:
+this protects against corruption and mix-ups, not against a malicious writer to DIR, who can
+always write a self-consistent entry.
 """
 
 from __future__ import annotations
@@ -33,6 +41,7 @@ from types import TracebackType
 from typing import Any
 
 from frictiondisk.files import TEMP_SUFFIX, fsync_directory, temporary_name
+from frictiondisk.paths import SymlinkRefused, refuse_symlink
 
 __all__ = [
     "ENTRY_VERSION",
@@ -44,6 +53,7 @@ __all__ = [
 ]
 
 ENTRY_VERSION = 1
+_REASONS_LOG = "reasons.log"  # in journal/corrupt/: why each entry was moved there
 _ENTRY_FIELDS = ("version", "key", "inputs", "result", "sha256")
 _KEY = re.compile(r"[0-9a-f]{64}")  # a sha256 hex digest, as made by run_key
 _PACKAGE_ROOT = Path(__file__).resolve().parent.parent  # the `frictiondisk` package folder
@@ -115,6 +125,37 @@ def run_key(config: Any) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
+class _Inputs:
+    """Stored canonical inputs, seen by `run_key` as the config they came from."""
+
+    def __init__(self, canonical: dict[str, Any]) -> None:
+        self._canonical = canonical
+
+    def canonical(self) -> dict[str, Any]:
+        return self._canonical
+
+
+def key_of_inputs(inputs: dict[str, Any]) -> str:
+    """The key `run_key` gives the config whose canonical form is `inputs` (current numerics)."""
+    return run_key(_Inputs(inputs))
+
+
+def _open_nofollow(path: Path, flags: int, mode: int = 0o666) -> int:
+    """os.open with O_NOFOLLOW; a symbolic link raises SymlinkRefused naming `path`."""
+    try:
+        return os.open(path, flags | os.O_NOFOLLOW, mode)
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            raise SymlinkRefused(path) from None
+        raise
+
+
+def _read_nofollow(path: Path) -> bytes:
+    fd = _open_nofollow(path, os.O_RDONLY)
+    with open(fd, "rb") as fh:
+        return fh.read()
+
+
 def _check_key(key: Any) -> str:
     if not isinstance(key, str) or not _KEY.fullmatch(key):
         raise ValueError(
@@ -173,34 +214,37 @@ class Journal:
 
     def __init__(self, campaign_dir: str | os.PathLike[str]) -> None:
         self.campaign_dir = Path(campaign_dir)
-        self.path = self.campaign_dir / "journal"
+        self.path = refuse_symlink(self.campaign_dir / "journal")
         self.path.mkdir(parents=True, exist_ok=True)
-        self.log_path = self.path / "computed.log"
-        self.corrupt_dir = self.path / "corrupt"
+        self.log_path = refuse_symlink(self.path / "computed.log")
+        self.corrupt_dir = refuse_symlink(self.path / "corrupt")
         self.n_corrupt = 0
         self.corrupt_reasons: list[str] = []
 
     def entry_path(self, key: str) -> Path:
         """Where the entry of `key` lives: `path/<key[:2]>/<key>.json`."""
         _check_key(key)
-        return self.path / key[:2] / f"{key}.json"
+        return refuse_symlink(self.path / key[:2]) / f"{key}.json"
 
     # reading ------------------------------------------------------------------------------
 
     def get(self, key: str) -> dict[str, Any] | None:
         """The stored result of run `key`, or None if there is none or it is not trustworthy.
 
-        An entry is trusted only if it is UTF-8 JSON with the fields version (= 1), key,
-        inputs, result and sha256, its key equals `key` and its sha256 matches the canonical
-        JSON of {"key", "inputs", "result"}. Otherwise it is moved to
+        An entry is trusted only if it is a regular file (not a symbolic link) of UTF-8 JSON
+        with the fields version (= 1), key, inputs, result and sha256, its key equals `key`,
+        its sha256 matches the canonical JSON of {"key", "inputs", "result"} and its inputs
+        give `key` again (`key_of_inputs`). Otherwise it is moved to
         `corrupt/<key>.<n>.json`, counted in `n_corrupt`, explained in `corrupt_reasons` and
         None is returned. A missing entry gives None and is not counted.
         """
         path = self.entry_path(key)
         try:
-            raw = path.read_bytes()
+            raw = _read_nofollow(path)
         except FileNotFoundError:
             return None
+        except SymlinkRefused:
+            return self._corrupt(key, path, "a symbolic link (never followed)")
         except OSError as err:
             return self._corrupt(key, path, f"unreadable ({err.strerror or err})")
         entry, reason = self._verify(key, raw)
@@ -215,9 +259,11 @@ class Journal:
         Writes nothing (no folder is created, a bad entry stays where it is for the driver's
         `get` to deal with), so a worker may call it while the driver holds the lock."""
         _check_key(key)
-        path = Path(campaign_dir) / "journal" / key[:2] / f"{key}.json"
+        shard = Path(campaign_dir) / "journal" / key[:2]
+        if shard.is_symlink() or shard.parent.is_symlink():
+            return None
         try:
-            raw = path.read_bytes()
+            raw = _read_nofollow(shard / f"{key}.json")
         except OSError:
             return None
         entry, reason = cls._verify(key, raw)
@@ -249,16 +295,75 @@ class Journal:
             return None, "contains NaN or infinity"
         if entry["sha256"] != digest:
             return None, "sha256 mismatch (content altered)"
+        try:
+            from_inputs = key_of_inputs(entry["inputs"])
+        except (TypeError, ValueError) as err:
+            return None, f"inputs cannot be hashed ({err})"
+        if from_inputs != key:
+            return None, (
+                f"its inputs give key {from_inputs[:12]}..., not {key[:12]}... "
+                "(an entry of another run, edited inputs, or other numerics)"
+            )
         return entry, None
+
+    @classmethod
+    def audit(cls, campaign_dir: str | os.PathLike[str]) -> tuple[list[str], list[str]]:
+        """Read-only check of a journal for `status`: (problems of the entries present,
+        reasons of the entries already moved to corrupt/), one line each.
+
+        An entry whose inputs give another key under the current numerics is listed too:
+        it is either stale (written by other numerics: never looked up again) or filed
+        under the wrong key; `get` moves it aside only if a run asks for its key."""
+        journal = Path(campaign_dir) / "journal"
+        problems: list[str] = []
+        if journal.is_symlink():
+            return [f"{journal}: a symbolic link; refusing to follow it"], []
+        if not journal.is_dir():
+            return [], []
+        for shard in sorted(journal.iterdir()):
+            if len(shard.name) != 2:
+                continue
+            if shard.is_symlink():
+                problems.append(f"{shard.name}/: a symbolic link; refusing to follow it")
+                continue
+            if not shard.is_dir():
+                continue
+            for path in sorted(shard.glob("*.json")):
+                key = path.stem
+                if not _KEY.fullmatch(key):
+                    continue
+                try:
+                    raw = _read_nofollow(path)
+                except SymlinkRefused:
+                    problems.append(f"{key}: a symbolic link (never followed)")
+                    continue
+                except OSError as err:
+                    problems.append(f"{key}: unreadable ({err.strerror or err})")
+                    continue
+                _, reason = cls._verify(key, raw)
+                if reason is not None:
+                    problems.append(f"{key}: {reason}")
+        return problems, cls.moved_aside(campaign_dir)
+
+    @staticmethod
+    def moved_aside(campaign_dir: str | os.PathLike[str]) -> list[str]:
+        """Lines "<file>: <reason>" of every entry moved to corrupt/ so far (reasons.log)."""
+        log = Path(campaign_dir) / "journal" / "corrupt" / _REASONS_LOG
+        try:
+            data = _read_nofollow(log)
+        except OSError:
+            return []
+        lines = data.decode("utf-8", "replace").splitlines()
+        return [line.replace("\t", ": ", 1) for line in lines if "\t" in line]
 
     def _corrupt(self, key: str, path: Path, reason: str) -> None:
         """Move a bad entry to `corrupt/<key>.<n>.json` (first free n >= 1) and record why."""
         self.n_corrupt += 1
         self.corrupt_reasons.append(f"{key}: {reason}")
-        self.corrupt_dir.mkdir(exist_ok=True)
+        refuse_symlink(self.corrupt_dir).mkdir(exist_ok=True)
         for n in range(1, 1_000_000):
             target = self.corrupt_dir / f"{key}.{n}.json"
-            if target.exists():
+            if os.path.lexists(target):
                 continue
             try:
                 os.rename(path, target)
@@ -269,6 +374,7 @@ class Journal:
                 return None
             fsync_directory(path.parent)
             fsync_directory(self.corrupt_dir)
+            self._append(self.corrupt_dir / _REASONS_LOG, f"{target.name}\t{reason}\n")
             return None
         return None
 
@@ -276,7 +382,7 @@ class Journal:
         """Sorted keys of the entries present (not verified; `get` verifies)."""
         found = []
         for shard in self.path.iterdir():
-            if len(shard.name) != 2 or not shard.is_dir():
+            if len(shard.name) != 2 or shard.is_symlink() or not shard.is_dir():
                 continue
             for entry in shard.glob("*.json"):
                 key = entry.stem
@@ -303,7 +409,7 @@ class Journal:
         ignored. A key counted more than once was computed more than once.
         """
         try:
-            data = self.log_path.read_bytes()
+            data = _read_nofollow(self.log_path)
         except FileNotFoundError:
             return collections.Counter()
         lines = data.split(b"\n")[:-1]  # the part after the last newline is incomplete
@@ -360,7 +466,7 @@ class Journal:
         # compact: indent would switch json to its pure-Python encoder (3x slower here)
         data = (json.dumps(entry, sort_keys=True, allow_nan=False) + "\n").encode()
 
-        path = self.entry_path(key)
+        path = self.entry_path(key)  # refuses a linked shard folder
         if not path.parent.is_dir():
             path.parent.mkdir(exist_ok=True)
         tmp = temporary_name(path)
@@ -369,17 +475,24 @@ class Journal:
             with open(fd, "wb") as fh:
                 fh.write(data)
             os.replace(tmp, path)
-        except BaseException:
+        except BaseException as err:
             with contextlib.suppress(OSError):
                 tmp.unlink()
+            if isinstance(err, OSError) and err.filename is None:  # name the file (issue 14)
+                raise OSError(err.errno, err.strerror, str(path)) from err
             raise
         self._log(key)
 
     def _log(self, key: str) -> None:
         """Append `<key>\\n` to computed.log in one write (O_APPEND: atomic per line)."""
-        fd = os.open(self.log_path, os.O_RDWR | os.O_APPEND | os.O_CREAT, 0o666)
+        self._append(self.log_path, f"{key}\n")
+
+    @staticmethod
+    def _append(path: Path, text: str) -> None:
+        """Append one line to `path` in one write (O_APPEND, O_NOFOLLOW)."""
+        fd = _open_nofollow(path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
         try:
-            line = f"{key}\n".encode()
+            line = text.encode()
             size = os.fstat(fd).st_size
             if size and os.pread(fd, 1, size - 1) != b"\n":
                 # A previous append was cut short: end that line first, so it cannot
@@ -397,6 +510,8 @@ class Journal:
         """
         removed = 0
         for tmp in self.path.glob(f"??/.*{TEMP_SUFFIX}"):
+            if tmp.parent.is_symlink():  # never reach outside DIR through a linked shard
+                continue
             with contextlib.suppress(FileNotFoundError):
                 tmp.unlink()
                 removed += 1
@@ -500,7 +615,7 @@ class CampaignLock:
         if self._fd is not None:
             raise RuntimeError(f"the lock of {self.campaign_dir} is already held by this object")
         self.campaign_dir.mkdir(parents=True, exist_ok=True)
-        fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o666)
+        fd = _open_nofollow(self.path, os.O_RDWR | os.O_CREAT)
         try:
             deadline = time.monotonic() + _WAIT_FOR_HOLDER_INFO
             while not _try_flock(fd, fcntl.LOCK_EX):
@@ -554,7 +669,7 @@ class CampaignLock:
         the lock is held but the holder's PID could not be read within a second.
         """
         try:
-            fd = os.open(Path(campaign_dir) / "lock", os.O_RDONLY)
+            fd = _open_nofollow(Path(campaign_dir) / "lock", os.O_RDONLY)
         except FileNotFoundError:
             return None
         try:

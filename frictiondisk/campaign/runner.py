@@ -5,13 +5,17 @@ finished run to the journal at once, and replays the planner from the journal fi
 an interrupted campaign resumes without computing a finished run again and loses at most
 the runs that were in flight.
 
-DIR layout: campaign.yaml (the campaign as first run), journal/ (one file per run),
-status.json (progress, rewritten while running), results.nc, runs.nc, lock.
+DIR layout: campaign.yaml (the campaign as first run), campaign.record.json (its sha256
+and canonical form: a hand-edited campaign.yaml is refused), journal/ (one file per run),
+status.json (progress, rewritten while running), results.nc, runs.nc, lock. None of these
+may be a symbolic link (issue 14): the driver refuses to start rather than follow one.
 """
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import hashlib
 import json
 import os
 import sys
@@ -22,17 +26,36 @@ from typing import Any
 from frictiondisk.campaign import datasets
 from frictiondisk.campaign.journal import CampaignLock, Journal, run_key
 from frictiondisk.campaign.plan import planner_for
-from frictiondisk.campaign.spec import Campaign, load_campaign
+from frictiondisk.campaign.spec import Campaign, campaign_from_dict, load_campaign
 from frictiondisk.campaign.tasks import warm_up
+from frictiondisk.config import ConfigError
 from frictiondisk.files import atomic_write_netcdf, atomic_write_text
+from frictiondisk.paths import refuse_symlink
 
 CAMPAIGN_FILE = "campaign.yaml"
+RECORD_FILE = "campaign.record.json"  # sha256 and canonical form of campaign.yaml
 STATUS_FILE = "status.json"
 RESULTS_FILE = "results.nc"
 RUNS_FILE = "runs.nc"
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
 BAR_EVERY = 0.2  # [s] between progress-bar repaints
 MAX_WORKER_FAILURES = 3  # resubmissions of a run whose worker died
+SCHEDULER_TIMEOUT = 10.0  # [s] for the client to connect to --scheduler
+WORKER_WAIT = 60.0  # [s] default wait for a live worker (--worker-wait)
+POLL = 5.0  # [s] between checks for live workers while waiting on --scheduler
+# Every name the driver reads or writes in DIR: none may be a symbolic link.
+_DIR_NAMES = (
+    "lock",
+    CAMPAIGN_FILE,
+    RECORD_FILE,
+    STATUS_FILE,
+    RESULTS_FILE,
+    RUNS_FILE,
+    "trajectory.nc",
+    "journal",
+    "journal/computed.log",
+    "journal/corrupt",
+)
 
 
 class CampaignChanged(Exception):
@@ -45,6 +68,10 @@ class CampaignChanged(Exception):
             f"(start a new directory, or resume with the original file):\n  "
             + "\n  ".join(differences)
         )
+
+
+class SchedulerFailed(Exception):
+    """--scheduler cannot be used: unreachable, or no worker alive for too long."""
 
 
 class CampaignInterrupted(Exception):
@@ -61,6 +88,7 @@ class RunSummary:
     wall_s: float
     results: Path
     runs: Path
+    moved_aside: list[str] = dataclasses.field(default_factory=list)  # rejected entries
 
 
 def prepare_directory(out_dir: Path, campaign: Campaign | None) -> Campaign:
@@ -68,6 +96,7 @@ def prepare_directory(out_dir: Path, campaign: Campaign | None) -> Campaign:
     stored_file = out_dir / CAMPAIGN_FILE
     if stored_file.exists():
         stored = load_campaign(stored_file)
+        _check_record(out_dir, stored)
         if campaign is None:
             return stored
         differences = stored.diff(campaign)
@@ -78,7 +107,66 @@ def prepare_directory(out_dir: Path, campaign: Campaign | None) -> Campaign:
         raise FileNotFoundError(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})")
     out_dir.mkdir(parents=True, exist_ok=True)
     atomic_write_text(stored_file, campaign.text)
+    _write_record(out_dir, campaign)
     return campaign
+
+
+def _text_digest(campaign: Campaign) -> str:
+    return hashlib.sha256(campaign.text.encode()).hexdigest()
+
+
+def _write_record(out_dir: Path, campaign: Campaign) -> None:
+    record = {"sha256": _text_digest(campaign), "canonical": campaign.canonical()}
+    atomic_write_text(out_dir / RECORD_FILE, json.dumps(record, indent=1) + "\n")
+
+
+def _check_record(out_dir: Path, stored: Campaign) -> None:
+    """Refuse a DIR/campaign.yaml edited since the campaign started, naming each change.
+    A DIR from before the record existed gets one now."""
+    if not (out_dir / RECORD_FILE).exists():
+        _write_record(out_dir, stored)
+        return
+    differences = record_differences(out_dir, stored)
+    if differences:
+        raise CampaignChanged(out_dir, differences)
+
+
+def record_differences(out_dir: Path, stored: Campaign) -> list[str]:
+    """Read-only: how DIR/campaign.yaml (`stored`) differs from its record, one line per
+    changed field after a header line; [] if unedited or if there is no record.
+
+    Its text matching the recorded sha256 is the fast path. Otherwise the recorded
+    canonical form decides, like a changed campaign file: an edit that changes nothing
+    (a comment) is accepted, anything else is a difference."""
+    path = out_dir / RECORD_FILE
+    if not path.exists():
+        return []
+    try:
+        record = json.loads(refuse_symlink(path).read_text(encoding="utf-8"))
+        if record["sha256"] == _text_digest(stored):
+            return []
+        original = campaign_from_dict(record["canonical"], source=str(path))
+    except (ValueError, KeyError, TypeError, ConfigError) as err:
+        return [
+            f"{path} is damaged ({type(err).__name__}); cannot tell whether "
+            f"{CAMPAIGN_FILE} was edited"
+        ]
+    differences = original.diff(stored)
+    if not differences:
+        return []
+    return [f"{out_dir / CAMPAIGN_FILE} was edited after the campaign started:", *differences]
+
+
+def _refuse_links(out_dir: Path) -> None:
+    """SymlinkRefused (an OSError naming the path) if any name the driver uses in DIR, or
+    any journal shard folder, is a symbolic link."""
+    for name in _DIR_NAMES:
+        refuse_symlink(out_dir / name)
+    journal = out_dir / "journal"
+    if journal.is_dir():
+        for shard in journal.iterdir():
+            if len(shard.name) == 2:
+                refuse_symlink(shard)
 
 
 def run_campaign(
@@ -88,18 +176,28 @@ def run_campaign(
     scheduler: str | None = None,
     processes: bool = False,
     progress: bool = True,
+    worker_wait: float = WORKER_WAIT,
 ) -> RunSummary:
-    """Run (or resume, with campaign=None) the campaign in out_dir."""
+    """Run (or resume, with campaign=None) the campaign in out_dir.
+
+    worker_wait: with `scheduler`, how long [s] to wait for a live worker before giving up
+    (SchedulerFailed); a warning goes to stderr as soon as none is alive."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
+    _refuse_links(out_dir)
     with CampaignLock(out_dir):
         campaign = prepare_directory(out_dir, campaign)
         if campaign.kind == "trajectory":
             return _run_trajectory(campaign, out_dir)
         Journal(out_dir).clean_temp_files()  # left by a put that was killed mid-write
         driver = _Driver(campaign, out_dir, progress)
+        driver.worker_wait = worker_wait
         try:
             return driver.run(workers, scheduler, processes)
+        except (SchedulerFailed, OSError):
+            with contextlib.suppress(OSError):  # a full disk may refuse this too
+                driver.interrupted()
+            raise
         except KeyboardInterrupt:
             driver.interrupted()
             raise CampaignInterrupted(
@@ -191,6 +289,8 @@ class _Driver:
         self._last_status = 0.0
         self._last_bar = 0.0
         self._bar = None
+        self.scheduled = False  # True with --scheduler: watch for live workers
+        self.worker_wait = WORKER_WAIT
 
     # ---- the loop -----------------------------------------------------------------------
     def run(self, workers: int, scheduler: str | None, processes: bool) -> RunSummary:
@@ -215,7 +315,14 @@ class _Driver:
 
         warm_up()  # compile once here, so workers load the cache instead of racing on it
         if scheduler:
-            client, cluster = Client(scheduler), None
+            try:
+                client, cluster = Client(scheduler, timeout=SCHEDULER_TIMEOUT), None
+            except (OSError, TimeoutError, ValueError) as err:
+                raise SchedulerFailed(
+                    f"--scheduler {scheduler}: cannot connect within {SCHEDULER_TIMEOUT:g} s "
+                    f"({type(err).__name__}: {err})"
+                ) from None
+            self.scheduled = True
         else:
             cluster = LocalCluster(
                 n_workers=workers,
@@ -253,9 +360,42 @@ class _Driver:
                 break
             if not self.in_flight:
                 raise RuntimeError("campaign stalled: no job in flight and none to submit")
+            if self.scheduled:
+                self._wait_with_workers(client)
             for future, value in self._done_queue.next_batch(block=True):
                 self._collect(client, future, value)
             self._tick()
+
+    def _wait_with_workers(self, client) -> None:
+        """Wait for a job to finish on --scheduler, checking every POLL seconds that some
+        worker is alive: warn at once when none is, raise SchedulerFailed after
+        `worker_wait` seconds without one."""
+        from distributed import wait
+
+        futures = [entry[-1] for entry in self.in_flight.values()]
+        alone_since = None
+        while True:
+            try:
+                wait(futures, timeout=POLL, return_when="FIRST_COMPLETED")
+                return
+            except TimeoutError:
+                pass
+            if client.scheduler_info().get("workers"):
+                alone_since = None
+                continue
+            now = time.monotonic()
+            if alone_since is None:
+                alone_since = now
+                print(
+                    f"warning: no worker is alive at the scheduler; waiting up to "
+                    f"{self.worker_wait:g} s for one (--worker-wait)",
+                    file=sys.stderr,
+                )
+            elif now - alone_since >= self.worker_wait:
+                raise SchedulerFailed(
+                    f"no worker alive at the scheduler for {self.worker_wait:g} s; "
+                    "start workers and resume (the journal keeps every finished run)"
+                )
 
     def _submit(self, client, job: int, function, args: tuple) -> None:
         future = client.submit(function, *args, pure=False)
@@ -364,6 +504,7 @@ class _Driver:
             wall_s=time.perf_counter() - self.t0,
             results=Path(results),
             runs=Path(runs),
+            moved_aside=list(self.journal.corrupt_reasons),
         )
 
 

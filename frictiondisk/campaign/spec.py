@@ -45,6 +45,7 @@ from pydantic.fields import FieldInfo
 # scene messages: _show/_kind render values, _requirement says what a scene field accepts.
 from frictiondisk.config import (
     _DOTTED_KEY,
+    MAX_HORIZON,
     ConfigError,
     Numerics,
     SceneConfig,
@@ -85,6 +86,7 @@ PRESCAN_KEYS = ("mu", "mode")
 TRAJECTORY_KEYS = ("dt_out", "show")
 TRAJECTORY_SHOW = ("whole", "cycle")
 LINSPACE_KEYS = ("start", "stop", "num")
+MAX_AXIS_VALUES = 10_000  # values of one varied key (each is validated as a scene)
 
 # find_jump defaults (MODEL.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
 DEFAULT_TOL = 1.0e-4
@@ -98,6 +100,7 @@ DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching insta
 _NAME = re.compile(r"[A-Za-z0-9_-]+")
 _MODE_FIELD = Numerics.model_fields["mode"]
 _MISSING: Any = object()  # a key not given at all (unlike a null value)
+_FLOAT_MAX = 1.7976931348623157e308
 _SYMBOLS = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
 _COMPARE = {"gt": operator.gt, "ge": operator.ge, "lt": operator.lt, "le": operator.le}
 
@@ -410,6 +413,8 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
         counts=(1, 2),
         taken={"params.mu": "params.mu is the bisected parameter; it cannot also be varied"},
     )
+    if base is not None and None not in (max_retries, horizon_factor):
+        _check_retry_horizon(base, prescan, max_retries, horizon_factor, problems)
     if None in (bracket, tol, limits, max_retries, horizon_factor, lanes, along):
         return None
     return FindJump(
@@ -423,6 +428,30 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
         along=along,
         prescan=prescan,
     )
+
+
+def _check_retry_horizon(
+    base: SceneConfig,
+    prescan: Prescan | None,
+    max_retries: int,
+    horizon_factor: float,
+    problems: list[str],
+) -> None:
+    """The last retry's horizon, horizon * horizon_factor**max_retries, must stay finite
+    and <= MAX_HORIZON (compared in logs: the power itself may overflow)."""
+    num = base.numerics
+    modes = {num.mode} | ({prescan.mode} if prescan else set())
+    horizon = max(num.t_max if mode == "converge" else num.t_decide for mode in modes)
+    if max_retries and (
+        math.log(horizon) + max_retries * math.log(horizon_factor) > math.log(MAX_HORIZON)
+    ):
+        top = (MAX_HORIZON / horizon) ** (1.0 / max_retries)
+        problems.append(
+            f"find_jump.horizon_factor: {_show(horizon_factor)} is out of range: with "
+            f"max_retries {max_retries} the last retry would run {horizon:g} s x "
+            f"{_show(horizon_factor)}^{max_retries}, beyond the largest horizon "
+            f"{MAX_HORIZON:g} s: must be > 1 and <= {top:.6g}"
+        )
 
 
 def _prescan(data: Any, base: SceneConfig | None, problems: list[str]) -> Prescan | None:
@@ -489,6 +518,13 @@ def _trajectory(data: Any, base: SceneConfig | None, problems: list[str]) -> Tra
             f"set numerics.mode: converge (got {base.numerics.mode!r})"
         )
         show = None
+    if dt_out is not None and base is not None:
+        from frictiondisk.limits import recording_problem
+
+        problem = recording_problem(base, dt_out, "trajectory.dt_out")
+        if problem is not None:
+            problems.append(problem)
+            dt_out = None
     if None in (dt_out, show):
         return None
     return Trajectory(dt_out=dt_out, show=show)
@@ -596,8 +632,11 @@ def _number(
         hint = " (write numbers without quotes)" if isinstance(value, str) else ""
         problems.append(f"{path}: {_show(value)} is {_kind(value)}, not {noun}: {must}{hint}")
         return None
-    if not math.isfinite(value):
+    if isinstance(value, float) and not math.isfinite(value):
         problems.append(f"{path}: {_show(value)} is not allowed: {must}")
+        return None
+    if not integer and abs(value) > _FLOAT_MAX:  # a huge YAML integer: no float holds it
+        problems.append(f"{path}: {_show(value)} is out of range: {must}, |x| <= {_FLOAT_MAX}")
         return None
     if not all(_COMPARE[name](value, bound) for name, bound in bounds.items()):
         problems.append(f"{path}: {_show(value)} is out of range: must be {limits}")
@@ -634,7 +673,14 @@ def _values(value: Any, path: str, problems: list[str]) -> tuple[float, ...] | N
         spec = _mapping(value, path, LINSPACE_KEYS, problems)
         start = _number(spec.get("start", _MISSING), f"{path}.start", problems)
         stop = _number(spec.get("stop", _MISSING), f"{path}.stop", problems)
-        num = _number(spec.get("num", _MISSING), f"{path}.num", problems, integer=True, ge=1)
+        num = _number(
+            spec.get("num", _MISSING),
+            f"{path}.num",
+            problems,
+            integer=True,
+            ge=1,
+            le=MAX_AXIS_VALUES,
+        )
         if None in (start, stop, num) or len(spec) < len(value):
             return None
         if num > 1 and start == stop:
@@ -650,6 +696,9 @@ def _values(value: Any, path: str, problems: list[str]) -> tuple[float, ...] | N
         return None
     if not value:
         problems.append(f"{path}: empty list: give at least one number")
+        return None
+    if len(value) > MAX_AXIS_VALUES:
+        problems.append(f"{path}: {len(value)} values: allowed at most {MAX_AXIS_VALUES}")
         return None
     items = [_number(item, f"{path}[{i}]", problems) for i, item in enumerate(value)]
     if None in items:

@@ -103,10 +103,11 @@ def _record(rec_t, rec_y, rec_m, out_i, t, y, modes):
 
 @kernel_jit
 def _record_dense(rec_t, rec_y, rec_m, out_i, t0, h, s_end, y0, y1, wk, modes, dt_out, ybuf):
-    """Record dense-output samples at multiples of dt_out in (t0, t0 + s_end h]."""
+    """Record dense-output samples at multiples of dt_out in (t0, t0 + s_end h]; none once
+    the buffer is full (C_TRUNCATED), so a tiny dt_out cannot loop without bound."""
     t_end = t0 + s_end * h
     k = math.floor(t0 / dt_out) + 1
-    while k * dt_out <= t_end:
+    while k * dt_out <= t_end and out_i[C_TRUNCATED] == 0:
         s = (k * dt_out - t0) / h
         dense_eval(y0, y1, wk, s, ybuf)
         _record(rec_t, rec_y, rec_m, out_i, k * dt_out, ybuf, modes)
