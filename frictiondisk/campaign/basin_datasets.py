@@ -18,7 +18,7 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.campaign import basin_stats
-from frictiondisk.campaign.basin_plan import SampleRequest, not_stick_outcomes
+from frictiondisk.campaign.basin_plan import STICK, SampleRequest, not_stick_outcomes
 from frictiondisk.campaign.datasets import (
     RUN_MEASURES,
     _coords,
@@ -43,7 +43,7 @@ def _basin_attrs(campaign, outcomes: tuple[str, ...]) -> dict[str, Any]:
     task = campaign.task
     attrs = {**campaign_attrs(campaign), "basin_mode": "map" if task.is_map else "sample"}
     if task.is_map:
-        return attrs
+        return attrs | {"mu": campaign.base.params.mu}  # the map's (fixed) friction coefficient
     large = ", ".join(not_stick_outcomes(outcomes))
     attrs |= {
         "seed": task.seed,
@@ -193,3 +193,31 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
         values = np.asarray([_num(r[2].get(name)) for r in rows])
         data_vars[name] = ("run", values, {"units": units, "long_name": long_name})
     return xr.Dataset(data_vars, attrs=_basin_attrs(campaign, outcome_list(planner)))
+
+
+def summary_lines(results: xr.Dataset) -> list[str]:
+    """One line per point of a basin results.nc: the stick and not-stick fractions with
+    their 95 % Wilson intervals and n (a map: the fraction of cells of each outcome)."""
+    outcomes = [str(o) for o in results["outcome"].values]
+    if results.attrs.get("basin_mode") == "map":
+        shares = ", ".join(
+            f"{o} {float(f):.3f}"
+            for o, f in zip(outcomes, results["fraction"].values, strict=True)
+            if f > 0
+        )
+        return [f"basin map, {int(results['n_samples'])} cells: {shares}"]
+    dims = list(results["n_samples"].dims)
+    stacked = results.stack(point=dims) if dims else results.expand_dims("point")
+    lines = []
+    for k in range(stacked.sizes["point"]):
+        row = stacked.isel(point=k)
+        where = ", ".join(f"{d} = {float(row[d]):.6g}" for d in dims) or "basin"
+        stick = row.sel(outcome=STICK)
+        lines.append(
+            f"{where}: stick {float(stick.fraction):.4f} "
+            f"[{float(stick.fraction_lo):.4f}, {float(stick.fraction_hi):.4f}], "
+            f"not stick {float(row.not_stick_fraction):.4f} "
+            f"[{float(row.not_stick_lo):.4f}, {float(row.not_stick_hi):.4f}] "
+            f"(95 % Wilson), n = {int(row.n_samples)}"
+        )
+    return lines

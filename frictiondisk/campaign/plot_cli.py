@@ -128,6 +128,15 @@ def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None):
                 "point already"
             )
         show_runs = False
+    if task == "basin":
+        from frictiondisk.campaign.basin_figure import plot_basin
+
+        try:
+            return plot_basin(results)
+        except ValueError as exc:
+            raise CampaignFileError(
+                f"{out_dir / RESULTS_FILE}: cannot draw this file", [str(exc)]
+            ) from None
     try:
         return plot_campaign(results, runs, show_runs=show_runs)
     except ValueError as exc:
