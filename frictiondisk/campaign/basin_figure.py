@@ -75,6 +75,8 @@ def plot_basin(results: xr.Dataset, boundary: xr.Dataset | None = None) -> Figur
         raise ValueError(f"results attribute 'task' is {results.attrs.get('task')!r}, not 'basin'")
     if results.attrs.get("basin_mode") == "map":
         return plot_basin_map(results, boundary)
+    if boundary is not None:
+        raise ValueError("boundary: applies to a basin map (basin.grid), not to fractions")
     return plot_basin_fractions(results)
 
 
@@ -113,6 +115,8 @@ def plot_basin_map(results: xr.Dataset, boundary: xr.Dataset | None = None) -> F
     mu = results.attrs.get("mu")
     mu_text = f" at mu = {float(mu):g}" if mu is not None else ""
     if len(dims) == 1:
+        if boundary is not None:
+            raise ValueError("boundary: applies to a basin map over two keys")
         cx = results[dims[0]]
         order = np.argsort(cx.values)
         xs = np.asarray(cx.values, float)[order]
