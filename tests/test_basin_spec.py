@@ -285,3 +285,16 @@ def test_a_map_has_the_outcome_of_every_cell_and_draws_with_a_boundary():
     assert {"basin_map", "boundary"} <= gids
     with pytest.raises(ValueError, match="boundary: mu_star varies"):
         plot_basin(ds, boundary.rename({"y0": "vx0"}))
+
+
+@pytest.mark.parametrize(
+    "name", ["basin_pin_x0", "basin_pin_map", "basin_pin_boundary", "basin_disk_map"]
+)
+def test_basin_campaign_files_load(name):
+    from pathlib import Path
+
+    from frictiondisk.campaign.spec import load_campaign
+
+    path = Path(__file__).resolve().parent.parent / "campaigns" / f"{name}.yaml"
+    campaign = load_campaign(path)
+    assert campaign.name == name and campaign.text == path.read_text()
