@@ -174,3 +174,21 @@ basin:
     result = CliRunner().invoke(main, ["plot", str(tmp_path), "-o", str(tmp_path / "m.png")])
     assert result.exit_code == 0, result.output
     assert (tmp_path / "m.png").stat().st_size > 10_000
+
+
+def test_a_job_that_keeps_failing_marks_its_point_failed_and_journals_nothing(
+    tmp_path, monkeypatch
+):
+    from frictiondisk.campaign import basin_plan
+
+    def broken(*args):
+        raise RuntimeError("simulated worker crash")
+
+    monkeypatch.setattr(basin_plan, "run_samples", broken)
+    text = PIN_BASIN.replace("samples: 150", "samples: 20")
+    run_campaign(campaign_from_text(text, "<test>"), tmp_path, workers=1, progress=False)
+    with xr.open_dataset(tmp_path / "results.nc") as ds:
+        assert ds.status.values == "failed" and "simulated worker crash" in str(ds.reason.values)
+        assert float(ds.fraction.sel(outcome="undetermined")) == 1.0
+        assert float(ds.not_stick_fraction) == 0.0
+    assert len(Journal(tmp_path)) == 0  # a resume runs them again
