@@ -173,6 +173,31 @@ basin:
     result = CliRunner().invoke(main, ["plot", str(tmp_path), "-o", str(tmp_path / "m.png")])
     assert result.exit_code == 0, result.output
     assert (tmp_path / "m.png").stat().st_size > 10_000
+    # --boundary: a find_jump grid over the same keys draws; over other keys it is refused
+    jump = tmp_path / "jump"
+    jump.mkdir()
+    (jump / "campaign.yaml").write_text("name: j\n")
+    x0, y0 = ds.x0.values, ds.y0.values
+    star = 0.125 + np.add.outer(x0, 0 * y0)
+    xr.Dataset(
+        {
+            "mu_star": (("x0", "y0"), star),
+            "status": (("x0", "y0"), np.full(star.shape, "converged")),
+        },
+        coords={"x0": x0, "y0": y0},
+        attrs={"task": "find_jump"},
+    ).to_netcdf(jump / "results.nc")
+    args = ["plot", str(tmp_path), "--boundary", str(jump), "-o", str(tmp_path / "b.png")]
+    assert CliRunner().invoke(main, args).exit_code == 0
+    fraction_dir = tmp_path / "fractions"
+    run_campaign(
+        campaign_from_text(PIN_BASIN.replace("samples: 150", "samples: 4"), "<test>"),
+        fraction_dir,
+        workers=1,
+        progress=False,
+    )
+    result = CliRunner().invoke(main, ["plot", str(fraction_dir), "--boundary", str(jump)])
+    assert result.exit_code == 2 and "boundary: applies to a basin map" in result.output
 
 
 def test_a_job_that_keeps_failing_marks_its_point_failed_and_journals_nothing(

@@ -298,3 +298,14 @@ def test_basin_campaign_files_load(name):
     path = Path(__file__).resolve().parent.parent / "campaigns" / f"{name}.yaml"
     campaign = load_campaign(path)
     assert campaign.name == name and campaign.text == path.read_text()
+
+
+def test_canonical_text_loads_back_to_the_same_campaign():
+    spec = basin(target_se=0.02, max_samples=300, batch=50, along={"params.mu": [0.12, 0.13]})
+    del spec["basin"]["samples"]
+    campaign = campaign_from_dict(spec)
+    again = campaign_from_text(campaign.text)
+    assert again.canonical() == campaign.canonical() and again.task == campaign.task
+    assert again.content_hash() == campaign.content_hash()
+    other = campaign_from_dict(spec | {"basin": spec["basin"] | {"seed": 1}})
+    assert campaign.diff(other) == ["basin.seed: 0 -> 1"]
