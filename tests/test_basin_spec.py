@@ -309,3 +309,23 @@ def test_canonical_text_loads_back_to_the_same_campaign():
     assert again.content_hash() == campaign.content_hash()
     other = campaign_from_dict(spec | {"basin": spec["basin"] | {"seed": 1}})
     assert campaign.diff(other) == ["basin.seed: 0 -> 1"]
+
+
+@pytest.mark.parametrize(
+    "along, gid",
+    [
+        (None, "fractions"),  # a single point: bars with their intervals
+        ({"params.mu": [0.12, 0.13], "params.x_ms": [0.09, 0.1, 0.11]}, "stick_fraction"),
+    ],
+)
+def test_fraction_figures_of_a_point_and_of_a_grid(along, gid):
+    spec = basin(samples=30)
+    if along:
+        spec["basin"]["along"] = along
+    planner = BasinPlanner(campaign_from_dict(spec))
+    _feed_all(planner, _stick_below(0.0))
+    ds = results_dataset(planner.campaign, planner)
+    assert ds.fraction.dims == (*([] if along is None else ["mu", "x_ms"]), "outcome")
+    fig = plot_basin(ds)
+    gids = {child.get_gid() for ax in fig.axes for child in ax.get_children()}
+    assert gid in gids
