@@ -5,6 +5,8 @@
 #   make bench   kernel and campaign benchmarks (ratios against baselines run alongside)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw figures/<name>.png and .pdf (the README gallery)
+#   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
+#                and draw figures/basin_*.png (README "Basin stability")
 #   make lint    ruff check + ruff format --check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
@@ -24,7 +26,7 @@ DEMO_JSON := $(DEMO_DIR)/summary.json
 DEMO_CAMPAIGN := campaigns/demo_line.yaml
 DEMO_CAMPAIGN_DIR := out/demo_line
 
-.PHONY: all install demo test bench figures lint clean distclean
+.PHONY: all install demo test bench figures basin-figures lint clean distclean
 
 all: test
 
@@ -60,6 +62,9 @@ bench: $(STAMP)
 
 figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures figures
+
+basin-figures: $(STAMP)
+	$(BIN)/python benchmarks/basin_study.py --out out/basin --figures figures
 
 lint: $(STAMP)
 	$(BIN)/ruff check $(LINT_PATHS)

@@ -378,13 +378,14 @@ def test_unknown_key_in_a_task(data, path, allowed):
 def test_both_tasks():
     data = {**find_jump(), "scan": {"mu": [0.1]}}
     assert problems(data) == [
-        "(top level): find_jump and scan given: give exactly one task (find_jump, scan, trajectory)"
+        "(top level): find_jump and scan given: give exactly one task "
+        "(find_jump, scan, trajectory, basin)"
     ]
 
 
 def test_no_task():
     assert problems({"name": "t", "scene": "pin"}) == [
-        "(top level): no task: give exactly one of find_jump, scan, trajectory"
+        "(top level): no task: give exactly one of find_jump, scan, trajectory, basin"
     ]
 
 

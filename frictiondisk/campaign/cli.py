@@ -80,6 +80,20 @@ def _execute(
     click.echo(f"results: {summary.results}")
     label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
     click.echo(f"{label} {summary.runs}")
+    _echo_basin(summary.results)
+
+
+def _echo_basin(results_path: Path) -> None:
+    """A basin campaign: its fractions with their 95 % intervals, one line per point."""
+    import xarray as xr
+
+    with xr.open_dataset(results_path) as results:
+        if results.attrs.get("task") != "basin":
+            return
+        from frictiondisk.campaign.basin_datasets import summary_lines
+
+        for line in summary_lines(results.load()):
+            click.echo(line)
 
 
 _workers = click.option(

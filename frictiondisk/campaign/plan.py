@@ -22,6 +22,7 @@ import math
 from typing import Any
 
 from frictiondisk.bisection import Bisection, BisectionResult, RunRequest
+from frictiondisk.campaign.basin_plan import BasinPlanner
 from frictiondisk.campaign.tasks import run_bisection, run_scene
 from frictiondisk.jumps import JumpSearch, JumpSearchResult
 
@@ -225,4 +226,6 @@ class ScanPlanner:
 
 
 def planner_for(campaign):
+    if campaign.task.kind == "basin":
+        return BasinPlanner(campaign)
     return JumpPlanner(campaign) if campaign.task.kind == "find_jump" else ScanPlanner(campaign)

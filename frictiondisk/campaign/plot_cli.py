@@ -72,7 +72,15 @@ def _load(path: Path, out_dir: Path):
     help="find_jump: overlay every run of runs.nc as a dot at (coordinate, mu), stick dark, "
     "not stick light (how the jump was iterated); a grid shows each cell's run count.",
 )
-def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
+@click.option(
+    "--boundary",
+    type=click.Path(file_okay=False, path_type=Path),
+    metavar="JUMP_DIR",
+    default=None,
+    help="basin map: draw the contour mu* = the map's mu of the find_jump campaign in "
+    "JUMP_DIR (a grid over the same two keys) on top.",
+)
+def plot(out_dir: Path, output: Path | None, show_runs: bool, boundary: Path | None) -> None:
     """Draw the figure of the campaign in DIR from DIR/results.nc (never simulates).
 
     find_jump along one key: mu* against the key with its brackets, the regions "pure
@@ -80,7 +88,8 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
     of mu*. scan of mu: size against mu by outcome, and a against mu with its
     least-squares line. scan of mu and one more key: one size curve per value of that key.
     trajectory: the orbit, sticking dark and sliding light (whole, or the last cycle with
-    the deviation a marked).
+    the deviation a marked). basin: the fractions of each outcome against the varied key
+    with 95 % Wilson bands, or a basin map coloured by outcome.
     """
     import matplotlib
 
@@ -88,7 +97,9 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
     from frictiondisk.plotting import save_figure
 
     try:
-        fig = figure_for_dir(out_dir, show_runs, note=lambda text: click.echo(text, err=True))
+        fig = figure_for_dir(
+            out_dir, show_runs, note=lambda text: click.echo(text, err=True), boundary=boundary
+        )
     except CampaignFileError as exc:
         fail(exc.headline, exc.details)
     target = output if output is not None else out_dir / DEFAULT_FIGURE
@@ -96,12 +107,13 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool) -> None:
     click.echo(f"figure: {written.resolve()}")
 
 
-def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None):
+def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None, boundary=None):
     """The Figure of the campaign in `out_dir`, from its netCDF files alone.
 
     `show_runs` overlays the runs of a find_jump campaign (ignored for other tasks, with
     a message to `note`, a callable taking text, if given). Raises CampaignFileError
-    naming the file if one is missing, damaged or cannot be drawn."""
+    naming the file if one is missing, damaged or cannot be drawn. `boundary`: a find_jump
+    campaign directory whose mu* contour is drawn on a basin map."""
     from frictiondisk.campaign.figures import plot_campaign
     from frictiondisk.campaign.orbit import TRAJECTORY_FILE
     from frictiondisk.campaign.orbit_figure import plot_trajectory
@@ -128,6 +140,19 @@ def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None):
                 "point already"
             )
         show_runs = False
+    if task == "basin":
+        from frictiondisk.campaign.basin_figure import plot_basin
+
+        jump = None if boundary is None else _load(Path(boundary) / RESULTS_FILE, Path(boundary))
+        try:
+            return plot_basin(results, jump)
+        except ValueError as exc:
+            bad = Path(boundary) if str(exc).startswith("boundary") else out_dir
+            raise CampaignFileError(
+                f"{bad / RESULTS_FILE}: cannot draw this file", [str(exc)]
+            ) from None
+    if boundary is not None and note is not None:
+        note(f"note: --boundary applies to basin maps; {out_dir} holds a {task}")
     try:
         return plot_campaign(results, runs, show_runs=show_runs)
     except ValueError as exc:

@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from frictiondisk.campaign import datasets
+from frictiondisk.campaign import basin_datasets, datasets
 from frictiondisk.campaign.journal import CampaignLock, Journal, run_key
 from frictiondisk.campaign.plan import planner_for
 from frictiondisk.campaign.spec import Campaign, campaign_from_dict, load_campaign
@@ -490,8 +490,9 @@ class _Driver:
 
     # ---- the end ------------------------------------------------------------------------
     def _finish(self) -> RunSummary:
-        results_ds = datasets.results_dataset(self.campaign, self.planner)
-        runs_ds = datasets.runs_dataset(self.campaign, self.planner, self._key)
+        build = basin_datasets if self.campaign.kind == "basin" else datasets
+        results_ds = build.results_dataset(self.campaign, self.planner)
+        runs_ds = build.runs_dataset(self.campaign, self.planner, self._key)
         results = atomic_write_netcdf(results_ds, self.out_dir / RESULTS_FILE)
         runs = atomic_write_netcdf(runs_ds, self.out_dir / RUNS_FILE)
         self._write_status(state="complete")

@@ -10,6 +10,10 @@ A campaign file holds a `name`, a base scene (the keys of a scene file: `scene`,
   feeds size-versus-mu curves.
 - `trajectory`: one recorded run of the base scene (the orbit of the paper's Figs 4-5),
   shown whole or as its last converged limit cycle.
+- `basin`: basin stability (frictiondisk.campaign.basin_plan): at every point of an optional
+  line or grid of scene keys, the fraction of each outcome over initial states drawn from
+  `sample` (a fixed count, or adaptively to a target standard error); or, with `grid`
+  instead of `sample`, one run per cell of a grid of 1 or 2 initial-state keys (a basin map).
 
 Varied values are a list of numbers or `{start, stop, num}` (numpy.linspace). Any numeric
 scene key may be varied, numerics ones included (`numerics.rtol`, `contact.stiffness`).
@@ -57,6 +61,7 @@ from frictiondisk.config import (
 from frictiondisk.yamlio import StrictDumper, load_yaml_text, read_text_file
 
 __all__ = [
+    "Basin",
     "Campaign",
     "FindJump",
     "Trajectory",
@@ -68,7 +73,7 @@ __all__ = [
 ]
 
 SCENE_KEYS = ("scene", "params", "contact", "numerics")
-TASK_KEYS = ("find_jump", "scan", "trajectory")
+TASK_KEYS = ("find_jump", "scan", "trajectory", "basin")
 TOP_KEYS = ("name", *SCENE_KEYS, *TASK_KEYS)
 FIND_JUMP_KEYS = (
     "parameter",
@@ -87,6 +92,11 @@ TRAJECTORY_KEYS = ("dt_out", "show")
 TRAJECTORY_SHOW = ("whole", "cycle")
 LINSPACE_KEYS = ("start", "stop", "num")
 MAX_AXIS_VALUES = 10_000  # values of one varied key (each is validated as a scene)
+BASIN_KEYS = ("sample", "samples", "target_se", "max_samples", "batch", "seed", "along", "grid")
+BASIN_SAMPLE_ONLY = ("sample", "samples", "target_se", "max_samples", "batch", "seed")
+# Initial-state keys a basin samples or maps (params.phidot0: disk only).
+INITIAL_STATE_KEYS = ("params.x0", "params.y0", "params.vx0", "params.vy0", "params.phidot0")
+DISTRIBUTIONS = {"uniform": "low, high", "normal": "mean, sd"}
 
 # find_jump defaults (MODEL.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
 DEFAULT_TOL = 1.0e-4
@@ -96,6 +106,9 @@ DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_ma
 DEFAULT_LANES = 2  # warm-start chains
 DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (MODEL.md section 6)
 DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)
+DEFAULT_BASIN_BATCH = 100  # samples per adaptive batch (target_se): the stop rule's step
+DEFAULT_BASIN_SEED = 0
+MAX_BASIN_SAMPLES = 10_000_000
 
 _NAME = re.compile(r"[A-Za-z0-9_-]+")
 _MODE_FIELD = Numerics.model_fields["mode"]
@@ -206,6 +219,69 @@ class Trajectory:
 
 
 @dataclass(frozen=True)
+class Distribution:
+    """One sampled initial-state key: `uniform` on [a, b) or `normal` with mean a, sd b."""
+
+    kind: str  # "uniform" or "normal"
+    a: float
+    b: float
+
+    def canonical(self) -> dict[str, Any]:
+        return {self.kind: [self.a, self.b]}
+
+
+@dataclass(frozen=True)
+class Basin:
+    """Basin stability (fractions of outcomes over sampled initial states) or a basin map.
+
+    Sampling (`sample` non-empty): at each point of `along` (0, 1 or 2 scene keys) draw
+    initial states from `sample` (dotted initial-state key -> Distribution); either
+    `samples` of them, or batches of `batch` until the standard error of the not-stick
+    fraction is <= `target_se` or `max_samples` are drawn. Draws are fixed by `seed` and
+    the point's values (frictiondisk.campaign.basin_plan).
+    Map (`grid` non-empty): one run per cell of 1 or 2 initial-state keys; no sampling.
+    """
+
+    kind: ClassVar[str] = "basin"
+
+    sample: dict[str, Distribution]
+    samples: int | None
+    target_se: float | None
+    max_samples: int | None
+    batch: int
+    seed: int
+    along: dict[str, tuple[float, ...]]
+    grid: dict[str, tuple[float, ...]]
+
+    @property
+    def is_map(self) -> bool:
+        return bool(self.grid)
+
+    @property
+    def sample_limit(self) -> int:
+        """Most samples a point can take (1 for a map: each cell is one run)."""
+        if self.is_map:
+            return 1
+        return self.samples if self.samples is not None else self.max_samples
+
+    def canonical(self) -> dict[str, Any]:
+        """JSON-able dict, keys sorted except `along`/`grid`/`sample` (their file order)."""
+        if self.is_map:
+            return {"grid": {key: list(values) for key, values in self.grid.items()}}
+        out: dict[str, Any] = {
+            "along": {key: list(values) for key, values in self.along.items()},
+            "sample": {key: dist.canonical() for key, dist in self.sample.items()},
+            "seed": self.seed,
+        }
+        if self.samples is not None:
+            out["samples"] = self.samples
+        else:
+            out |= {"batch": self.batch, "max_samples": self.max_samples}
+            out["target_se"] = self.target_se
+        return {key: out[key] for key in sorted(out)}
+
+
+@dataclass(frozen=True)
 class Point:
     """One grid point: its `index` in `Campaign.shape`, varied values and full scene."""
 
@@ -224,12 +300,12 @@ class Campaign:
 
     name: str
     base: SceneConfig
-    task: FindJump | Scan | Trajectory
+    task: FindJump | Scan | Trajectory | Basin
     text: str = dataclasses.field(default="", compare=False, repr=False)
 
     @property
     def kind(self) -> str:
-        """ "find_jump", "scan" or "trajectory"."""
+        """ "find_jump", "scan", "trajectory" or "basin"."""
         return self.task.kind
 
     @property
@@ -295,6 +371,8 @@ class Campaign:
     def _axes(self) -> dict[str, tuple[float, ...]]:
         if isinstance(self.task, Scan):
             return {"params.mu": self.task.mu, **self.task.along}
+        if isinstance(self.task, Basin):
+            return {**self.task.along, **self.task.grid}
         return dict(self.task.along)
 
 
@@ -332,7 +410,7 @@ def _read(data: Any, source: str, text: str | None) -> Campaign:
     except ConfigError as err:
         problems += err.problems
     tasks = [key for key in TASK_KEYS if key in top]
-    task: FindJump | Scan | Trajectory | None = None
+    task: FindJump | Scan | Trajectory | Basin | None = None
     if not tasks:
         problems.append(f"(top level): no task: give exactly one of {', '.join(TASK_KEYS)}")
     elif len(tasks) > 1:
@@ -344,6 +422,8 @@ def _read(data: Any, source: str, text: str | None) -> Campaign:
         task = _find_jump(top["find_jump"], base, problems)
     elif tasks[0] == "scan":
         task = _scan(top["scan"], base, problems)
+    elif tasks[0] == "basin":
+        task = _basin(top["basin"], base, problems)
     else:
         task = _trajectory(top["trajectory"], base, problems)
     if problems:
@@ -528,6 +608,175 @@ def _trajectory(data: Any, base: SceneConfig | None, problems: list[str]) -> Tra
     if None in (dt_out, show):
         return None
     return Trajectory(dt_out=dt_out, show=show)
+
+
+def _basin(data: Any, base: SceneConfig | None, problems: list[str]) -> Basin | None:
+    spec = _mapping(data, "basin", BASIN_KEYS, problems)
+    if spec is None:
+        return None
+    if "grid" in spec:
+        return _basin_map(spec, base, problems)
+    if "sample" not in spec:
+        problems.append(
+            "basin: give `sample` (fractions over sampled initial states) or `grid` "
+            "(a basin map over 1 or 2 initial-state keys)"
+        )
+        return None
+    sample = _sample(spec["sample"], base, problems)
+    samples = target_se = max_samples = None
+    ok = True
+    if "samples" in spec and "target_se" in spec:
+        problems.append("basin: samples and target_se given: give one (a fixed count or a target)")
+        ok = False
+    elif "samples" in spec:
+        samples = _number(
+            spec["samples"], "basin.samples", problems, integer=True, ge=1, le=MAX_BASIN_SAMPLES
+        )
+        for key in ("max_samples", "batch"):
+            if key in spec:
+                problems.append(f"basin.{key}: only used with basin.target_se; remove it")
+                ok = False
+    elif "target_se" in spec:
+        target_se = _number(spec["target_se"], "basin.target_se", problems, gt=0, le=0.5)
+        max_samples = _number(
+            spec.get("max_samples", _MISSING),
+            "basin.max_samples",
+            problems,
+            integer=True,
+            ge=1,
+            le=MAX_BASIN_SAMPLES,
+        )
+        ok = None not in (target_se, max_samples)
+    else:
+        problems.append(
+            "basin: no sample count: give samples (e.g. 400) or target_se with max_samples"
+        )
+        ok = False
+    batch = _number(
+        spec.get("batch", DEFAULT_BASIN_BATCH),
+        "basin.batch",
+        problems,
+        integer=True,
+        ge=1,
+        le=MAX_BASIN_SAMPLES,
+    )
+    seed = _number(spec.get("seed", DEFAULT_BASIN_SEED), "basin.seed", problems, integer=True, ge=0)
+    taken = {
+        key: f"{key} is sampled (basin.sample); it cannot also be varied" for key in sample or {}
+    }
+    along = _along(spec.get("along", {}), "basin.along", base, problems, counts=(0, 2), taken=taken)
+    if not ok or None in (sample, batch, seed, along):
+        return None
+    return Basin(
+        sample=sample,
+        samples=samples,
+        target_se=target_se,
+        max_samples=max_samples,
+        batch=batch,
+        seed=seed,
+        along=along,
+        grid={},
+    )
+
+
+def _basin_map(spec: dict[str, Any], base: SceneConfig | None, problems: list[str]) -> Basin | None:
+    """basin.grid: a map, one run per cell; sampling keys and `along` do not apply."""
+    before = len(problems)
+    for key in (*BASIN_SAMPLE_ONLY, "along"):
+        if key in spec:
+            problems.append(
+                f"basin.{key}: not used with basin.grid (a basin map runs each cell of the "
+                "grid once, at the base scene's parameters); remove it or drop grid"
+            )
+    grid = _along(spec["grid"], "basin.grid", base, problems, counts=(1, 2), taken={})
+    if grid is None:
+        return None
+    for key in grid:
+        _initial_state_key(key, f"basin.grid.{key}", base, problems)
+    if len(problems) > before:
+        return None
+    return Basin(
+        sample={},
+        samples=None,
+        target_se=None,
+        max_samples=None,
+        batch=1,
+        seed=DEFAULT_BASIN_SEED,
+        along={},
+        grid=grid,
+    )
+
+
+def _initial_state_key(key: str, path: str, base: SceneConfig | None, problems: list[str]) -> bool:
+    """Whether `key` is an initial-state key of the scene; else a problem naming `path`."""
+    if key not in INITIAL_STATE_KEYS:
+        problems.append(
+            f"{path}: not an initial-state key; allowed: {', '.join(INITIAL_STATE_KEYS)}"
+        )
+        return False
+    if key == "params.phidot0" and base is not None and base.scene != "disk":
+        problems.append(f"{path}: the spin of a slave disk; scene {base.scene!r} has none")
+        return False
+    return True
+
+
+def _sample(
+    data: Any, base: SceneConfig | None, problems: list[str]
+) -> dict[str, Distribution] | None:
+    """basin.sample: initial-state key -> {uniform: [low, high]} or {normal: [mean, sd]}."""
+    spec = _mapping(data, "basin.sample", None, problems)
+    if spec is None:
+        return None
+    if not spec:
+        problems.append(
+            "basin.sample: no keys: map at least one of "
+            f"{', '.join(INITIAL_STATE_KEYS)} to a distribution"
+        )
+        return None
+    out: dict[str, Distribution] = {}
+    ok = True
+    for key, item in spec.items():
+        path = f"basin.sample.{key}"
+        if not _initial_state_key(key, path, base, problems):
+            ok = False
+            continue
+        dist = _distribution(item, path, problems)
+        if dist is None:
+            ok = False
+            continue
+        if base is not None and dist.kind == "uniform":
+            for i, value in enumerate((dist.a, dist.b)):
+                _check_scene(base, key, value, f"{path}.uniform[{i}]", problems)
+        out[key] = dist
+    return out if ok else None
+
+
+def _distribution(data: Any, path: str, problems: list[str]) -> Distribution | None:
+    must = "must be {uniform: [low, high]} with low < high, or {normal: [mean, sd]} with sd > 0"
+    spec = _mapping(data, path, tuple(DISTRIBUTIONS), problems)
+    if spec is None:
+        return None
+    if len(spec) != 1:
+        if len(spec) == len(data):  # unknown keys were reported by _mapping already
+            problems.append(f"{path}: {len(spec)} distributions given: {must}")
+        return None
+    kind, value = next(iter(spec.items()))
+    names = DISTRIBUTIONS[kind]
+    where = f"{path}.{kind}"
+    if not isinstance(value, list | tuple) or len(value) != 2:
+        got = _kind(value) if value is None else f"{_kind(value)} {_show(value)}"
+        problems.append(f"{where}: expected a list [{names}]; got {got}: {must}")
+        return None
+    a, b = (_number(item, f"{where}[{i}]", problems) for i, item in enumerate(value))
+    if a is None or b is None:
+        return None
+    if kind == "uniform" and not a < b:
+        problems.append(f"{where}: {_show([a, b])} is not allowed: low < high needed")
+        return None
+    if kind == "normal" and not b > 0:
+        problems.append(f"{where}[1]: {_show(b)} is out of range: the sd must be > 0")
+        return None
+    return Distribution(kind=kind, a=a, b=b)
 
 
 def _along(

@@ -57,3 +57,8 @@ def warm_up() -> None:
                 "numerics": {"t_decide": 0.5},
             }
         )
+
+
+def run_samples(canonicals: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Simulate each scene (a basin job: sampled initial states); their summaries in order."""
+    return [run_scene(canonical) for canonical in canonicals]
