@@ -12,7 +12,7 @@ import os
 from dataclasses import dataclass
 
 from frictiondisk.campaign.plan import cold_run_count
-from frictiondisk.campaign.spec import Campaign, FindJump, Scan
+from frictiondisk.campaign.spec import Basin, Campaign, FindJump, Scan
 
 __all__ = ["MAX_POINTS", "MAX_RUNS", "Estimate", "check", "estimate", "memory_limit"]
 
@@ -55,6 +55,13 @@ def estimate(campaign: Campaign) -> Estimate:
     elif isinstance(task, Scan):
         per_point = 1
         fields = ", ".join(("scan.mu", *filter(None, [fields])))
+    elif isinstance(task, Basin):
+        # every grid cell of a map is a point; a sampled point takes up to sample_limit runs
+        per_point = task.sample_limit
+        keys = [f"basin.grid.{dim}" for dim in task.grid] or [
+            f"basin.along.{dim}" for dim in task.along
+        ]
+        fields = ", ".join(keys + ([] if task.is_map else ["basin.samples / max_samples"]))
     else:
         per_point = 1
         fields = "trajectory"
