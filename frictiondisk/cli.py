@@ -15,8 +15,8 @@ from typing import Any
 
 import click
 
-from frictiondisk import __version__
 from frictiondisk.cli_options import check_figure_suffix, fail
+from frictiondisk.version import __version__
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})

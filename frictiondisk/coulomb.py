@@ -29,6 +29,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .classify import revolution
+from .horizon import horizon_of
 from .result import SimulationResult
 
 V_STICK = 1e-10  # [m/s] sliding speed taken as zero (the stop takes ~1e-9 s from here)
@@ -92,7 +93,7 @@ def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> Simul
     wall0 = time.perf_counter()
     pin = _Pin(config)
     num = config.numerics
-    horizon = num.t_max if num.mode == "converge" else num.t_decide
+    horizon = horizon_of(config)
     window = num.window_revs * revolution(config.params.omega_m)
     p = config.params
     y = np.array([p.x_ms + p.x0, p.y0, p.vx0, p.vy0])

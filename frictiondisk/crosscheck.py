@@ -43,10 +43,11 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .classify import revolution
+from .horizon import horizon_of
 from .kernel import monitor as mon
 from .kernel import status as st
 from .result import SimulationResult, Trajectory
-from .simulate import build_result, horizon_of, initial_state
+from .run_common import build_result, initial_state
 
 __all__ = ["NumpyModel", "simulate_radau"]
 

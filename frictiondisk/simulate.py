@@ -2,17 +2,18 @@
 
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np
 
-from .classify import RunFacts, classify, revolution
+from .classify import revolution
+from .horizon import horizon_of
 from .kernel import driver
 from .kernel import energy as ken
 from .kernel import model as km
 from .kernel import monitor as mon
 from .result import SimulationResult, Trajectory
+from .run_common import build_result, initial_state
 
 METHOD_CODES = {"rodas4": 0, "rodas4-fixed": 1}
 
@@ -52,31 +53,12 @@ def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
     return p, pts
 
 
-def initial_state(config) -> np.ndarray:
-    """r = (x_ms + x0, y0), r' = (vx0, vy0), phi = 0, phi' = phidot0, Z = 0 (MODEL.md 5)."""
-    par = config.params
-    nq = 3 if config.scene == "disk" else 2
-    y = np.zeros(2 * nq + 2 * config.n_contacts)
-    y[0] = par.x_ms + par.x0
-    y[1] = par.y0
-    y[nq] = par.vx0
-    y[nq + 1] = par.vy0
-    if nq == 3:
-        y[nq + 2] = par.phidot0
-    return y
-
-
 def initial_modes(p: np.ndarray, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Stick iff |k_i(0)| < F_St,i (MODEL.md section 3)."""
     modes = np.empty(pts.shape[0], dtype=np.int8)
     for i in range(pts.shape[0]):
         modes[i] = km.STICK if km.switch_value(p, pts, y, i, km.STICK) < 0.0 else km.SLIDE
     return modes
-
-
-def horizon_of(config) -> float:
-    num = config.numerics
-    return num.t_max if num.mode == "converge" else num.t_decide
 
 
 def simulate(config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
@@ -207,70 +189,3 @@ def energy_balance(
         "energy_dissipated": work_diss,
         "energy_residual": residual,
     }
-
-
-def build_result(
-    config,
-    status,
-    t_end,
-    y_end,
-    mf,
-    mi,
-    ring_all,
-    ring_any,
-    counters,
-    wall,
-    trajectory,
-    energy: dict[str, float] | None = None,
-) -> SimulationResult:
-    """Classify a finished run from its monitor state (shared by every integrator).
-
-    energy: the fields of `energy_balance`; None (an integrator without the diagnostic)
-    leaves them NaN.
-    """
-    num = config.numerics
-    rev = revolution(config.params.omega_m)
-    window = num.window_revs * rev
-    frac_all, frac_any = mon.window_fractions(mf, mi, ring_all, ring_any, t_end, window)
-    facts = RunFacts(
-        status=status,
-        t_end=t_end,
-        stuck_for=float(mon.stuck_for(mf, mi, t_end)),
-        hold=rev,
-        window=(max(0.0, t_end - window), t_end),
-        frac_all=float(frac_all),
-        frac_any=float(frac_any),
-        converge_mode=num.mode == "converge",
-        max_steps=num.max_steps,
-        max_events=num.max_events,
-    )
-    outcome, reason = classify(facts)
-    radius_end = math.hypot(y_end[0], y_end[1])
-    size = math.nan
-    a = math.nan
-    if outcome == "stick":
-        size = radius_end
-    elif outcome == "stick_slip" and mon.cycle_converged(mi):
-        # only a converged cycle has a size (MODEL.md 6); before that the sticking segments
-        # still creep outwards, and their radius says nothing about the final cycle
-        size = float(mf[mon.F_SIZE])
-        a = float(mf[mon.F_A])
-    return SimulationResult(
-        outcome=outcome,
-        reason=reason,
-        R1=float(mf[mon.F_R1]),
-        t_R1=float(mf[mon.F_T_R1]),
-        size=size,
-        a=a,
-        n_transitions=int(mi[mon.I_NTRANS]),
-        stick_fraction=float(frac_all),
-        t_end=t_end,
-        n_steps=counters["n_steps"],
-        n_rejected=counters["n_rejected"],
-        n_refused=counters["n_refused"],
-        cycle_converged=bool(mon.cycle_converged(mi)),
-        wall_s=wall,
-        method=num.method,
-        trajectory=trajectory,
-        **(energy or {}),
-    )

@@ -16,9 +16,9 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from frictiondisk import __version__
 from frictiondisk.files import atomic_write_netcdf
 from frictiondisk.result import SimulationResult
+from frictiondisk.version import __version__
 
 # name -> (units, long_name) of the per-sample variables (dim `time`).
 _BODY_VARIABLES: dict[str, tuple[str, str]] = {

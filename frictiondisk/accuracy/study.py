@@ -28,10 +28,10 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from frictiondisk import __version__
 from frictiondisk.accuracy.ladder import ATOL_PER_RTOL, Knob, Setting, build_ladder
 from frictiondisk.bisection import UNDETERMINED, Bisection
 from frictiondisk.config import SceneConfig, describe_key
+from frictiondisk.version import __version__
 
 # A directory no journal can live in: Journal.peek finds nothing there, so every run of
 # the study is computed (a cost study must not read cached runs).

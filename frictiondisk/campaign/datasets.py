@@ -12,9 +12,9 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from frictiondisk import __version__
 from frictiondisk.campaign.journal import kernel_version
 from frictiondisk.config import describe_key
+from frictiondisk.version import __version__
 from frictiondisk.yamlio import dump_yaml
 
 RUN_MEASURES = {  # summary field -> (units, long name)

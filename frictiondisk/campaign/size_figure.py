@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.transforms import blended_transform_factory
 
-from frictiondisk.campaign.figures import (
+from frictiondisk.campaign.figure_style import (
     MU_LABEL,
     OUTCOME_STYLE,
     SIZE_LABEL,
