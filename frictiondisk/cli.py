@@ -117,7 +117,10 @@ def simulate(
     except OSError as exc:
         fail(str(scene), [f"cannot read the scene file: {exc.strerror or exc}"])
 
+    from frictiondisk.compile_notice import announce_compile
     from frictiondisk.simulate import simulate as run_simulation
+
+    announce_compile()
 
     record = output is not None or plot_path is not None
     # With --json, stdout carries the JSON object and nothing else.

@@ -107,9 +107,7 @@ def test_no_import_cycles():
     assert cycles(import_graph()) == []
 
 
-@pytest.mark.parametrize(
-    "name", sorted(m for m in MODULES if m.startswith("frictiondisk.kernel"))
-)
+@pytest.mark.parametrize("name", sorted(m for m in MODULES if m.startswith("frictiondisk.kernel")))
 def test_the_kernel_never_imports_orchestration(name):
     bad = {
         m

@@ -49,6 +49,9 @@ def run_bisection(
 
 def warm_up() -> None:
     """Compile (or load from the cache) the kernel for both scenes in this process."""
+    from frictiondisk.compile_notice import announce_compile
+
+    announce_compile()
     for scene in ("pin", "disk"):
         run_scene(
             {
