@@ -183,6 +183,25 @@ def simulate(
     click.echo("\n".join(lines))
 
 
+@main.command("show-defaults")
+@click.option(
+    "--scene",
+    "scene",
+    type=click.Choice(["pin", "disk"]),
+    default="pin",
+    show_default=True,
+    help="Which scene's defaults to print.",
+)
+def show_defaults(scene: str) -> None:
+    """Print the resolved default scene as YAML (every key, SI units; docs/model.md section 5).
+
+    The output is a valid scene file: save it, edit a value, and `simulate` it.
+    """
+    from frictiondisk.config import scene_from_dict
+
+    click.echo(scene_from_dict({"scene": scene}).to_yaml().rstrip("\n"))
+
+
 # Campaign commands live in frictiondisk/campaign/cli.py, `plot` in campaign/plot_cli.py,
 # `accuracy` in accuracy/cli.py.
 def _add_campaign_commands() -> None:

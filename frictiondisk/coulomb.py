@@ -87,7 +87,7 @@ class _Pin:
 
 
 def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
-    """Run the pin with exact Coulomb friction; outcome rules as in MODEL.md section 6."""
+    """Run the pin with exact Coulomb friction; outcome rules as in docs/model.md section 6."""
     if config.scene != "pin":
         raise ValueError("numerics.method coulomb is defined for scene pin only")
     wall0 = time.perf_counter()

@@ -16,7 +16,7 @@ from .result import SimulationResult
 
 
 def initial_state(config) -> np.ndarray:
-    """r = (x_ms + x0, y0), r' = (vx0, vy0), phi = 0, phi' = phidot0, Z = 0 (MODEL.md 5)."""
+    """r = (x_ms + x0, y0), r' = (vx0, vy0), phi = 0, phi' = phidot0, Z = 0 (docs/model.md section 5)."""
     par = config.params
     nq = 3 if config.scene == "disk" else 2
     y = np.zeros(2 * nq + 2 * config.n_contacts)
@@ -71,7 +71,7 @@ def build_result(
     if outcome == "stick":
         size = radius_end
     elif outcome == "stick_slip" and mon.cycle_converged(mi):
-        # only a converged cycle has a size (MODEL.md 6); before that the sticking segments
+        # only a converged cycle has a size (docs/model.md section 6); before that the sticking segments
         # still creep outwards, and their radius says nothing about the final cycle
         size = float(mf[mon.F_SIZE])
         a = float(mf[mon.F_A])

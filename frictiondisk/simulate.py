@@ -40,7 +40,7 @@ def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
     p[km.P_JS] = par.J_s
     p[km.P_BETAB] = par.beta_b
     p[km.P_XMS] = par.x_ms
-    # Distributed contact: stiffness, damping and normal force spread evenly (MODEL.md 3).
+    # Distributed contact: stiffness, damping and normal force spread evenly (docs/model.md section 3).
     p[km.P_CI] = con.stiffness / n
     p[km.P_BETAI] = config.contact_damping / n
     p[km.P_FNI] = par.F_n / n
@@ -54,7 +54,7 @@ def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
 
 
 def initial_modes(p: np.ndarray, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Stick iff |k_i(0)| < F_St,i (MODEL.md section 3)."""
+    """Stick iff |k_i(0)| < F_St,i (docs/model.md section 3)."""
     modes = np.empty(pts.shape[0], dtype=np.int8)
     for i in range(pts.shape[0]):
         modes[i] = km.STICK if km.switch_value(p, pts, y, i, km.STICK) < 0.0 else km.SLIDE

@@ -1,6 +1,6 @@
 """Admissibility of permanent co-rotation (frictiondisk/admissibility.py).
 
-Checks: the pin reduction to MODEL.md's oracle; the ordering and limits of the four demands;
+Checks: the pin reduction to docs/model.md's oracle; the ordering and limits of the four demands;
 the rigid-plastic capacity against its static certificate and a brute-force search; and a
 simulated stuck braked disk, whose contact forces must add up to the required force and
 torque and can never beat the best redistribution.

@@ -22,7 +22,7 @@ from frictiondisk.campaign.runner import run_campaign
 from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
 
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of MODEL.md 6 for the default pin
+G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of docs/model.md section 6 for the default pin
 
 PIN_LINE = """\
 name: pin_line
@@ -72,7 +72,7 @@ def test_pin_jump_satisfies_the_sticking_circle_oracle(tmp_path):
         assert ds.outcome_lo.values[0] in ("stick_slip", "slide")
         assert ds.mu_star.attrs["long_name"] and ds.x_ms.attrs["units"] == "m"
     assert hi - lo <= 1e-4 * (1 + 1e-9)
-    oracle = 1.0 * 0.1 + G * r1  # c_s x_ms + g R1 (MODEL.md 6)
+    oracle = 1.0 * 0.1 + G * r1  # c_s x_ms + g R1 (docs/model.md section 6)
     assert lo - 2e-5 < oracle <= hi + 2e-5
 
 
@@ -293,7 +293,7 @@ scan:
         assert list(ds.outcome.values) == ["stick_slip", "stick_slip", "stick"]
         assert ds.cycle_converged.values[:2].all()
         size = ds["size"].values
-        # the outer cycle is far larger than the sticking circle: the jump of MODEL.md 7
+        # the outer cycle is far larger than the sticking circle: the jump of docs/model.md section 7
         assert size[0] < size[1] and size[1] > 2 * size[2]
         assert ds["a"].values[1] > ds["a"].values[0] > 0  # a grows with mu (paper Fig. 6)
         assert ds["size"].attrs["units"] == "m"

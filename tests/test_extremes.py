@@ -14,7 +14,7 @@ from frictiondisk.campaign.tasks import run_bisection
 from frictiondisk.config import scene_from_dict
 from frictiondisk.simulate import simulate
 
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of MODEL.md 6, default pin
+G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of docs/model.md section 6, default pin
 BUDGET = {"max_steps": 2_000_000, "max_events": 200_000}
 
 

@@ -12,7 +12,7 @@ from frictiondisk.campaign.runner import run_campaign
 from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.jumps import JumpSearch
 
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # MODEL.md section 6, default pin [N/m]
+G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # docs/model.md section 6, default pin [N/m]
 
 
 def drive(search, outcome_of):

@@ -222,7 +222,7 @@ def test_adaptive_error_falls_with_the_tolerance():
 @pytest.mark.parametrize("stop_on_stick", [True, False])
 def test_a_sticking_phase_open_at_the_horizon_is_finished_before_deciding(stop_on_stick):
     """The pin sticks for good from t ~ 1.85 s; a 4 s horizon falls inside that phase, so
-    the run goes on until it has stuck for one revolution (MODEL.md 6: never guess)."""
+    the run goes on until it has stuck for one revolution (docs/model.md section 6: never guess)."""
     res = simulate(
         scene_from_dict(
             {

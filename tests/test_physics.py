@@ -1,4 +1,4 @@
-"""Physics oracles for the simulation kernel (MODEL.md sections 3 and 6).
+"""Physics oracles for the simulation kernel (docs/model.md sections 3 and 6).
 
 Every check here is a law the model must obey (admissibility of a sticking circle,
 homogeneity, the Coulomb limit, pin/disk equivalence, objectivity of the contact rate),
@@ -32,7 +32,7 @@ def test_pin_sticks_at_high_mu_with_an_admissible_circle():
     for mu in (0.14, 0.13):
         res = simulate(pin(mu=mu))
         assert res.outcome == "stick", res.reason
-        # The final sticking circle satisfies mu F_n >= c_s x_ms + g R (MODEL.md 6);
+        # The final sticking circle satisfies mu F_n >= c_s x_ms + g R (docs/model.md section 6);
         # with c = 2.53e5 N/m the regularized circle deviates from Coulomb by ~|Z|/c ~ 1e-6 m.
         assert admissibility_margin(mu, res.size) >= -G * 1e-6
         assert abs(res.size - res.R1) < 1e-6  # it stays on its first sticking circle
@@ -165,7 +165,7 @@ def _glued_radius(tr, scene, contact_stiffness):
 def test_stuck_pin_keeps_its_circle_over_100_revolutions():
     """With u = v + omega e_z x z the glued master point moves on an exact circle, so the
     pin cannot drift. The missing rotation term would move it by about
-    omega |z_tangential| per second, |z_t| = beta_s omega R / c (MODEL.md 3)."""
+    omega |z_tangential| per second, |z_t| = beta_s omega R / c (docs/model.md section 3)."""
     drifts = []
     for rtol in (1e-6, 1e-8):
         tr, rows = _stuck_run("pin", {"mu": 0.14}, rtol, 100)

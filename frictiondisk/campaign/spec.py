@@ -3,7 +3,7 @@
 A campaign file holds a `name`, a base scene (the keys of a scene file: `scene`, `params`,
 `contact`, `numerics`) and exactly one task:
 
-- `find_jump`: bisect mu to the jump mu* (MODEL.md section 7) at every point of a line of one
+- `find_jump`: bisect mu to the jump mu* (docs/model.md section 7) at every point of a line of one
   scene key or a grid of two, e.g. `along: {params.x_ms: {start: 0.02, stop: 0.2, num: 10}}`.
 - `scan`: run every point of a grid of mu (and optionally one more scene key) in
   `numerics.mode` `converge` (or `decide`), keeping each run's outcome and measures; this
@@ -86,13 +86,13 @@ TRAJECTORY_KEYS = ("dt_out", "show")
 TRAJECTORY_SHOW = ("whole", "cycle")
 LINSPACE_KEYS = ("start", "stop", "num")
 
-# find_jump defaults (MODEL.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
+# find_jump defaults (docs/model.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
 DEFAULT_TOL = 1.0e-4
 DEFAULT_LIMITS = (1.0e-6, 10.0)  # the bracket may be widened within these
 DEFAULT_MAX_RETRIES = 2  # retries of an undetermined run with a longer horizon
 DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_max) by this
 DEFAULT_LANES = 2  # warm-start chains
-DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (MODEL.md section 6)
+DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (docs/model.md section 6)
 DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)
 
 _NAME = re.compile(r"[A-Za-z0-9_-]+")
