@@ -120,7 +120,7 @@ def _caption_parts(ds: xr.Dataset) -> list[str]:
         parts.append(f"numerics {numerics_text}" + (f", mode {mode}" if mode else ""))
     parts.append(f"frictiondisk {attrs.get('frictiondisk_version', '?')}")
     if attrs.get("kernel_version"):
-        parts.append(f"kernel {str(attrs['kernel_version'])[:8]}")
+        parts.append(str(attrs["kernel_version"]))
     return parts
 
 
