@@ -19,7 +19,7 @@ from matplotlib.text import Text
 
 matplotlib.use("Agg")
 
-from frictiondisk import __version__  # noqa: E402
+from frictiondisk import __version__, cf  # noqa: E402
 from frictiondisk.campaign.figures import (  # noqa: E402
     MU_LABEL,
     axis_label,
@@ -34,6 +34,7 @@ from frictiondisk.campaign.figures import (  # noqa: E402
 from frictiondisk.campaign.runner import run_campaign  # noqa: E402
 from frictiondisk.campaign.spec import campaign_from_text  # noqa: E402
 from frictiondisk.cli import main  # noqa: E402
+from frictiondisk.config import scene_from_dict  # noqa: E402
 
 NUMERICS_YAML = (
     "atol: 1.0e-09\ncycle_count: 3\ncycle_tol: 1.0e-06\ndt: 0.01\nh_max: 0.1\n"
@@ -61,6 +62,9 @@ KEYS = {  # scene key -> (dimension, units, long_name) as datasets._key_attrs wr
 
 
 # ---- synthetic Datasets ------------------------------------------------------------------
+CF_GLOBALS = ("Conventions", "title", "institution", "source", "history", "references")
+
+
 def _coord(key, values):
     dim, units, long_name = KEYS[key]
     attrs = {"long_name": long_name, "scene_key": key, "units": units}
@@ -75,6 +79,8 @@ def _attrs(name, task, **extra):
         "numerics_yaml": NUMERICS_YAML,
         "frictiondisk_version": __version__,
         "kernel_version": "0123456789abcdef",
+        **cf.scene_attrs(scene_from_dict({"scene": "pin"})),
+        **{key: f"synthetic {key}" for key in CF_GLOBALS},
         **extra,
     }
 
