@@ -10,9 +10,7 @@ This module never selects a matplotlib backend: figures are built with
 
 from __future__ import annotations
 
-import contextlib
 import os
-import uuid
 from pathlib import Path
 from typing import Any
 
@@ -22,6 +20,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from frictiondisk.files import atomic_write
 from frictiondisk.result import SimulationResult
 from frictiondisk.trajectory import scene_headline
 
@@ -143,13 +142,4 @@ def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:
             f"cannot tell the figure format from {str(path)!r}: "
             f"expected a suffix among {', '.join(FIGURE_FORMATS)}"
         )
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex}.tmp")
-    try:
-        fig.savefig(tmp, format=fmt, dpi=150)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            tmp.unlink()
-        raise
-    return path
+    return atomic_write(path, lambda tmp: fig.savefig(tmp, format=fmt, dpi=150))

@@ -33,7 +33,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from frictiondisk.files import TEMP_SUFFIX, fsync_directory, temporary_name
+from frictiondisk.files import TEMP_SUFFIX, atomic_write_bytes, fsync_directory
 from frictiondisk.version import NUMERICS_VERSION
 
 __all__ = [
@@ -332,19 +332,8 @@ class Journal:
         # compact: indent would switch json to its pure-Python encoder (3x slower here)
         data = (json.dumps(entry, sort_keys=True, allow_nan=False) + "\n").encode()
 
-        path = self.entry_path(key)
-        if not path.parent.is_dir():
-            path.parent.mkdir(exist_ok=True)
-        tmp = temporary_name(path)
-        try:
-            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-            with open(fd, "wb") as fh:
-                fh.write(data)
-            os.replace(tmp, path)
-        except BaseException:
-            with contextlib.suppress(OSError):
-                tmp.unlink()
-            raise
+        # no fsync: a torn entry fails its sha256 on read and is computed again
+        atomic_write_bytes(self.entry_path(key), data, durable=False)
         self._log(key)
 
     def _log(self, key: str) -> None:
