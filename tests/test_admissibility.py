@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import g_factor
 
 from frictiondisk import admissibility as ad
 from frictiondisk.config import scene_from_dict
@@ -18,7 +19,7 @@ from frictiondisk.simulate import simulate
 
 OMEGA = 1.1
 REV = 2 * math.pi / OMEGA
-G = math.hypot(1.0 - OMEGA**2, 0.1 * OMEGA)
+G = g_factor(omega_m=OMEGA)
 RING = ad.ring_points(12, 0.05)
 
 

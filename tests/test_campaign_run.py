@@ -3,7 +3,6 @@ resume after SIGKILL and Ctrl-C, a killed worker, corruption repair, refusals.""
 
 from __future__ import annotations
 
-import math
 import os
 import random
 import signal
@@ -16,13 +15,12 @@ from pathlib import Path
 import pytest
 import xarray as xr
 from click.testing import CliRunner
+from conftest import coulomb_mu_star
 
 from frictiondisk.campaign.journal import CampaignLock, Journal
 from frictiondisk.campaign.runner import run_campaign
 from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
-
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of docs/model.md section 6 for the default pin
 
 PIN_LINE = """\
 name: pin_line
@@ -72,7 +70,7 @@ def test_pin_jump_satisfies_the_sticking_circle_oracle(tmp_path):
         assert ds.outcome_lo.values[0] in ("stick_slip", "slide")
         assert ds.mu_star.attrs["long_name"] and ds.x_ms.attrs["units"] == "m"
     assert hi - lo <= 1e-4 * (1 + 1e-9)
-    oracle = 1.0 * 0.1 + G * r1  # c_s x_ms + g R1 (docs/model.md section 6)
+    oracle = coulomb_mu_star(r1)  # c_s x_ms + g R1 (docs/model.md section 6)
     assert lo - 2e-5 < oracle <= hi + 2e-5
 
 

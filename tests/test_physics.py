@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import g_factor
 
 from frictiondisk.config import scene_from_dict
 from frictiondisk.simulate import simulate
@@ -16,7 +17,7 @@ from frictiondisk.simulate import simulate
 OMEGA = 1.1
 REV = 2 * math.pi / OMEGA
 # g = sqrt((c_s - m_s omega^2)^2 + (beta_s omega)^2) with the default parameters
-G = math.hypot(1.0 - OMEGA**2, 0.1 * OMEGA)
+G = g_factor(omega_m=OMEGA)
 
 
 def pin(**params):
