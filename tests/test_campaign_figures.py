@@ -217,9 +217,9 @@ def test_jump_line_bars_span_the_brackets_and_failures_are_listed(line):
     fig = plot_jump_line(line)
     (ax,) = main_axes(fig)[:1]
     assert ax.get_xlabel() == "axes offset x_ms [m]"
-    assert ax.get_ylabel() == MU_LABEL == "friction coefficient mu [-]"
+    assert ax.get_ylabel() == MU_LABEL == "friction coefficient \u03bc [-]"
 
-    (bars,) = [c for c in ax.containers if c.get_label().startswith("mu*")]
+    (bars,) = [c for c in ax.containers if c.get_label().startswith("\u03bc*")]
     np.testing.assert_allclose(errorbar_spans(bars), np.column_stack([X_MS, LO, HI])[:3])
     data_x, data_y = bars.lines[0].get_data()
     np.testing.assert_allclose(data_y, 0.5 * (np.array(LO) + np.array(HI))[:3])
@@ -320,7 +320,7 @@ def test_jump_grid_maps_mu_star_and_hatches_failed_cells():
     assert cell.get_x() < 0.15 < cell.get_x() + cell.get_width()
     assert cell.get_y() < -0.01 < cell.get_y() + cell.get_height()
     (cbar_ax,) = [a for a in fig.get_axes() if a.get_label() == "<colorbar>"]
-    assert "mu*" in cbar_ax.get_ylabel()
+    assert "\u03bc*" in cbar_ax.get_ylabel()
     text = all_text(fig)
     assert "x_ms = 0.15 m, x0 = -0.01 m: no stick up to the limit: grid cell" in text
     assert "9 runs" in text  # --runs on a grid: run counts

@@ -16,8 +16,8 @@ from matplotlib.figure import Figure, SubFigure
 from frictiondisk.horizon import horizon_key
 from frictiondisk.plotting import SLIDE_COLOR, STICK_COLOR
 
-MU_LABEL = "friction coefficient mu [-]"
-MU_STAR_LABEL = "mu* [-]"
+MU_LABEL = "friction coefficient \u03bc [-]"
+MU_STAR_LABEL = "\u03bc* [-]"
 SIZE_LABEL = "size (sticking radius) [m]"
 A_LABEL = "deviation from circle a [m]"
 
@@ -118,16 +118,62 @@ def _caption_parts(ds: xr.Dataset) -> list[str]:
     )
     if numerics_text or mode:
         parts.append(f"numerics {numerics_text}" + (f", mode {mode}" if mode else ""))
+    physics = physics_text(ds)
+    if physics:
+        parts.append(physics)
     parts.append(f"frictiondisk {attrs.get('frictiondisk_version', '?')}")
     if attrs.get("kernel_version"):
         parts.append(str(attrs["kernel_version"]))
     return parts
 
 
+# physical parameters named in captions: (param attribute, symbol, unit, disk only)
+CAPTION_PARAMS = (
+    ("x_ms", "x_ms", "m", False),
+    ("x0", "x0", "m", False),
+    ("beta_b", "$\\beta_b$", "N m s/rad", True),
+    ("phidot0", "$\\dot{\\varphi}_0$", "rad/s", True),
+)
+
+
+def _scene(ds: xr.Dataset) -> dict[str, Any]:
+    try:
+        return yaml.safe_load(str(ds.attrs.get("scene_yaml", ""))) or {}
+    except yaml.YAMLError:
+        return {}
+
+
+def scene_title(ds: xr.Dataset) -> str:
+    """ "Pin" or "Disk (12 contact points)": what a figure shows, from its resolved scene."""
+    scene = _scene(ds)
+    name = str(scene.get("scene", "") or "")
+    if name == "disk":
+        points = (scene.get("contact") or {}).get("points")
+        return f"Disk ({points} contact points)" if points else "Disk"
+    return name.capitalize() or str(ds.attrs.get("campaign_name", ""))
+
+
+def physics_text(ds: xr.Dataset) -> str:
+    """The physical parameters that are not varied, e.g. "pin, x_ms 0.1 m, x0 0 m" (disk:
+    also beta_b and phidot0); empty for results without the resolved scene."""
+    if "param_x_ms" not in ds.attrs:
+        return ""
+    varied = {str(ds[c].attrs.get("scene_key", "")) for c in ds.coords}
+    scene = _scene(ds).get("scene", "")
+    shown = [
+        f"{symbol} {_fmt(float(ds.attrs[f'param_{key}']))} {unit}"
+        for key, symbol, unit, disk_only in CAPTION_PARAMS
+        if f"param_{key}" in ds.attrs
+        and f"params.{key}" not in varied
+        and (scene == "disk" or not disk_only)
+    ]
+    return ", ".join([str(scene or "scene"), *shown])
+
+
 def caption_text(ds: xr.Dataset) -> str:
     """One line on how the results were made: campaign name, task, tolerance, numerics
-    (method, rtol, atol, horizon, mode; from the numerics_yaml attribute) and the package and
-    kernel versions."""
+    (method, rtol, atol, horizon, mode; from the numerics_yaml attribute), the physical
+    parameters that are not varied, and the package and numerics versions."""
     return CAPTION_SEP.join(_caption_parts(ds))
 
 

@@ -66,6 +66,7 @@ from frictiondisk.campaign.figure_style import (  # noqa: F401  (re-exported)
     axis_label,
     caption_text,
     new_figure,
+    scene_title,
 )
 from frictiondisk.plotting import SLIDE_COLOR, STICK_COLOR
 
@@ -418,7 +419,7 @@ def plot_jump_line(
                 marker="^",
                 markersize=5,
                 color="0.4",
-                label=f"run above the view (mu up to {run_mu[~in_view].max():.3g})",
+                label=f"run above the view (\u03bc up to {run_mu[~in_view].max():.3g})",
             )
         )
 
@@ -439,7 +440,7 @@ def plot_jump_line(
             elinewidth=1.2,
             capsize=4,
             zorder=4,
-            label=f"mu* with its bracket [mu_lo, mu_hi]{tol_text}",
+            label=f"\u03bc* with its bracket [\u03bc_lo, \u03bc_hi]{tol_text}",
         )
         handles.append(container)
 
@@ -590,8 +591,7 @@ def plot_jump_line(
     ax.set_ylabel(MU_LABEL)
     ax.grid(True, linewidth=0.4, alpha=0.5)
     main.suptitle(
-        f"{results.attrs.get('campaign_name', '')}: jump from the outer limit cycle "
-        f"to pure sticking"
+        f"{scene_title(results)}: jump \u03bc* from the outer limit cycle to pure sticking"
     )
     handles += run_handles
     if handles:
@@ -652,7 +652,7 @@ def plot_jump_grid(
     mesh = ax.pcolormesh(ex, ey, shown.T, cmap="viridis", shading="flat", zorder=1)
     mesh.set_gid("mu_star")
     cbar = main.colorbar(mesh, ax=ax)
-    cbar.set_label("jump friction coefficient mu* [-]")
+    cbar.set_label("jump friction coefficient \u03bc* [-]")
     tol = results.attrs.get("tol")
     digits = max(2, math.ceil(-math.log10(float(tol))) + 1) if tol else 4
 
@@ -744,7 +744,7 @@ def plot_jump_grid(
     ax.set_xlabel(axis_label(cx))
     ax.set_ylabel(axis_label(cy))
     tol_text = f" (bracket width <= {float(tol):g})" if tol else ""
-    main.suptitle(f"{results.attrs.get('campaign_name', '')}: jump coefficient mu*{tol_text}")
+    main.suptitle(f"{scene_title(results)}: jump coefficient \u03bc*{tol_text}")
     if note is not None:
         _add_note(note, fail_lines, f"failed points ({int(failed.sum())}):")
     return fig
@@ -876,7 +876,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
     ax_size.set_ylabel(SIZE_LABEL)
     ax_size.grid(True, linewidth=0.4, alpha=0.5)
     ax_size.tick_params(labelbottom=False)
-    main.suptitle(f"{results.attrs.get('campaign_name', '')}: limit cycle size against mu")
+    main.suptitle(f"{scene_title(results)}: limit cycle size against \u03bc")
 
     cycle = (outcome == "stick_slip") & np.isfinite(a)
     if cycle.any():
@@ -901,7 +901,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
             slope * line_mu + intercept,
             color=STICK_COLOR,
             linewidth=1.2,
-            label=f"least squares: a = {slope:.4g} m * mu {sign} {abs(intercept):.3g} m "
+            label=f"least squares: a = {slope:.4g} m \u00b7 \u03bc {sign} {abs(intercept):.3g} m "
             f"(slope {slope:.4g} m, largest residual {residual:.2g} m)",
             gid="a_fit",
         )
@@ -1018,7 +1018,7 @@ def plot_scan_family(results: xr.Dataset) -> Figure:
     ax.set_ylabel(SIZE_LABEL)
     ax.grid(True, linewidth=0.4, alpha=0.5)
     main.suptitle(
-        f"{results.attrs.get('campaign_name', '')}: limit cycle size against mu, "
+        f"{scene_title(results)}: limit cycle size against \u03bc, "
         f"one curve per {str(ds[other].attrs.get('scene_key', other)).split('.')[-1]}"
     )
     return fig

@@ -281,7 +281,7 @@ class Campaign:
         """Lines `dotted.path: mine -> other's` for each canonical value that differs."""
         mine, theirs = _flatten(self.canonical()), _flatten(other.canonical())
         lines = [
-            f"{path}: {_show_or_absent(mine, path)} -> {_show_or_absent(theirs, path)}"
+            _difference(path, mine, theirs)
             for path in sorted(mine.keys() | theirs.keys())
             if mine.get(path, _MISSING) != theirs.get(path, _MISSING)
         ]
@@ -758,5 +758,25 @@ def _flatten(data: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     return out
 
 
-def _show_or_absent(flat: Mapping[str, Any], path: str) -> str:
-    return _show(flat[path]) if path in flat else "(absent)"
+def _show_or_absent(flat: Mapping[str, Any], path: str, digits: int | None = None) -> str:
+    if path not in flat:
+        return "(absent)"
+    return _show(flat[path]) if digits is None else _show(_rounded(flat[path], digits))
+
+
+def _rounded(value: Any, digits: int) -> Any:
+    """Floats (also inside lists) to `digits` significant digits, so that float noise such
+    as 0.09999999999999999 (from a linspace) reads 0.1."""
+    if isinstance(value, float):
+        return float(f"{value:.{digits}g}")
+    if isinstance(value, list | tuple):
+        return [_rounded(v, digits) for v in value]
+    return value
+
+
+def _difference(path: str, mine: Mapping[str, Any], theirs: Mapping[str, Any]) -> str:
+    """`path: mine -> theirs`, rounded to 12 significant digits unless that hides the change."""
+    old, new = _show_or_absent(mine, path, 12), _show_or_absent(theirs, path, 12)
+    if old == new:
+        old, new = _show_or_absent(mine, path), _show_or_absent(theirs, path)
+    return f"{path}: {old} -> {new}"
