@@ -112,6 +112,7 @@ def _wait_for_entries(journal_dir: Path, count: int, proc, timeout=60.0) -> None
         time.sleep(0.02)
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_sigkill_and_resume_give_the_uninterrupted_results(tmp_path):
     campaign_file = tmp_path / "disk.yaml"
     campaign_file.write_text(DISK_LINE)
@@ -139,6 +140,7 @@ def test_sigkill_and_resume_give_the_uninterrupted_results(tmp_path):
     assert max(Journal(out).computed_counts().values()) == 1
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
     campaign_file = tmp_path / "disk.yaml"
     campaign_file.write_text(DISK_LINE)
@@ -158,6 +160,7 @@ def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
     assert max(Journal(out).computed_counts().values()) == 1
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_killed_worker_is_retried_and_the_campaign_completes(tmp_path):
     from distributed import Client, LocalCluster
 

@@ -42,6 +42,7 @@ def test_regularized_R1_converges_to_the_coulomb_R1_as_the_contact_stiffens():
     assert errors[2] < 1e-9
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_coulomb_jump_meets_the_oracle_and_the_regularized_bracket():
     coulomb = bisect(pin(0.13, method="coulomb", t_decide=20.0))
     oracle = coulomb_mu_star(coulomb.end_result("hi")["R1"])

@@ -208,6 +208,7 @@ def test_disk_agrees():
     assert kernel.n_transitions == radau.n_transitions == 4
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_disk_at_rest_with_refused_entries_agrees():
     """12-point disk starting at rest: contacts stick one by one, some entries are refused
     and re-enter stick later (a located event on both sides). Same switches, same

@@ -179,6 +179,7 @@ def test_stuck_pin_keeps_its_circle_over_100_revolutions():
     assert drifts[1] < drifts[0] / 30
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_braked_stuck_disk_has_periodic_contact_forces_without_growing_self_stress():
     """A disk stuck under a brake torque carries it through its contacts; the contact force
     pattern repeats every revolution (it is constant in the rotating frame up to the fixed
