@@ -113,8 +113,6 @@ def draw_orbit(ax: Axes, x: Any, y: Any, stick: Any, x_ms: float) -> None:
     ax.autoscale_view()
 
     handles = [
-        Line2D([], [], ls="none", marker="o", ms=6, mfc="white", mec="black", label="start"),
-        Line2D([], [], ls="none", marker=">", ms=6, color="black", label="direction of motion"),
         Line2D([], [], color=STICK_COLOR, linewidth=STICK_WIDTH, label="sticking"),
         Line2D([], [], color=SLIDE_COLOR, linewidth=SLIDE_WIDTH, label="sliding"),
         Line2D(
@@ -129,6 +127,8 @@ def draw_orbit(ax: Axes, x: Any, y: Any, stick: Any, x_ms: float) -> None:
             color="tab:red",
             label="spring rest position",
         ),
+        Line2D([], [], ls="none", marker="o", ms=6, mfc="white", mec="black", label="start"),
+        Line2D([], [], ls="none", marker=">", ms=6, color="black", label="direction of motion"),
     ]
     ax.legend(handles=handles, loc="best", fontsize="small")
     ax.set_xlabel("x [m]")

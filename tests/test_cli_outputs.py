@@ -171,6 +171,8 @@ def test_plot_orbit_png(tmp_path: Path) -> None:
     assert "pin" in ax.get_title()
     labels = [text.get_text() for text in ax.get_legend().get_texts()]
     assert labels[:2] == ["sticking", "sliding"]
+    assert labels[-2:] == ["start", "direction of motion"]
+    assert len(ax.texts) >= 1  # the arrowheads (annotations) along the path
 
     # Sticking segments: every contact sticks at the segment's first sample; sample 50 (one
     # contact of one only for the pin, so it counts) is a sticking segment too.
