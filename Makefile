@@ -48,7 +48,7 @@ install: $(STAMP)
 lock:
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q uv
-	$(BIN)/uv pip compile pyproject.toml --extra test --upgrade --generate-hashes \
+	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --upgrade --generate-hashes \
 		--python-version 3.11 --python-platform x86_64-unknown-linux-gnu -o $(LOCK)
 
 # The main job: locate the jump mu* along a line of axes offsets (resumes if interrupted),
