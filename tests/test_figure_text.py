@@ -71,3 +71,36 @@ def test_a_changed_campaign_is_shown_rounded():
     c = campaign_from_text(LINE.replace("tol: 1.0e-4", "tol: 1.0000000000001e-4"))
     (line,) = a.diff(c)
     assert line.startswith("find_jump.tol: 0.0001 -> 0.0001000000000000")
+
+
+def test_the_mu_star_table_lists_every_point():
+    import numpy as np
+
+    from frictiondisk.campaign.table import mu_star_table
+
+    ds = xr.Dataset(
+        {
+            "mu_star": ("x_ms", [0.0633, np.nan]),
+            "mu_lo": ("x_ms", [0.0632, np.nan]),
+            "mu_hi": ("x_ms", [0.0634, np.nan]),
+            "n_runs": ("x_ms", [14, 3]),
+            "status": ("x_ms", ["converged", "failed"]),
+        },
+        coords={"x_ms": ("x_ms", [0.05, 0.1], {"units": "m"})},
+        attrs={"task": "find_jump", "tol": 1e-4},
+    )
+    lines = mu_star_table(ds)
+    assert lines[0] == "mu* per point (bracket width <= tol 0.0001):"
+    assert lines[1].split() == [
+        "x_ms",
+        "[m]",
+        "mu*",
+        "bracket",
+        "[mu_lo,",
+        "mu_hi]",
+        "runs",
+        "status",
+    ]
+    assert lines[2].split() == ["0.05", "0.063300", "[0.063200,", "0.063400]", "14", "converged"]
+    assert lines[3].split() == ["0.1", "-", "-", "3", "failed"]
+    assert mu_star_table(ds.assign_attrs(task="scan")) == []
