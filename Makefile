@@ -1,7 +1,9 @@
 # frictiondisk: set-up, demo, tests, benchmarks and lint.
 #
-#   make demo    create .venv, install, run the built-in pin example, show where the outputs are
-#   make test    create .venv if needed, install with test extras, run the test suite
+#   make demo    create .venv, install from the lock file, locate mu* along the demo line,
+#                print the mu* table, draw the mu* line and one orbit, show where the outputs are
+#   make test    create .venv if needed, install from the lock file, run the test suite
+#   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows)
 #   make bench   kernel and campaign benchmarks (ratios against baselines run alongside)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw figures/<name>.png and .pdf (the README gallery)
@@ -25,30 +27,45 @@ DEMO_PNG := $(DEMO_DIR)/orbit.png
 DEMO_JSON := $(DEMO_DIR)/summary.json
 DEMO_CAMPAIGN := campaigns/demo_line.yaml
 DEMO_CAMPAIGN_DIR := out/demo_line
+DEMO_LINE_PNG := $(DEMO_CAMPAIGN_DIR)/mu_star.png
+LOCK := requirements/lock.txt
 
-.PHONY: all install demo test bench figures basin-figures lint clean distclean
+.PHONY: all install lock demo test bench figures basin-figures lint clean distclean
 
 all: test
 
-# (Re)install whenever pyproject.toml changes; an existing .venv is reused, never recreated.
-$(STAMP): pyproject.toml
+# (Re)install whenever pyproject.toml or the lock file changes; an existing .venv is reused,
+# never recreated. Every dependency comes from the lock file (exact versions and hashes);
+# the project itself is installed without resolving dependencies again.
+$(STAMP): pyproject.toml $(LOCK)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install -e '.[test]'
+	$(BIN)/python -m pip install -r $(LOCK)
+	$(BIN)/python -m pip install --no-deps -e .
 	touch $@
 
 install: $(STAMP)
+
+# The lock file: runtime + test extras, resolved for CPython 3.11 on linux x86_64 by uv
+# (installed into .venv for this purpose only). Commit the result.
+lock:
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q uv
+	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --upgrade --generate-hashes \
+		--python-version 3.11 --python-platform x86_64-unknown-linux-gnu -o $(LOCK)
 
 # The main job: locate the jump mu* along a line of axes offsets (resumes if interrupted),
 # then one orbit of the demo scene.
 demo: $(STAMP)
 	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) -o $(DEMO_CAMPAIGN_DIR)
 	$(BIN)/frictiondisk status $(DEMO_CAMPAIGN_DIR)
+	$(BIN)/frictiondisk plot $(DEMO_CAMPAIGN_DIR) -o $(DEMO_LINE_PNG)
 	@mkdir -p $(DEMO_DIR)
 	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)
 	@echo ""
 	@echo "Demo finished. Outputs:"
 	@echo "  jump mu* along x_ms (netCDF): $(abspath $(DEMO_CAMPAIGN_DIR)/results.nc)"
 	@echo "  every run of it (netCDF):     $(abspath $(DEMO_CAMPAIGN_DIR)/runs.nc)"
+	@echo "  the mu* line (PNG):           $(abspath $(DEMO_LINE_PNG))"
 	@echo "  one run, summary (JSON):      $(abspath $(DEMO_JSON))"
 	@echo "  one run, trajectory (netCDF): $(abspath $(DEMO_NC))"
 	@echo "  one run, orbit plot (PNG):    $(abspath $(DEMO_PNG))"

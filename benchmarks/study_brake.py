@@ -8,7 +8,7 @@ Prints every number it finds and writes
                                     mu* of a co-rotation rule, and the four bounds of
                                     frictiondisk/admissibility.py; micro-slip per revolution
   figures/brake_rotation_term.png   a stuck braked disk integrated with and without the
-                                    rotation term of MODEL.md section 3 (scipy-radau)
+                                    rotation term of docs/model.md section 3 (scipy-radau)
   OUT/brake_study.json              the numbers
 
 Scene: disk, default layout (12 points on rho = 0.05 m), x_ms = 0.1 m, all other defaults.

@@ -1,3 +1,123 @@
-"""frictiondisk: bifurcation tracking for the radial dynamics of friction disks."""
+"""frictiondisk: bifurcation tracking for the radial dynamics of friction disks.
 
-__version__ = "0.1.0"
+The public API (every name imports its machinery only when called, so `import frictiondisk`
+stays cheap)::
+
+    from frictiondisk import load_scene, simulate, load_campaign, run_campaign, open_results
+
+    scene = load_scene("campaigns/demo_pin.yaml", ["params.mu=0.13"])
+    result = simulate(scene)                 # result.outcome, result.reason, result.summary()
+    campaign = load_campaign("campaigns/demo_line.yaml")
+    run_campaign(campaign, "out/demo_line")  # resumes if the directory holds a journal
+    results = open_results("out/demo_line")  # results.nc as an xarray.Dataset
+
+Everything else (the kernel, the campaign machinery, the figures) lives in the submodules;
+docs/model.md describes the model.
+"""
+
+from __future__ import annotations
+
+import sys
+import types
+from os import PathLike
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from frictiondisk.version import __version__
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from frictiondisk.campaign.runner import RunSummary
+    from frictiondisk.campaign.spec import Campaign
+    from frictiondisk.config import SceneConfig
+    from frictiondisk.result import SimulationResult
+
+__all__ = [
+    "__version__",
+    "load_campaign",
+    "load_scene",
+    "open_results",
+    "run_campaign",
+    "simulate",
+]
+
+
+def load_scene(
+    path: str | PathLike[str], overrides: list[str] | tuple[str, ...] = ()
+) -> SceneConfig:
+    """Load and validate a scene YAML file (every key not given takes its default, SI units).
+
+    overrides: "KEY=VALUE" strings like the CLI's --set, e.g. "params.mu=0.13". A bad file
+    or value raises `frictiondisk.yamlio.ConfigError` naming the key and its allowed range.
+    """
+    from frictiondisk.config import load_scene as _load_scene
+
+    return _load_scene(path, tuple(overrides))
+
+
+def simulate(scene: SceneConfig, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
+    """Run one scene and classify its long-term motion (stick, stick_slip, slide, ...).
+
+    record: keep the trajectory (`result.trajectory`), sampled every dt_out [s] plus every
+    switching instant (dt_out = 0: every step). The first call in a process compiles the
+    numba kernel (or loads it from its cache).
+    """
+    from frictiondisk.simulate import simulate as _simulate
+
+    return _simulate(scene, record=record, dt_out=dt_out)
+
+
+def load_campaign(path: str | PathLike[str]) -> Campaign:
+    """Load and validate a campaign YAML file (find_jump, scan or trajectory task)."""
+    from frictiondisk.campaign.spec import load_campaign as _load_campaign
+
+    return _load_campaign(path)
+
+
+def run_campaign(
+    campaign: Campaign | str | PathLike[str] | None,
+    out_dir: str | PathLike[str],
+    workers: int = 2,
+    progress: bool = False,
+) -> RunSummary:
+    """Run a campaign (a `Campaign` or the path of its YAML file) into out_dir, resuming
+    whatever out_dir's journal already holds; campaign=None resumes out_dir's own campaign.
+    Writes out_dir/results.nc and runs.nc (trajectory.nc for a trajectory task)."""
+    from frictiondisk.campaign.runner import run_campaign as _run_campaign
+
+    if campaign is not None and not hasattr(campaign, "task"):
+        campaign = load_campaign(campaign)
+    return _run_campaign(campaign, Path(out_dir), workers=workers, progress=progress)
+
+
+def open_results(path: str | PathLike[str], name: str = "results") -> xr.Dataset:
+    """A campaign's output as an xarray Dataset, read into memory (the file is closed).
+
+    path: a campaign directory (then `name` picks results.nc, runs.nc or trajectory.nc)
+    or a netCDF file.
+    """
+    import xarray as xr
+
+    path = Path(path)
+    if path.is_dir():
+        path = path / f"{name}.nc"
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+class _Package(types.ModuleType):
+    """The package module, keeping the name `simulate` for the function above.
+
+    Importing the submodule `frictiondisk.simulate` would otherwise rebind the package
+    attribute `simulate` to that module. The submodule stays importable under its full
+    name (`from frictiondisk.simulate import ...`).
+    """
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name == "simulate" and isinstance(value, types.ModuleType):
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

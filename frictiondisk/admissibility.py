@@ -2,7 +2,7 @@
 
 A slave that sticks for good co-rotates rigidly with the master: its centre runs on a
 circle r(t) = R e(theta0 + omega_m t) about the master axis and (disk) phi' = omega_m.
-The contacts must then supply, at every instant (MODEL.md section 4, r'' = -omega_m^2 r):
+The contacts must then supply, at every instant (docs/model.md section 4, r'' = -omega_m^2 r):
 
     F(t) = m_s r'' - F_s = -c_s r0 + A r(t),    A = (c_s - m_s omega_m^2) I + beta_s omega_m J
     T    = beta_b omega_m                        (torque about the slave centre)
@@ -16,7 +16,7 @@ preload from every direction once per revolution.
 
 Each contact point carries at most mu F_n / N (equal normal force on N points). Four
 conditions on mu F_n [N], from weakest to strongest (for the pin, with N = 1 and T = 0,
-all four are MODEL.md's oracle mu F_n >= c_s x_ms + g R):
+all four are docs/model.md's oracle mu F_n >= c_s x_ms + g R):
 
 * `collapse_demand`: max over the revolution of the rigid-plastic limit Lambda(F(t), T):
   below it no contact pattern at all can carry the load at some instant (gross slip).
@@ -28,7 +28,7 @@ all four are MODEL.md's oracle mu F_n >= c_s x_ms + g R):
   the load shared elastically (equal stiffness per point): f_i = F/N + (T/(N rho)) t_i,
   so mu F_n >= c_s |x_ms| + max_i |C + (T/rho) t_i|.
 * `additive_demand`: c_s |x_ms| + g R + T/rho, the continuous-ring value of the elastic
-  demand and an upper bound of it for any layout on a ring of radius rho (MODEL.md 7).
+  demand and an upper bound of it for any layout on a ring of radius rho (docs/model.md section 7).
 
 Lambda(F, T) = min over contact force patterns {f_i} with sum f_i = F, sum a_i x f_i = T
 of N max_i |f_i| [N]: the smallest mu F_n that can carry (F, T) with the best
@@ -235,7 +235,7 @@ def _layout_angles(points: np.ndarray, layout_angle):
 
 
 def additive_demand(case: LoadCase, rho: float) -> float:
-    """c_s |x_ms| + g R + beta_b omega_m / rho [N] (MODEL.md section 7); rho = 0: pin."""
+    """c_s |x_ms| + g R + beta_b omega_m / rho [N] (docs/model.md section 7); rho = 0: pin."""
     extra = 0.0 if case.torque == 0.0 else case.torque / rho
     return case.preload + case.g * case.R + extra
 

@@ -1,4 +1,4 @@
-"""Bisection for the jump mu* of one parameter point (MODEL.md section 7). Pure Python.
+"""Bisection for the jump mu* of one parameter point (docs/model.md section 7). Pure Python.
 
 `Bisection` is a state machine: `pending()` names the runs it needs next, `feed()` takes
 their outcomes. It keeps [mu_lo, mu_hi] with mu_lo -> not stick and mu_hi -> stick (a

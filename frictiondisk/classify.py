@@ -1,4 +1,4 @@
-"""Kernel status + monitor summary -> outcome and reason (MODEL.md section 6)."""
+"""Kernel status + monitor summary -> outcome and reason (docs/model.md section 6)."""
 
 from __future__ import annotations
 

@@ -18,8 +18,8 @@ from typing import Any
 
 import click
 
-from frictiondisk import __version__
 from frictiondisk.cli_options import check_figure_suffix, fail
+from frictiondisk.version import __version__
 
 
 class _Main(click.Group):
@@ -146,7 +146,10 @@ def simulate(
     if any(problems):
         fail(str(scene), [problem for problem in problems if problem])
 
+    from frictiondisk.compile_notice import announce_compile
     from frictiondisk.simulate import simulate as run_simulation
+
+    announce_compile()
 
     # With --json, stdout carries the JSON object and nothing else.
     redirect = contextlib.redirect_stdout(sys.stderr) if as_json else contextlib.nullcontext()
@@ -249,6 +252,25 @@ def _interruptible(function, *args, **kwargs):
     if "error" in outcome:
         raise outcome["error"]
     return outcome["value"]
+
+
+@main.command("show-defaults")
+@click.option(
+    "--scene",
+    "scene",
+    type=click.Choice(["pin", "disk"]),
+    default="pin",
+    show_default=True,
+    help="Which scene's defaults to print.",
+)
+def show_defaults(scene: str) -> None:
+    """Print the resolved default scene as YAML (every key, SI units; docs/model.md section 5).
+
+    The output is a valid scene file: save it, edit a value, and `simulate` it.
+    """
+    from frictiondisk.config import scene_from_dict
+
+    click.echo(scene_from_dict({"scene": scene}).to_yaml().rstrip("\n"))
 
 
 # Campaign commands live in frictiondisk/campaign/cli.py, `plot` in campaign/plot_cli.py,

@@ -1,4 +1,4 @@
-"""Validated scene configuration (MODEL.md section 5): models, loading, canonical form, hash.
+"""Validated scene configuration (docs/model.md section 5): models, loading, canonical form, hash.
 
 Defaults, units and allowed ranges live only in the model fields below. Each field's
 `description` ends with its unit in brackets and `json_schema_extra["unit"]` holds the
@@ -65,7 +65,7 @@ def _field(default: Any, unit: str | None, doc: str, **constraints: Any) -> Any:
 
 
 class Stribeck(BaseModel):
-    """Stribeck curve mu(v) = mu*[r + (1 - r)*exp(-(v/v_s)**delta)] (MODEL.md section 3)."""
+    """Stribeck curve mu(v) = mu*[r + (1 - r)*exp(-(v/v_s)**delta)] (docs/model.md section 3)."""
 
     model_config = _MODEL_CONFIG
 
@@ -75,7 +75,7 @@ class Stribeck(BaseModel):
 
 
 class Params(BaseModel):
-    """Physical parameters and initial state (paper symbols, MODEL.md sections 2 and 5)."""
+    """Physical parameters and initial state (paper symbols, docs/model.md sections 2 and 5)."""
 
     model_config = _MODEL_CONFIG
 
@@ -114,7 +114,7 @@ class Params(BaseModel):
 
 
 class Contact(BaseModel):
-    """Regularized friction contact (MODEL.md section 3); totals are spread over the points."""
+    """Regularized friction contact (docs/model.md section 3); totals are spread over the points."""
 
     model_config = _MODEL_CONFIG
 

@@ -29,6 +29,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .classify import revolution
+from .horizon import horizon_of
 from .result import SimulationResult
 
 V_STICK = 1e-10  # [m/s] sliding speed taken as zero (the stop takes ~1e-9 s from here)
@@ -86,13 +87,13 @@ class _Pin:
 
 
 def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
-    """Run the pin with exact Coulomb friction; outcome rules as in MODEL.md section 6."""
+    """Run the pin with exact Coulomb friction; outcome rules as in docs/model.md section 6."""
     if config.scene != "pin":
         raise ValueError("numerics.method coulomb is defined for scene pin only")
     wall0 = time.perf_counter()
     pin = _Pin(config)
     num = config.numerics
-    horizon = num.t_max if num.mode == "converge" else num.t_decide
+    horizon = horizon_of(config)
     window = num.window_revs * revolution(config.params.omega_m)
     p = config.params
     y = np.array([p.x_ms + p.x0, p.y0, p.vx0, p.vy0])

@@ -5,9 +5,9 @@ as the numba kernel, but shares with it only what must be shared:
 
 * the inputs: `initial_state` (state layout of kernel/model.py) and the config;
 * the bookkeeping: the kernel's monitor functions (kernel/monitor.py) on the same arrays,
-  and `simulate.build_result`, so both integrators are classified by the same rules.
+  and `run_common.build_result`, so both integrators are classified by the same rules.
 
-Everything that could hide a bug is written again here, from MODEL.md sections 2-4:
+Everything that could hide a bug is written again here, from docs/model.md sections 2-4:
 the right-hand side, the switching functions (|k_i| - F_St,i in stick, minus beta_i eps in
 slide) and their
 time derivative (`NumpyModel`, parameters read from the config, not from
@@ -43,10 +43,11 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .classify import revolution
+from .horizon import horizon_of
 from .kernel import monitor as mon
 from .kernel import status as st
 from .result import SimulationResult, Trajectory
-from .simulate import build_result, horizon_of, initial_state
+from .run_common import build_result, initial_state
 
 __all__ = ["NumpyModel", "simulate_radau"]
 
@@ -61,7 +62,7 @@ TINY_SEGMENT = 1e-14  # [s], relative to max(1, t): a segment this short is not 
 
 @dataclasses.dataclass(frozen=True)
 class NumpyModel:
-    """Pin or disk scene of MODEL.md sections 2-4, vectorized numpy (independent of the kernel).
+    """Pin or disk scene of docs/model.md sections 2-4, vectorized numpy (independent of the kernel).
 
     State layout as kernel/model.py, nq = 2 (pin) or 3 (disk):
         y[0:nq] = x, y (, phi);  y[nq:2nq] = vx, vy (, phidot);  y[2nq+2i:+2] = Z_i [N].
@@ -87,14 +88,14 @@ class NumpyModel:
     stribeck_r: float  # mu_kinetic / mu_static
     stribeck_v_s: float  # [m/s]
     stribeck_delta: float
-    # True: u_i = v_i + omega_m e_z x z_i (MODEL.md 3, the model). False: u_i = v_i, the
+    # True: u_i = v_i + omega_m e_z x z_i (docs/model.md section 3, the model). False: u_i = v_i, the
     # contact state integrated without the rotation term -- a study variant only
     # (benchmarks/study_brake.py), reachable from Python, never from a scene file.
     objective_rate: bool = True
 
     @classmethod
     def from_config(cls, config, objective_rate: bool = True) -> NumpyModel:
-        """Read the parameters from a SceneConfig (MODEL.md section 3: totals spread over N).
+        """Read the parameters from a SceneConfig (docs/model.md section 3: totals spread over N).
 
         objective_rate=False drops the rotation term of the contact rate (study only)."""
         par = config.params
@@ -167,12 +168,12 @@ class NumpyModel:
             ax = 0.0 * Zx
             ay = 0.0 * Zy
         # contact point q = r + a; slave material velocity r' + phi' e_z x a;
-        # master material velocity omega_m e_z x q (MODEL.md section 2)
+        # master material velocity omega_m e_z x q (docs/model.md section 2)
         qx, qy = rx + ax, ry + ay
         slave_vx, slave_vy = rdx - phid * ay, rdy + phid * ax
         master_vx, master_vy = -om * qy, om * qx
         vx, vy = slave_vx - master_vx, slave_vy - master_vy
-        # exact relative displacement rate u = v + omega_m e_z x z, z = Z / c_i (MODEL.md 3)
+        # exact relative displacement rate u = v + omega_m e_z x z, z = Z / c_i (docs/model.md section 3)
         if self.objective_rate:
             zx, zy = Zx / self.c_i, Zy / self.c_i
             ux, uy = vx - om * zy, vy + om * zx
@@ -184,7 +185,7 @@ class NumpyModel:
 
     def switch(self, y, modes):
         """Switching functions [N], shape (N,) or (N, k): |k_i| - F_St,i for a contact in
-        stick, |k_i| - F_St,i - beta_i eps in slide (MODEL.md section 3)."""
+        stick, |k_i| - F_St,i - beta_i eps in slide (docs/model.md section 3)."""
         y2 = np.asarray(y)
         flat = y2.ndim == 1
         if flat:
@@ -201,7 +202,7 @@ class NumpyModel:
         return np.where(np.asarray(modes) == STICK, s > 0.0, s <= 0.0)
 
     def rhs(self, y, modes):
-        """dy/dt in the given contact modes (1 = stick, 0 = slide), MODEL.md sections 3-4."""
+        """dy/dt in the given contact modes (1 = stick, 0 = slide), docs/model.md sections 3-4."""
         y2 = np.asarray(y, dtype=float)
         flat = y2.ndim == 1
         if flat:
@@ -260,7 +261,7 @@ class NumpyModel:
         return self.switch_rate(y, self.rhs(y, trial))[i]
 
     def initial_modes(self, y):
-        """Stick iff |k_i(0)| < F_St,i (MODEL.md section 3)."""
+        """Stick iff |k_i(0)| < F_St,i (docs/model.md section 3)."""
         s = self.switch(y, np.full(self.n_contacts, STICK))
         return np.where(s < 0.0, STICK, SLIDE).astype(np.int8)
 
@@ -452,7 +453,7 @@ class _RadauRun:
     # --- switching rules ---------------------------------------------------------------
 
     def _check_entries(self, y, entered) -> int:
-        """Refused-entry rule of the kernel (`_check_entries`, MODEL.md section 3).
+        """Refused-entry rule of the kernel (`_check_entries`, docs/model.md section 3).
 
         A contact that entered stick whose s would increase under stick dynamics is refused:
         it stays in slide and counts in n_refused (not as a switch: its mode does not
@@ -610,7 +611,7 @@ def simulate_radau(
     record: keep the trajectory: every solver step, or dense-output samples every dt_out
     seconds if dt_out > 0; switching instants are recorded twice (old and new modes).
     Numerical failure never raises: it ends the run as `undetermined` with the reason.
-    objective_rate=False integrates the contact state without the rotation term of MODEL.md
+    objective_rate=False integrates the contact state without the rotation term of docs/model.md
     section 3 (u_i = v_i): a study variant (benchmarks/study_brake.py), not the model.
     """
     wall0 = time.perf_counter()

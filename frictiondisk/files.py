@@ -19,13 +19,15 @@ import os
 import uuid
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import xarray as xr
+if TYPE_CHECKING:
+    import xarray as xr
 
 from frictiondisk.paths import netcdf_write_error
 
 __all__ = [
+    "atomic_write",
     "atomic_write_bytes",
     "atomic_write_netcdf",
     "atomic_write_text",
@@ -62,14 +64,24 @@ def _fsync_file(path: Path) -> None:
         os.fsync(fh.fileno())
 
 
-def _atomic_write(path: str | os.PathLike[str], write: Callable[[Path], None]) -> Path:
-    """Run `write(tmp)` to make a temporary file, then fsync it and rename it over `path`."""
+def atomic_write(
+    path: str | os.PathLike[str], write: Callable[[Path], None], durable: bool = True
+) -> Path:
+    """The one atomic writer: run `write(tmp)` to make a temporary file next to `path`, then
+    rename it over `path` (and, if `durable`, fsync the file before and the directory after).
+
+    Every file this package writes goes through here (netCDF, text, JSON, figures, journal
+    entries). `durable=False` skips the fsyncs where a torn file is detected and recomputed
+    anyway (journal entries carry their own sha256). Missing parent directories are created.
+    Returns the path written.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = temporary_name(path)
     try:
         write(tmp)
-        _fsync_file(tmp)
+        if durable:
+            _fsync_file(tmp)
         os.replace(tmp, path)
     except BaseException as err:  # also KeyboardInterrupt: never leave a temporary file behind
         with contextlib.suppress(OSError):
@@ -77,11 +89,12 @@ def _atomic_write(path: str | os.PathLike[str], write: Callable[[Path], None]) -
         if isinstance(err, OSError) and err.filename in (None, str(tmp), tmp):  # name the target
             raise OSError(err.errno, err.strerror, str(path)) from err
         raise
-    fsync_directory(path.parent)
+    if durable:
+        fsync_directory(path.parent)
     return path
 
 
-def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
+def atomic_write_bytes(path: str | os.PathLike[str], data: bytes, durable: bool = True) -> Path:
     """Write `data` to `path` atomically: `path` holds either all of it or its old content.
 
     Missing parent directories are created. Returns the path written.
@@ -94,7 +107,7 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
         with open(fd, "wb") as fh:
             fh.write(data)
 
-    return _atomic_write(path, write)
+    return atomic_write(path, write, durable)
 
 
 def atomic_write_text(path: str | os.PathLike[str], text: str, encoding: str = "utf-8") -> Path:
@@ -129,7 +142,7 @@ def atomic_write_netcdf(
         except (OSError, RuntimeError) as err:  # "NetCDF: HDF error" on a full disk
             raise netcdf_write_error(path, err) from err
 
-    return _atomic_write(path, write)
+    return atomic_write(path, write)
 
 
 def netcdf_is_valid(path: str | os.PathLike[str]) -> bool:
@@ -138,6 +151,8 @@ def netcdf_is_valid(path: str | os.PathLike[str]) -> bool:
     Any exception while opening or reading (missing file, truncated or corrupted file, not
     netCDF at all) gives False: the caller should recompute the file, not trust it.
     """
+    import xarray as xr
+
     path = Path(path)
     if not path.is_file():
         return False

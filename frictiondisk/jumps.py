@@ -1,6 +1,6 @@
 """Every jump of one parameter point: scan mu first, then bisect each change. Pure Python.
 
-Where the sticking set in mu is not an interval (a disk starting at rest, MODEL.md
+Where the sticking set in mu is not an interval (a disk starting at rest, docs/model.md
 section 7), a single bisection reports one jump as if it were the only one. `JumpSearch`
 runs a prescan over given values of mu, then bisects every pair of neighbouring prescan
 values whose outcomes differ in stick / not stick: a *rising* jump (not stick below,

@@ -10,9 +10,7 @@ This module never selects a matplotlib backend: figures are built with
 
 from __future__ import annotations
 
-import contextlib
 import os
-import uuid
 from pathlib import Path
 from typing import Any
 
@@ -22,6 +20,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from frictiondisk.files import atomic_write
 from frictiondisk.result import SimulationResult
 from frictiondisk.trajectory import scene_headline
 
@@ -99,6 +98,11 @@ def draw_orbit(ax: Axes, x: Any, y: Any, stick: Any, x_ms: float) -> None:
     )
     ax.plot([0.0], [0.0], linestyle="none", marker="+", markersize=14, color="black", zorder=4)
     ax.plot([x_ms], [0.0], linestyle="none", marker="x", markersize=9, color="tab:red", zorder=4)
+    finite = np.flatnonzero(np.isfinite(x) & np.isfinite(y))
+    if finite.size:
+        start = finite[0]
+        ax.plot([x[start]], [y[start]], "o", ms=7, mfc="white", mec="black", zorder=5)
+        _direction_arrows(ax, x[finite], y[finite])
 
     # Frame the orbit and both markers.
     xs = np.concatenate([x[np.isfinite(x)], [0.0, x_ms]])
@@ -123,11 +127,34 @@ def draw_orbit(ax: Axes, x: Any, y: Any, stick: Any, x_ms: float) -> None:
             color="tab:red",
             label="spring rest position",
         ),
+        Line2D([], [], ls="none", marker="o", ms=6, mfc="white", mec="black", label="start"),
+        Line2D([], [], ls="none", marker=">", ms=6, color="black", label="direction of motion"),
     ]
     ax.legend(handles=handles, loc="best", fontsize="small")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.grid(True, linewidth=0.4, alpha=0.5)
+
+
+def _direction_arrows(ax: Axes, x: np.ndarray, y: np.ndarray, count: int = 4) -> None:
+    """Arrowheads along the path (x, y) at `count` places, pointing the way it is travelled."""
+    step = np.hypot(np.diff(x), np.diff(y))
+    length = np.concatenate([[0.0], np.cumsum(step)])
+    if length[-1] <= 0.0:
+        return
+    span = max(np.ptp(x), np.ptp(y), 1e-12)
+    for frac in (np.arange(count) + 0.5) / count:
+        i = int(np.searchsorted(length, frac * length[-1]))
+        j = int(np.searchsorted(length, length[i] + 0.02 * span))  # ~2 % of the view ahead
+        if j >= len(x) or (x[j], y[j]) == (x[i], y[i]):
+            continue
+        ax.annotate(
+            "",
+            xy=(x[j], y[j]),
+            xytext=(x[i], y[i]),
+            arrowprops={"arrowstyle": "-|>", "color": "black", "lw": 0.8, "mutation_scale": 12},
+            zorder=5,
+        )
 
 
 def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:
@@ -143,13 +170,4 @@ def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:
             f"cannot tell the figure format from {str(path)!r}: "
             f"expected a suffix among {', '.join(FIGURE_FORMATS)}"
         )
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex}.tmp")
-    try:
-        fig.savefig(tmp, format=fmt, dpi=150)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            tmp.unlink()
-        raise
-    return path
+    return atomic_write(path, lambda tmp: fig.savefig(tmp, format=fmt, dpi=150))

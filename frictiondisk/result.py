@@ -66,7 +66,7 @@ class Trajectory:
 
 @dataclasses.dataclass(frozen=True)
 class SimulationResult:
-    """Outcome and measures of one run (MODEL.md section 6). Lengths in m, times in s."""
+    """Outcome and measures of one run (docs/model.md section 6). Lengths in m, times in s."""
 
     outcome: str  # one of OUTCOMES
     reason: str  # why this outcome; for `undetermined`, what went wrong
@@ -79,7 +79,7 @@ class SimulationResult:
     t_end: float  # simulated time reached [s]
     n_steps: int  # accepted integrator steps
     n_rejected: int  # rejected integrator steps
-    n_refused: int  # refused slide->stick entries (MODEL.md section 3)
+    n_refused: int  # refused slide->stick entries (docs/model.md section 3)
     cycle_converged: bool  # limit cycle converged (section-point test)
     wall_s: float  # wall time of the run [s]
     method: str  # numerics.method used

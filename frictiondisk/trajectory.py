@@ -8,6 +8,7 @@ atomically: a reader never sees a half-written file.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any
@@ -16,9 +17,10 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from frictiondisk import __version__
+from frictiondisk import cf
 from frictiondisk.files import atomic_write_netcdf
 from frictiondisk.result import SimulationResult
+from frictiondisk.version import __version__
 
 # name -> (units, long_name) of the per-sample variables (dim `time`).
 _BODY_VARIABLES: dict[str, tuple[str, str]] = {
@@ -54,11 +56,12 @@ def scene_headline(config: Any) -> dict[str, Any]:
 
 
 def _attr_value(value: Any) -> Any:
-    """A netCDF-storable attribute value: None -> "none", bool -> int, numpy scalar -> Python."""
+    """A netCDF-storable attribute value: None (a measure the run does not have) -> NaN,
+    bool -> int, numpy scalar -> Python."""
     if isinstance(value, np.generic):
         value = value.item()
     if value is None:
-        return "none"
+        return math.nan
     if isinstance(value, bool):
         return int(value)
     return value
@@ -81,7 +84,8 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
     variables x, y, vx, vy (time), phi, phidot (time; only for scenes with rotation),
     Zx, Zy (time, contact) and mode (time, contact; int8, 1 = stick, 0 = slide).
     Attributes: `scene_yaml` (the full configuration), `config_hash`, `frictiondisk_version`
-    and every scalar of `result.summary()` (None stored as "none", booleans as 0/1).
+    and every scalar of `result.summary()` (None stored as NaN, booleans as 0/1), the
+    resolved physical parameters (`param_*`) and the CF attributes (frictiondisk.cf).
     """
     traj = result.trajectory
     if traj is None:
@@ -132,16 +136,21 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
     }
 
     attrs: dict[str, Any] = {
-        "title": "frictiondisk trajectory",
         "frictiondisk_version": __version__,
         "config_hash": str(config.content_hash()),
-        "scene_yaml": str(config.to_yaml()),
+        **cf.scene_attrs(config),
         "truncated": int(bool(traj.truncated)),
     }
     for key, value in result.summary().items():
         attrs[key] = _attr_value(value)
 
-    return xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs)
+    head = scene_headline(config)
+    return cf.complete(
+        xr.Dataset(data_vars=data_vars, coords=coords, attrs=attrs),
+        title=f"frictiondisk trajectory: {head['scene']}, mu = {head['mu']:g}, "
+        f"x_ms = {head['x_ms']:g} m",
+        what="frictiondisk simulate (one recorded run)",
+    )
 
 
 def write_trajectory(path: str | os.PathLike[str], result: SimulationResult, config: Any) -> Path:

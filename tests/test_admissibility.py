@@ -1,6 +1,6 @@
 """Admissibility of permanent co-rotation (frictiondisk/admissibility.py).
 
-Checks: the pin reduction to MODEL.md's oracle; the ordering and limits of the four demands;
+Checks: the pin reduction to docs/model.md's oracle; the ordering and limits of the four demands;
 the rigid-plastic capacity against its static certificate and a brute-force search; and a
 simulated stuck braked disk, whose contact forces must add up to the required force and
 torque and can never beat the best redistribution.
@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import g_factor
 
 from frictiondisk import admissibility as ad
 from frictiondisk.config import scene_from_dict
@@ -18,7 +19,7 @@ from frictiondisk.simulate import simulate
 
 OMEGA = 1.1
 REV = 2 * math.pi / OMEGA
-G = math.hypot(1.0 - OMEGA**2, 0.1 * OMEGA)
+G = g_factor(omega_m=OMEGA)
 RING = ad.ring_points(12, 0.05)
 
 

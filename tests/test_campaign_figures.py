@@ -19,7 +19,7 @@ from matplotlib.text import Text
 
 matplotlib.use("Agg")
 
-from frictiondisk import __version__  # noqa: E402
+from frictiondisk import __version__, cf  # noqa: E402
 from frictiondisk.campaign.figures import (  # noqa: E402
     MU_LABEL,
     axis_label,
@@ -34,6 +34,7 @@ from frictiondisk.campaign.figures import (  # noqa: E402
 from frictiondisk.campaign.runner import run_campaign  # noqa: E402
 from frictiondisk.campaign.spec import campaign_from_text  # noqa: E402
 from frictiondisk.cli import main  # noqa: E402
+from frictiondisk.config import scene_from_dict  # noqa: E402
 
 NUMERICS_YAML = (
     "atol: 1.0e-09\ncycle_count: 3\ncycle_tol: 1.0e-06\ndt: 0.01\nh_max: 0.1\n"
@@ -61,6 +62,9 @@ KEYS = {  # scene key -> (dimension, units, long_name) as datasets._key_attrs wr
 
 
 # ---- synthetic Datasets ------------------------------------------------------------------
+CF_GLOBALS = ("Conventions", "title", "institution", "source", "history", "references")
+
+
 def _coord(key, values):
     dim, units, long_name = KEYS[key]
     attrs = {"long_name": long_name, "scene_key": key, "units": units}
@@ -75,6 +79,8 @@ def _attrs(name, task, **extra):
         "numerics_yaml": NUMERICS_YAML,
         "frictiondisk_version": __version__,
         "kernel_version": "0123456789abcdef",
+        **cf.scene_attrs(scene_from_dict({"scene": "pin"})),
+        **{key: f"synthetic {key}" for key in CF_GLOBALS},
         **extra,
     }
 
@@ -211,9 +217,9 @@ def test_jump_line_bars_span_the_brackets_and_failures_are_listed(line):
     fig = plot_jump_line(line)
     (ax,) = main_axes(fig)[:1]
     assert ax.get_xlabel() == "axes offset x_ms [m]"
-    assert ax.get_ylabel() == MU_LABEL == "friction coefficient mu [-]"
+    assert ax.get_ylabel() == MU_LABEL == "friction coefficient \u03bc [-]"
 
-    (bars,) = [c for c in ax.containers if c.get_label().startswith("mu*")]
+    (bars,) = [c for c in ax.containers if c.get_label().startswith("\u03bc*")]
     np.testing.assert_allclose(errorbar_spans(bars), np.column_stack([X_MS, LO, HI])[:3])
     data_x, data_y = bars.lines[0].get_data()
     np.testing.assert_allclose(data_y, 0.5 * (np.array(LO) + np.array(HI))[:3])
@@ -314,7 +320,7 @@ def test_jump_grid_maps_mu_star_and_hatches_failed_cells():
     assert cell.get_x() < 0.15 < cell.get_x() + cell.get_width()
     assert cell.get_y() < -0.01 < cell.get_y() + cell.get_height()
     (cbar_ax,) = [a for a in fig.get_axes() if a.get_label() == "<colorbar>"]
-    assert "mu*" in cbar_ax.get_ylabel()
+    assert "\u03bc*" in cbar_ax.get_ylabel()
     text = all_text(fig)
     assert "x_ms = 0.15 m, x0 = -0.01 m: no stick up to the limit: grid cell" in text
     assert "9 runs" in text  # --runs on a grid: run counts

@@ -3,7 +3,6 @@ resume after SIGKILL and Ctrl-C, a killed worker, corruption repair, refusals.""
 
 from __future__ import annotations
 
-import math
 import os
 import random
 import signal
@@ -16,13 +15,12 @@ from pathlib import Path
 import pytest
 import xarray as xr
 from click.testing import CliRunner
+from conftest import coulomb_mu_star
 
 from frictiondisk.campaign.journal import CampaignLock, Journal
 from frictiondisk.campaign.runner import run_campaign
 from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
-
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of MODEL.md 6 for the default pin
 
 PIN_LINE = """\
 name: pin_line
@@ -72,7 +70,7 @@ def test_pin_jump_satisfies_the_sticking_circle_oracle(tmp_path):
         assert ds.outcome_lo.values[0] in ("stick_slip", "slide")
         assert ds.mu_star.attrs["long_name"] and ds.x_ms.attrs["units"] == "m"
     assert hi - lo <= 1e-4 * (1 + 1e-9)
-    oracle = 1.0 * 0.1 + G * r1  # c_s x_ms + g R1 (MODEL.md 6)
+    oracle = coulomb_mu_star(r1)  # c_s x_ms + g R1 (docs/model.md section 6)
     assert lo - 2e-5 < oracle <= hi + 2e-5
 
 
@@ -114,6 +112,7 @@ def _wait_for_entries(journal_dir: Path, count: int, proc, timeout=60.0) -> None
         time.sleep(0.02)
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_sigkill_and_resume_give_the_uninterrupted_results(tmp_path):
     campaign_file = tmp_path / "disk.yaml"
     campaign_file.write_text(DISK_LINE)
@@ -141,6 +140,7 @@ def test_sigkill_and_resume_give_the_uninterrupted_results(tmp_path):
     assert max(Journal(out).computed_counts().values()) == 1
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
     campaign_file = tmp_path / "disk.yaml"
     campaign_file.write_text(DISK_LINE)
@@ -160,6 +160,7 @@ def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
     assert max(Journal(out).computed_counts().values()) == 1
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_killed_worker_is_retried_and_the_campaign_completes(tmp_path):
     from distributed import Client, LocalCluster
 
@@ -293,7 +294,7 @@ scan:
         assert list(ds.outcome.values) == ["stick_slip", "stick_slip", "stick"]
         assert ds.cycle_converged.values[:2].all()
         size = ds["size"].values
-        # the outer cycle is far larger than the sticking circle: the jump of MODEL.md 7
+        # the outer cycle is far larger than the sticking circle: the jump of docs/model.md section 7
         assert size[0] < size[1] and size[1] > 2 * size[2]
         assert ds["a"].values[1] > ds["a"].values[0] > 0  # a grows with mu (paper Fig. 6)
         assert ds["size"].attrs["units"] == "m"

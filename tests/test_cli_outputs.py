@@ -116,7 +116,7 @@ def test_netcdf_round_trip_pin(tmp_path: Path) -> None:
     assert ds.attrs["reason"] == "limit cycle converged"
     assert ds.attrs["n_steps"] == 1234
     assert ds.attrs["R1"] == pytest.approx(0.08)
-    assert ds.attrs["a"] == "none"  # NaN -> None in summary() -> "none"
+    assert math.isnan(ds.attrs["a"])  # NaN -> None in summary() -> NaN, never a string
     assert ds.attrs["cycle_converged"] == 1  # bool -> int
 
 
@@ -171,6 +171,8 @@ def test_plot_orbit_png(tmp_path: Path) -> None:
     assert "pin" in ax.get_title()
     labels = [text.get_text() for text in ax.get_legend().get_texts()]
     assert labels[:2] == ["sticking", "sliding"]
+    assert labels[-2:] == ["start", "direction of motion"]
+    assert len(ax.texts) >= 1  # the arrowheads (annotations) along the path
 
     # Sticking segments: every contact sticks at the segment's first sample; sample 50 (one
     # contact of one only for the pin, so it counts) is a sticking segment too.

@@ -1,16 +1,15 @@
 """The exact Coulomb pin (frictiondisk/coulomb.py): the c -> infinity limit of the
 regularized model, and the located jump against the sticking-circle oracle."""
 
-import math
-
 import pytest
+from conftest import coulomb_mu_star, g_factor
 
 from frictiondisk.bisection import Bisection
 from frictiondisk.campaign.tasks import run_bisection
 from frictiondisk.config import ConfigError, scene_from_dict
 from frictiondisk.simulate import simulate
 
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of MODEL.md 6, default pin
+G = g_factor()  # default pin [N/m]
 
 
 def pin(mu, **numerics):
@@ -43,9 +42,10 @@ def test_regularized_R1_converges_to_the_coulomb_R1_as_the_contact_stiffens():
     assert errors[2] < 1e-9
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_coulomb_jump_meets_the_oracle_and_the_regularized_bracket():
     coulomb = bisect(pin(0.13, method="coulomb", t_decide=20.0))
-    oracle = 0.1 + G * coulomb.end_result("hi")["R1"]
+    oracle = coulomb_mu_star(coulomb.end_result("hi")["R1"])
     assert coulomb.mu_lo < oracle <= coulomb.mu_hi
     regularized = bisect(pin(0.13, t_decide=20.0))
     # the two jumps agree within the regularized bracket

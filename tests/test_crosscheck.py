@@ -1,18 +1,16 @@
 """scipy-radau cross-check (frictiondisk/crosscheck.py) against the numba kernel.
 
-Tolerances, derived from the requested rtol = 1e-8 (atol = 1e-11):
-* R1 ~ 0.1 m. Each step keeps its local error near rtol*|r| = 1e-9 m; the slow motion is
-  damped (beta_s) and the contact transient decays at ~500 1/s, so the global error over a
-  few thousand steps stays within ~10-100 local errors: 1e-8..1e-7 m. Bound: 1e-6 m.
-* Switching instants: dt = ds / |ds/dt|. The error in s = |k| - F_St is that of
-  k = Z + beta u, dominated by beta dv with dv ~ rtol*|v| ~ 1e-9 m/s, beta ~ 1e3 N s/m:
-  ds ~ 1e-6 N. At slide->stick |ds/dt| ~ beta*|dv/dt| ~ 1e2 N/s, so dt ~ 1e-8 s; the slow
-  stick->slide crossings (|ds/dt| ~ c_s |v| ~ 0.1 N/s, ds ~ rtol*F_St ~ 1e-9 N) give the
-  same 1e-8 s. Later switches inherit the state error of the earlier ones, a factor 10-100
-  over a few cycles: 1e-7..1e-6 s. Bounds: t_R1 within 1e-5 s, the first switches of a
-  20 s run within 1e-4 s.
-Measured (this machine): |dR1| ~ 1e-13 m, |dt_R1| ~ 4e-12 s, switching instants of the
-mu = 0.11 run within ~1e-9 s, i.e. both sides are far more accurate than the bound.
+Tolerances are in units of the requested accuracy, as in scipy's test_ivp.py: a length
+difference is measured in units of atol + rtol |value|, a time difference in units of
+rtol t (both integrators run at rtol = 1e-8, atol = 1e-11).
+* R1, t_R1 and the pin's switching instants must agree within 1 unit: each side controls
+  its local error to 1 unit, and the first sticking and the pin's switches are simple
+  crossings of a smooth switching function. Measured (this machine): R1 2e-4, t_R1 1e-4,
+  the switching instants of the mu = 0.11 pin 6e-3 units.
+* A re-entry of a disk contact (slide -> stick after a refused entry) is the zero of a
+  rate, i.e. an extremum of the switching function s: a value error delta moves it by
+  ~ sqrt(delta / |s''|), so it is located to ~ sqrt(rtol) / omega_m (9e-5 s), not to
+  rtol t. Measured: 1.5e-5 s.
 """
 
 import math
@@ -28,9 +26,20 @@ from frictiondisk.kernel import model as km
 from frictiondisk.simulate import pack_parameters, simulate
 
 RTOL, ATOL = 1e-8, 1e-11
-TOL_R1 = 1e-6  # [m]
-TOL_T_R1 = 1e-5  # [s]
-TOL_SWITCH = 1e-4  # [s]
+OMEGA_M = 1.1  # [rad/s], the default master
+TOL_REENTRY = math.sqrt(RTOL) / OMEGA_M  # [s]
+
+
+def length_error(a, b):
+    """|a - b| in units of atol + rtol |b| (lengths in m)."""
+    return np.max(np.abs(np.asarray(a) - np.asarray(b)) / (ATOL + RTOL * np.abs(b)))
+
+
+def time_error(a, b):
+    """|a - b| in units of rtol t (times in s)."""
+    return np.max(np.abs(np.asarray(a) - np.asarray(b)) / (RTOL * np.abs(b)))
+
+
 N_SWITCHES = 6  # switches of the mu = 0.11 pin run in 20 s (the kernel finds exactly 6)
 
 
@@ -168,8 +177,8 @@ def test_pin_outcome_and_first_sticking_agree(pin_pair):
     assert radau.method == "scipy-radau"
     assert kernel.outcome == radau.outcome == expected, (kernel.reason, radau.reason)
     assert math.isfinite(radau.R1)
-    assert abs(kernel.R1 - radau.R1) <= TOL_R1
-    assert abs(kernel.t_R1 - radau.t_R1) <= TOL_T_R1
+    assert length_error(kernel.R1, radau.R1) <= 1.0
+    assert time_error(kernel.t_R1, radau.t_R1) <= 1.0
     assert kernel.n_transitions == radau.n_transitions
     assert kernel.n_refused == radau.n_refused == 0
     assert radau.n_rejected == 0  # unknown for solve_ivp: reported as 0
@@ -187,7 +196,7 @@ def test_pin_switching_instants_agree(pin_pair):
         assert len(t_kernel) == len(t_radau) == 1  # slide -> stick, then permanent sticking
     else:
         assert len(t_kernel) == len(t_radau) == N_SWITCHES
-    np.testing.assert_allclose(t_radau, t_kernel, rtol=0.0, atol=TOL_SWITCH)
+    assert time_error(t_kernel, t_radau) <= 1.0
     # the modes alternate the same way on both sides
     m_kernel = kernel.trajectory.mode[1:][np.any(np.diff(kernel.trajectory.mode, axis=0), axis=1)]
     m_radau = radau.trajectory.mode[1:][np.any(np.diff(radau.trajectory.mode, axis=0), axis=1)]
@@ -198,12 +207,13 @@ def test_disk_agrees():
     """Disk on 4 points, co-rotating at start: same outcome and R1."""
     kernel, radau = disk_pair({"mu": 0.14, "phidot0": 1.1}, contact={"points": 4})
     assert kernel.outcome == radau.outcome == "stick", (kernel.reason, radau.reason)
-    assert abs(kernel.R1 - radau.R1) <= TOL_R1
-    assert abs(kernel.t_R1 - radau.t_R1) <= TOL_T_R1
+    assert length_error(kernel.R1, radau.R1) <= 1.0
+    assert time_error(kernel.t_R1, radau.t_R1) <= 1.0
     # the 4 symmetric contacts switch together (within the simultaneity window)
     assert kernel.n_transitions == radau.n_transitions == 4
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_disk_at_rest_with_refused_entries_agrees():
     """12-point disk starting at rest: contacts stick one by one, some entries are refused
     and re-enter stick later (a located event on both sides). Same switches, same
@@ -212,12 +222,12 @@ def test_disk_at_rest_with_refused_entries_agrees():
     assert kernel.outcome == radau.outcome, (kernel.reason, radau.reason)
     assert kernel.n_refused == radau.n_refused > 0
     assert kernel.n_transitions == radau.n_transitions
-    assert abs(kernel.R1 - radau.R1) <= TOL_R1
+    assert length_error(kernel.R1, radau.R1) <= 1.0
     t_kernel = np.unique(switch_times(kernel.trajectory))
     t_radau = np.unique(switch_times(radau.trajectory))
     assert len(t_kernel) == len(t_radau)
     # a re-entry is the zero of a rate (one derivative more than s): located less sharply
-    np.testing.assert_allclose(t_kernel, t_radau, atol=TOL_SWITCH)
+    np.testing.assert_allclose(t_kernel, t_radau, rtol=0.0, atol=TOL_REENTRY)
 
 
 # ---- stopping rules, budget, recording, failure ----------------------------------------

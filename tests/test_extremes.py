@@ -8,13 +8,14 @@ and event budget), never NaN in a decided result, never a silent misclassificati
 import math
 
 import pytest
+from conftest import coulomb_mu_star, g_factor
 
 from frictiondisk.bisection import Bisection
 from frictiondisk.campaign.tasks import run_bisection
 from frictiondisk.config import scene_from_dict
 from frictiondisk.simulate import simulate
 
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # g of MODEL.md 6, default pin
+G = g_factor()  # default pin [N/m]
 BUDGET = {"max_steps": 2_000_000, "max_events": 200_000}
 
 
@@ -148,5 +149,5 @@ def test_located_jump_meets_the_coulomb_oracle(contact):
     """The stick limit is exactly F_St (eps only ends sliding), so neither a near-rigid
     contact (beta eps ~ 1e-4 N) nor a large eps (beta eps ~ 1 N) moves mu*."""
     res = bisect(contact)
-    oracle = 0.1 + G * res.end_result("hi")["R1"]
+    oracle = coulomb_mu_star(res.end_result("hi")["R1"])
     assert res.mu_lo - 2e-5 < oracle <= res.mu_hi + 2e-5

@@ -22,7 +22,6 @@ from frictiondisk.campaign.journal import (
     CampaignLock,
     CampaignLocked,
     Journal,
-    _source_digest,
     kernel_version,
     run_key,
 )
@@ -54,31 +53,43 @@ def _inputs(key: str) -> dict:
 # --- keys ---------------------------------------------------------------------------------
 
 
-def test_kernel_version_is_16_hex_and_stable():
+def test_kernel_version_names_the_numerics_and_library_versions():
+    from importlib import metadata
+
+    from frictiondisk.version import NUMERICS_VERSION
+
     version = kernel_version()
-    assert len(version) == 16 and int(version, 16) >= 0
+    assert version.startswith(f"numerics {NUMERICS_VERSION}, ")
+    for name in ("numba", "numpy", "scipy"):
+        assert f"{name} {metadata.version(name)}" in version
     assert kernel_version() == version
     assert run_key(scene_from_dict({"scene": "pin"})) == run_key(scene_from_dict({"scene": "pin"}))
 
 
-def test_kernel_version_changes_with_any_kernel_source(tmp_path):
-    (tmp_path / "kernel").mkdir()
-    files = ["kernel/a.py", "kernel/b.py", "simulate.py", "classify.py", "crosscheck.py"]
-    files += ["result.py", "config.py"]
-    for name in files:
-        (tmp_path / name).write_text(f"# {name}\nX = 1\n")
-    (tmp_path / "plotting.py").write_text("# not numerics\n")
-    before = _source_digest(tmp_path)
-    (tmp_path / "plotting.py").write_text("# edited, still not numerics\n")
-    assert _source_digest(tmp_path) == before
-    for name in files:
-        original = (tmp_path / name).read_text()
-        (tmp_path / name).write_text(original.replace("X = 1", "X = 2"))
-        assert _source_digest(tmp_path) != before, name
-        (tmp_path / name).write_text(original)
-    assert _source_digest(tmp_path) == before
-    (tmp_path / "kernel" / "c.py").write_text("")
-    assert _source_digest(tmp_path) != before, "a new kernel file"
+def test_kernel_version_follows_the_numerics_version_not_the_sources(monkeypatch):
+    before = kernel_version()
+    monkeypatch.setattr(journal_module, "NUMERICS_VERSION", 10**6)
+    kernel_version.cache_clear()
+    try:
+        assert kernel_version() != before and "numerics 1000000" in kernel_version()
+    finally:
+        monkeypatch.undo()
+        kernel_version.cache_clear()
+    assert kernel_version() == before
+
+
+def test_kernel_version_follows_a_library_version(monkeypatch):
+    real = journal_module.metadata.version
+    before = kernel_version()
+    monkeypatch.setattr(
+        journal_module.metadata, "version", lambda n: "9.9" if n == "scipy" else real(n)
+    )
+    kernel_version.cache_clear()
+    try:
+        assert "scipy 9.9" in kernel_version() and kernel_version() != before
+    finally:
+        monkeypatch.undo()
+        kernel_version.cache_clear()
 
 
 @pytest.mark.parametrize(

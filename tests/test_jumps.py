@@ -6,13 +6,12 @@ import math
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import coulomb_mu_star
 
 from frictiondisk.bisection import RunRequest
 from frictiondisk.campaign.runner import run_campaign
 from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.jumps import JumpSearch
-
-G = math.hypot(1.0 - 1.1**2, 0.1 * 1.1)  # MODEL.md section 6, default pin [N/m]
 
 
 def drive(search, outcome_of):
@@ -124,7 +123,7 @@ def test_prescan_campaign_finds_the_jump_of_the_oracle_and_writes_every_jump(tmp
     # the limit-cycle -> sticking jump: the last rising jump, where R1 decides
     last = np.flatnonzero(rising == 1)[-1]
     k = np.flatnonzero((runs["mu"].values == hi[last]) & (runs["outcome"].values == "stick"))[0]
-    oracle = 1.0 * 0.1 + G * float(runs["R1"].values[k])
+    oracle = coulomb_mu_star(float(runs["R1"].values[k]))
     assert lo[last] - 2e-5 < oracle <= hi[last] + 2e-5
     assert res["scan_outcome"].shape == (1, 9)
     assert set(runs["mode"].values) == {"decide"}

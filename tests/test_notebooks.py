@@ -100,6 +100,7 @@ def test_notebook_is_committed_without_outputs(name):
         )
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_getting_started_runs(tmp_path):
     nb = run_notebook("01_getting_started.ipynb", tmp_path)
     _check_ran_cleanly(nb)
@@ -109,6 +110,7 @@ def test_getting_started_runs(tmp_path):
     assert _images(nb) >= 2  # the orbit and the bifurcation line
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_paper_figures_runs(tmp_path):
     nb = run_notebook("02_paper_figures.ipynb", tmp_path)
     _check_ran_cleanly(nb)

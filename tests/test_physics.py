@@ -1,4 +1,4 @@
-"""Physics oracles for the simulation kernel (MODEL.md sections 3 and 6).
+"""Physics oracles for the simulation kernel (docs/model.md sections 3 and 6).
 
 Every check here is a law the model must obey (admissibility of a sticking circle,
 homogeneity, the Coulomb limit, pin/disk equivalence, objectivity of the contact rate),
@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import g_factor
 
 from frictiondisk.config import scene_from_dict
 from frictiondisk.simulate import simulate
@@ -16,7 +17,7 @@ from frictiondisk.simulate import simulate
 OMEGA = 1.1
 REV = 2 * math.pi / OMEGA
 # g = sqrt((c_s - m_s omega^2)^2 + (beta_s omega)^2) with the default parameters
-G = math.hypot(1.0 - OMEGA**2, 0.1 * OMEGA)
+G = g_factor(omega_m=OMEGA)
 
 
 def pin(**params):
@@ -32,7 +33,7 @@ def test_pin_sticks_at_high_mu_with_an_admissible_circle():
     for mu in (0.14, 0.13):
         res = simulate(pin(mu=mu))
         assert res.outcome == "stick", res.reason
-        # The final sticking circle satisfies mu F_n >= c_s x_ms + g R (MODEL.md 6);
+        # The final sticking circle satisfies mu F_n >= c_s x_ms + g R (docs/model.md section 6);
         # with c = 2.53e5 N/m the regularized circle deviates from Coulomb by ~|Z|/c ~ 1e-6 m.
         assert admissibility_margin(mu, res.size) >= -G * 1e-6
         assert abs(res.size - res.R1) < 1e-6  # it stays on its first sticking circle
@@ -165,7 +166,7 @@ def _glued_radius(tr, scene, contact_stiffness):
 def test_stuck_pin_keeps_its_circle_over_100_revolutions():
     """With u = v + omega e_z x z the glued master point moves on an exact circle, so the
     pin cannot drift. The missing rotation term would move it by about
-    omega |z_tangential| per second, |z_t| = beta_s omega R / c (MODEL.md 3)."""
+    omega |z_tangential| per second, |z_t| = beta_s omega R / c (docs/model.md section 3)."""
     drifts = []
     for rtol in (1e-6, 1e-8):
         tr, rows = _stuck_run("pin", {"mu": 0.14}, rtol, 100)
@@ -178,6 +179,7 @@ def test_stuck_pin_keeps_its_circle_over_100_revolutions():
     assert drifts[1] < drifts[0] / 30
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_braked_stuck_disk_has_periodic_contact_forces_without_growing_self_stress():
     """A disk stuck under a brake torque carries it through its contacts; the contact force
     pattern repeats every revolution (it is constant in the rotating frame up to the fixed

@@ -83,7 +83,7 @@ def work_precision_figure(ds: xr.Dataset) -> Figure:
             )
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.set_xlabel("error |mu* - mu*_ref| (1)")
+            ax.set_xlabel("error |\u03bc* \u2212 \u03bc*_ref| [-]")
             ax.set_ylabel(cost_label)
             ax.grid(True, which="major", alpha=0.3)
             reference = (
@@ -96,7 +96,7 @@ def work_precision_figure(ds: xr.Dataset) -> Figure:
                 ax.legend(fontsize=7, loc="best")
         failed += [i for i in rows if not math.isfinite(float(ds["error"].values[i]))]
     title = (
-        f"work-precision of mu*: campaign {ds.attrs.get('campaign_name', '?')}, "
+        f"work-precision of \u03bc*: campaign {ds.attrs.get('campaign_name', '?')}, "
         f"scene {ds.attrs.get('scene', '?')}, {ds.attrs.get('point', '')}, tol = {tol:g}"
     )
     fig.suptitle(title, fontsize=10)

@@ -28,10 +28,11 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from frictiondisk import __version__
+from frictiondisk import cf
 from frictiondisk.accuracy.ladder import ATOL_PER_RTOL, Knob, Setting, build_ladder
 from frictiondisk.bisection import UNDETERMINED, Bisection
 from frictiondisk.config import SceneConfig, describe_key
+from frictiondisk.version import __version__
 
 # A directory no journal can live in: Journal.peek finds nothing there, so every run of
 # the study is computed (a cost study must not read cached runs).
@@ -200,7 +201,12 @@ def run_study(
     ds.attrs.update(
         _attrs(campaign, point_index, base, ladder, tol, quick, workers, wall, len(scenes))
     )
-    return ds
+    ds.attrs.update(cf.scene_attrs(base))
+    return cf.complete(
+        ds,
+        title=ds.attrs["title"],
+        what=f"frictiondisk accuracy: campaign {campaign.name}, point {point_index}",
+    )
 
 
 def build_dataset(

@@ -226,6 +226,7 @@ def status(out_dir: Path) -> None:
         lines.append(f"time left: about {max(0.0, eta - age):.0f} s")
     if state == "complete":
         lines.append(f"results:   {out_dir / RESULTS_FILE}")
+        lines += _mu_star_lines(out_dir / RESULTS_FILE)
     elif state == "damaged":
         lines.append(f"results.nc is missing or damaged; rebuild it: frictiondisk resume {out_dir}")
     elif state in ("interrupted", "not started"):
@@ -269,3 +270,13 @@ def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
         lines.append(f"journal:   {len(moved)} entries were moved aside to journal/corrupt/:")
         lines += [f"  {line}" for line in moved[-shown:]]
     return lines
+
+
+def _mu_star_lines(results_file: Path) -> list[str]:
+    """The mu* table of a finished find_jump campaign (empty for other tasks)."""
+    import xarray as xr
+
+    from frictiondisk.campaign.table import mu_star_table
+
+    with xr.open_dataset(results_file) as results:
+        return mu_star_table(results)

@@ -12,9 +12,10 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from frictiondisk import __version__
+from frictiondisk import cf
 from frictiondisk.campaign.journal import kernel_version
 from frictiondisk.config import describe_key
+from frictiondisk.version import __version__
 from frictiondisk.yamlio import dump_yaml
 
 RUN_MEASURES = {  # summary field -> (units, long name)
@@ -76,6 +77,7 @@ def campaign_attrs(campaign) -> dict[str, Any]:
         "numerics_yaml": dump_yaml(campaign.base.canonical()["numerics"]),
         "frictiondisk_version": __version__,
         "kernel_version": kernel_version(),
+        **cf.scene_attrs(campaign.base),
     }
 
 
@@ -84,9 +86,17 @@ def _num(value) -> float:
 
 
 def results_dataset(campaign, planner) -> xr.Dataset:
-    if campaign.task.kind == "find_jump":
-        return _jump_results(campaign, planner)
-    return _scan_results(campaign, planner)
+    """results.nc: one row per point (find_jump: mu* and its bracket; scan: the run)."""
+    kind = campaign.task.kind
+    if kind == "find_jump":
+        ds, what = _jump_results(campaign, planner), "the jump mu* per point"
+    else:
+        ds, what = _scan_results(campaign, planner), "the outcome and measures per point"
+    return cf.complete(
+        ds,
+        title=f"frictiondisk {kind} campaign {campaign.name}: {what}",
+        what=f"frictiondisk run: campaign {campaign.name}, task {kind}, rebuilt from its journal",
+    )
 
 
 def _jump_results(campaign, planner) -> xr.Dataset:
@@ -325,4 +335,8 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
     for name, (units, long_name) in RUN_MEASURES.items():
         values = np.asarray([_num(r[2].get(name)) for r in rows])
         data_vars[name] = ("run", values, {"units": units, "long_name": long_name})
-    return xr.Dataset(data_vars, attrs=campaign_attrs(campaign))
+    return cf.complete(
+        xr.Dataset(data_vars, attrs=campaign_attrs(campaign)),
+        title=f"frictiondisk campaign {campaign.name}: every run",
+        what=f"frictiondisk run: campaign {campaign.name}, rebuilt from its journal",
+    )

@@ -32,7 +32,6 @@ from typing import Any
 
 import numpy as np
 import xarray as xr
-import yaml
 from matplotlib import colormaps
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure, SubFigure
@@ -41,6 +40,34 @@ from matplotlib.patches import Patch, Rectangle
 from matplotlib.ticker import FuncFormatter
 from matplotlib.transforms import blended_transform_factory
 
+from frictiondisk.campaign.figure_style import (  # noqa: F401  (re-exported)
+    A_LABEL,
+    CAPTION_FONT_PT,
+    CAPTION_SEP,
+    FAIL_COLOR,
+    LINE_COLOR,
+    LIST_WIDTH,
+    MAX_LISTED,
+    MU_LABEL,
+    MU_STAR_LABEL,
+    NON_MONOTONE_COLOR,
+    NOTE_FONT_PT,
+    OUTCOME_LABEL,
+    OUTCOME_STYLE,
+    REGION_FONT_PT,
+    RUG_Y,
+    SIZE_LABEL,
+    SLIDE_GREY,
+    _caption_parts,
+    _fmt,
+    _unit_text,
+    _value_text,
+    _wrap_parts,
+    axis_label,
+    caption_text,
+    new_figure,
+    scene_title,
+)
 from frictiondisk.plotting import SLIDE_COLOR, STICK_COLOR
 
 __all__ = [
@@ -57,38 +84,6 @@ __all__ = [
 ]
 
 FIGURE_KINDS = ("jump_line", "jump_grid", "jump_sizes", "scan_mu", "scan_family", "trajectory")
-MU_LABEL = "friction coefficient mu [-]"
-MU_STAR_LABEL = "mu* [-]"
-SIZE_LABEL = "size (sticking radius) [m]"
-A_LABEL = "deviation from circle a [m]"
-
-FAIL_COLOR = "tab:red"
-SLIDE_GREY = "0.55"
-NON_MONOTONE_COLOR = "tab:orange"
-LINE_COLOR = "0.15"
-RUG_Y = 0.03  # axes fraction at which points without a value are drawn
-MAX_LISTED = 8  # failed points listed by name; the rest are counted
-LIST_WIDTH = 112  # characters per line of the failure list (fits 7.2 in at NOTE_FONT_PT)
-NOTE_FONT_PT = 7.0
-REGION_FONT_PT = 12.0
-CAPTION_FONT_PT = 7.0
-CAPTION_SEP = " | "
-
-# marker style of each outcome (face colour, edge colour, marker)
-OUTCOME_STYLE: dict[str, dict[str, Any]] = {
-    "stick": {"color": STICK_COLOR, "edge": STICK_COLOR, "marker": "o"},
-    "creep": {"color": "#e0a040", "edge": "#9a6a1c", "marker": "D"},
-    "stick_slip": {"color": SLIDE_COLOR, "edge": "#3f6e8c", "marker": "o"},
-    "slide": {"color": SLIDE_GREY, "edge": "0.35", "marker": "s"},
-    "undetermined": {"color": FAIL_COLOR, "edge": FAIL_COLOR, "marker": "x"},
-}
-OUTCOME_LABEL = {
-    "stick": "stick",
-    "creep": "creep (ratchets on the small orbit)",
-    "stick_slip": "stick_slip (limit cycle)",
-    "slide": "slide",
-    "undetermined": "undetermined",
-}
 
 RUNS_VIEW = 2.0  # runs above this many times the largest bracket end are drawn at the top
 
@@ -164,129 +159,6 @@ def figure_kind(results: xr.Dataset) -> str:
         f"results attribute 'task' is {task!r}; expected 'find_jump', 'scan' or 'trajectory' "
         "(not a frictiondisk campaign result?)"
     )
-
-
-# ---- labels and caption ------------------------------------------------------------------
-def _unit_text(units: Any) -> str | None:
-    if units is None or str(units).strip() == "":
-        return None
-    return "-" if str(units).strip() == "1" else str(units).strip()
-
-
-def axis_label(coord: xr.DataArray) -> str:
-    """Axis label of a varied coordinate from its attributes, e.g. "axes offset x_ms [m]".
-
-    The description is the coordinate's long_name up to its first ':' or ';' (without a
-    trailing "[unit]"); the symbol is the last part of its scene_key; "1" shows as "[-]".
-    mu is always labelled `MU_LABEL`.
-    """
-    key = str(coord.attrs.get("scene_key", coord.name))
-    if key == "params.mu":
-        return MU_LABEL
-    name = key.split(".")[-1]
-    long_name = re.sub(r"\s*\[[^\]]*\]\s*$", "", str(coord.attrs.get("long_name", "")))
-    description = re.split(r"[:;]", long_name, maxsplit=1)[0].strip()
-    words = re.findall(r"[\w]+", description)
-    text = description if name in words else f"{description} {name}".strip()
-    unit = _unit_text(coord.attrs.get("units"))
-    return f"{text} [{unit}]" if unit else text
-
-
-def _value_text(coord: xr.DataArray, value: float) -> str:
-    """ "x_ms = 0.1 m": a point's value of a varied key, with its unit."""
-    name = str(coord.attrs.get("scene_key", coord.name)).split(".")[-1]
-    unit = _unit_text(coord.attrs.get("units"))
-    return f"{name} = {value:.6g}{' ' + unit if unit and unit != '-' else ''}"
-
-
-def _fmt(value: Any) -> str:
-    if isinstance(value, float | np.floating):
-        return f"{float(value):g}"
-    return str(value)
-
-
-def _caption_parts(ds: xr.Dataset) -> list[str]:
-    attrs = ds.attrs
-    parts = [f"campaign {attrs.get('campaign_name', '?')}", f"task {attrs.get('task', '?')}"]
-    if "tol" in attrs:
-        parts.append(f"tol {_fmt(float(attrs['tol']))}")
-    try:
-        numerics = yaml.safe_load(str(attrs.get("numerics_yaml", ""))) or {}
-    except yaml.YAMLError:
-        numerics = {}
-    if not isinstance(numerics, dict):
-        numerics = {}
-    mode = numerics.get("mode")
-    if attrs.get("task") == "scan":  # the scan's own mode overrides numerics.mode
-        try:
-            spec = yaml.safe_load(str(attrs.get("campaign_yaml", ""))) or {}
-            mode = (spec.get("scan") or {}).get("mode", "converge")
-        except (yaml.YAMLError, AttributeError):
-            pass
-    horizon = "t_max" if mode == "converge" else "t_decide"
-    numerics_text = ", ".join(
-        f"{label}{_fmt(numerics[key])}{unit}"
-        for key, label, unit in (
-            ("method", "", ""),
-            ("rtol", "rtol ", ""),
-            ("atol", "atol ", ""),
-            (horizon, f"{horizon} ", " s"),
-        )
-        if key in numerics
-    )
-    if numerics_text or mode:
-        parts.append(f"numerics {numerics_text}" + (f", mode {mode}" if mode else ""))
-    parts.append(f"frictiondisk {attrs.get('frictiondisk_version', '?')}")
-    if attrs.get("kernel_version"):
-        parts.append(f"kernel {str(attrs['kernel_version'])[:8]}")
-    return parts
-
-
-def caption_text(ds: xr.Dataset) -> str:
-    """One line on how the results were made: campaign name, task, tolerance, numerics
-    (method, rtol, atol, horizon, mode; from the numerics_yaml attribute) and the package and
-    kernel versions."""
-    return CAPTION_SEP.join(_caption_parts(ds))
-
-
-def _wrap_parts(parts: list[str], width: int) -> list[str]:
-    """Join caption parts into lines of at most `width` characters (a part is never split)."""
-    lines: list[str] = []
-    for part in parts:
-        if lines and len(lines[-1]) + len(CAPTION_SEP) + len(part) <= width:
-            lines[-1] += CAPTION_SEP + part
-        else:
-            lines.append(part)
-    return lines
-
-
-def new_figure(
-    results: xr.Dataset, width: float, height: float, note_lines: int
-) -> tuple[Figure, SubFigure, SubFigure | None]:
-    """A Figure of three stacked subfigures: the plot (height [in]), a note of `note_lines`
-    monospace lines (none if 0) and the caption (wrapped to the figure width).
-
-    Returns the figure, the plot's subfigure and the note's (or None). Separate subfigures
-    keep the note and caption out of the plot's constrained layout.
-    """
-    chars = int(width * 72 / (0.56 * CAPTION_FONT_PT))
-    caption = _wrap_parts(_caption_parts(results), chars)
-    caption_h = 0.1 + 0.14 * len(caption)
-    note_h = 0.125 * note_lines + 0.2 if note_lines else 0.0
-    ratios = [height, *([note_h] if note_lines else []), caption_h]
-    fig = Figure(figsize=(width, sum(ratios)), layout="constrained")
-    subs = fig.subfigures(len(ratios), 1, height_ratios=ratios, hspace=0.0)
-    subs[-1].text(
-        0.01,
-        0.5,
-        "\n".join(caption),
-        ha="left",
-        va="center",
-        fontsize=CAPTION_FONT_PT,
-        color="0.3",
-        gid="caption",
-    )
-    return fig, subs[0], (subs[1] if note_lines else None)
 
 
 def _add_note(note: SubFigure, lines: list[str], title: str) -> None:
@@ -552,7 +424,7 @@ def plot_jump_line(
                 marker="^",
                 markersize=5,
                 color="0.4",
-                label=f"run above the view (mu up to {run_mu[~in_view].max():.3g})",
+                label=f"run above the view (\u03bc up to {run_mu[~in_view].max():.3g})",
             )
         )
 
@@ -573,7 +445,7 @@ def plot_jump_line(
             elinewidth=1.2,
             capsize=4,
             zorder=4,
-            label=f"mu* with its bracket [mu_lo, mu_hi]{tol_text}",
+            label=f"\u03bc* with its bracket [\u03bc_lo, \u03bc_hi]{tol_text}",
         )
         handles.append(container)
 
@@ -724,8 +596,7 @@ def plot_jump_line(
     ax.set_ylabel(MU_LABEL)
     ax.grid(True, linewidth=0.4, alpha=0.5)
     main.suptitle(
-        f"{results.attrs.get('campaign_name', '')}: jump from the outer limit cycle "
-        f"to pure sticking"
+        f"{scene_title(results)}: jump \u03bc* from the outer limit cycle to pure sticking"
     )
     handles += run_handles
     if handles:
@@ -786,7 +657,7 @@ def plot_jump_grid(
     mesh = ax.pcolormesh(ex, ey, shown.T, cmap="viridis", shading="flat", zorder=1)
     mesh.set_gid("mu_star")
     cbar = main.colorbar(mesh, ax=ax)
-    cbar.set_label("jump friction coefficient mu* [-]")
+    cbar.set_label("jump friction coefficient \u03bc* [-]")
     tol = results.attrs.get("tol")
     digits = max(2, math.ceil(-math.log10(float(tol))) + 1) if tol else 4
 
@@ -878,7 +749,7 @@ def plot_jump_grid(
     ax.set_xlabel(axis_label(cx))
     ax.set_ylabel(axis_label(cy))
     tol_text = f" (bracket width <= {float(tol):g})" if tol else ""
-    main.suptitle(f"{results.attrs.get('campaign_name', '')}: jump coefficient mu*{tol_text}")
+    main.suptitle(f"{scene_title(results)}: jump coefficient \u03bc*{tol_text}")
     if note is not None:
         _add_note(note, fail_lines, f"failed points ({int(failed.sum())}):")
     return fig
@@ -1010,7 +881,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
     ax_size.set_ylabel(SIZE_LABEL)
     ax_size.grid(True, linewidth=0.4, alpha=0.5)
     ax_size.tick_params(labelbottom=False)
-    main.suptitle(f"{results.attrs.get('campaign_name', '')}: limit cycle size against mu")
+    main.suptitle(f"{scene_title(results)}: limit cycle size against \u03bc")
 
     cycle = (outcome == "stick_slip") & np.isfinite(a)
     if cycle.any():
@@ -1035,7 +906,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
             slope * line_mu + intercept,
             color=STICK_COLOR,
             linewidth=1.2,
-            label=f"least squares: a = {slope:.4g} m * mu {sign} {abs(intercept):.3g} m "
+            label=f"least squares: a = {slope:.4g} m \u00b7 \u03bc {sign} {abs(intercept):.3g} m "
             f"(slope {slope:.4g} m, largest residual {residual:.2g} m)",
             gid="a_fit",
         )
@@ -1152,7 +1023,7 @@ def plot_scan_family(results: xr.Dataset) -> Figure:
     ax.set_ylabel(SIZE_LABEL)
     ax.grid(True, linewidth=0.4, alpha=0.5)
     main.suptitle(
-        f"{results.attrs.get('campaign_name', '')}: limit cycle size against mu, "
+        f"{scene_title(results)}: limit cycle size against \u03bc, "
         f"one curve per {str(ds[other].attrs.get('scene_key', other)).split('.')[-1]}"
     )
     return fig

@@ -36,12 +36,14 @@ import math
 import os
 import re
 import time
+from importlib import metadata
 from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from frictiondisk.files import TEMP_SUFFIX, fsync_directory, temporary_name
+from frictiondisk.files import TEMP_SUFFIX, atomic_write_bytes, fsync_directory
 from frictiondisk.paths import SymlinkRefused, refuse_symlink
+from frictiondisk.version import NUMERICS_VERSION
 
 __all__ = [
     "ENTRY_VERSION",
@@ -56,58 +58,28 @@ ENTRY_VERSION = 1
 _REASONS_LOG = "reasons.log"  # in journal/corrupt/: why each entry was moved there
 _ENTRY_FIELDS = ("version", "key", "inputs", "result", "sha256")
 _KEY = re.compile(r"[0-9a-f]{64}")  # a sha256 hex digest, as made by run_key
-_PACKAGE_ROOT = Path(__file__).resolve().parent.parent  # the `frictiondisk` package folder
-# The numerics of a run: the kernel, the door into it, and the classifier of its outcome.
-# Everything that turns a scene into a result: the kernel, its Python door and classifier,
-# the cross-check integrator (numerics.method: scipy-radau), the result fields, and the
-# config (derived inputs such as the default contact damping and the contact layout).
-_KERNEL_SOURCES = (
-    "kernel/*.py",
-    "simulate.py",
-    "classify.py",
-    "crosscheck.py",
-    "result.py",
-    "config.py",
-)
 
 
 # --- keys ---------------------------------------------------------------------------------
 
-
-def _source_digest(root: Path, patterns: tuple[str, ...] = _KERNEL_SOURCES) -> str:
-    """First 16 hex digits of the sha256 over the files matching `patterns` under `root`.
-
-    Files are taken in order of their path relative to `root`; each contributes its relative
-    path, its length and its bytes, so a renamed, moved or edited file changes the digest.
-    A pattern naming a single file that does not exist raises FileNotFoundError.
-    """
-    files: set[Path] = set()
-    for pattern in patterns:
-        if any(ch in pattern for ch in "*?["):
-            files.update(p for p in root.glob(pattern) if p.is_file())
-        else:
-            path = root / pattern
-            if not path.is_file():
-                raise FileNotFoundError(f"kernel source {path} not found")
-            files.add(path)
-    digest = hashlib.sha256()
-    for name, path in sorted((p.relative_to(root).as_posix(), p) for p in files):
-        data = path.read_bytes()
-        digest.update(name.encode() + b"\0" + len(data).to_bytes(8, "big") + data)
-    return digest.hexdigest()[:16]
+# The libraries whose versions change what a run computes (numba compiles the kernel, numpy
+# and scipy do its arithmetic, scipy-radau and coulomb integrate with scipy).
+NUMERICS_LIBRARIES = ("numba", "numpy", "scipy")
 
 
 @functools.cache
 def kernel_version() -> str:
-    """Version of the numerics: 16 hex digits of a sha256 over the source code.
+    """Version of the numerics, part of every `run_key`, e.g.
+    "numerics 1, numba 0.68.1, numpy 2.4.6, scipy 1.17.1".
 
-    Hashes the bytes of every file in `_KERNEL_SOURCES` (the kernel, simulate.py,
-    classify.py, crosscheck.py, result.py, config.py), sorted by path. Any change to those
-    files (even a comment)
-    changes the version, hence every `run_key`: journal entries computed by older numerics
-    are never reused. Computed once per process.
+    `NUMERICS_VERSION` (frictiondisk/version.py) is bumped by hand with any change that
+    alters what a run computes; an edited comment or docstring leaves every key as it was.
+    The library versions come from the installed distributions' metadata (nothing is
+    imported): a new numba, numpy or scipy can change results in the last digits, so
+    journal entries computed with other versions are not reused. Computed once per process.
     """
-    return _source_digest(_PACKAGE_ROOT)
+    libraries = ", ".join(f"{name} {metadata.version(name)}" for name in NUMERICS_LIBRARIES)
+    return f"numerics {NUMERICS_VERSION}, {libraries}"
 
 
 def run_key(config: Any) -> str:
@@ -466,21 +438,8 @@ class Journal:
         # compact: indent would switch json to its pure-Python encoder (3x slower here)
         data = (json.dumps(entry, sort_keys=True, allow_nan=False) + "\n").encode()
 
-        path = self.entry_path(key)  # refuses a linked shard folder
-        if not path.parent.is_dir():
-            path.parent.mkdir(exist_ok=True)
-        tmp = temporary_name(path)
-        try:
-            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-            with open(fd, "wb") as fh:
-                fh.write(data)
-            os.replace(tmp, path)
-        except BaseException as err:
-            with contextlib.suppress(OSError):
-                tmp.unlink()
-            if isinstance(err, OSError) and err.filename is None:  # name the file (issue 14)
-                raise OSError(err.errno, err.strerror, str(path)) from err
-            raise
+        # no fsync: a torn entry fails its sha256 on read and is computed again
+        atomic_write_bytes(self.entry_path(key), data, durable=False)
         self._log(key)
 
     def _log(self, key: str) -> None:

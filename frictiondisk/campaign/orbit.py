@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from frictiondisk import cf
 from frictiondisk.campaign.datasets import RUN_MEASURES, campaign_attrs
 from frictiondisk.files import atomic_write_netcdf, netcdf_is_valid
 from frictiondisk.simulate import simulate
@@ -40,7 +41,11 @@ def summary_dataset(campaign, summary: dict[str, Any]) -> xr.Dataset:
         "dt_out": campaign.task.dt_out,
         "mu": campaign.base.params.mu,
     }
-    return xr.Dataset(data, attrs=attrs)
+    return cf.complete(
+        xr.Dataset(data, attrs=attrs),
+        title=f"frictiondisk trajectory campaign {campaign.name}: the run's outcome and measures",
+        what=f"frictiondisk run: campaign {campaign.name}, task trajectory",
+    )
 
 
 def run_trajectory(campaign, out_dir: Path, results_file: str) -> dict:

@@ -15,7 +15,7 @@ import yaml
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from frictiondisk.campaign.figures import new_figure
+from frictiondisk.campaign.figure_style import new_figure
 from frictiondisk.plotting import STICK_COLOR, draw_orbit
 
 A_COLOR = "tab:orange"

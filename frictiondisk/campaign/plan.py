@@ -23,6 +23,7 @@ from typing import Any
 
 from frictiondisk.bisection import Bisection, BisectionResult, RunRequest
 from frictiondisk.campaign.basin_plan import BasinPlanner
+from frictiondisk.campaign.requests import run_config
 from frictiondisk.campaign.tasks import run_bisection, run_scene
 from frictiondisk.jumps import JumpSearch, JumpSearchResult
 
@@ -32,21 +33,6 @@ WARM_HALF_WIDTH_TOLS = 3.0  # half-width of a predicted bracket, in units of tol
 def cold_run_count(bracket: tuple[float, float], tol: float) -> int:
     """Runs of a cold bisection over `bracket` (2 end checks + halvings), no retries."""
     return 2 + max(0, math.ceil(math.log2((bracket[1] - bracket[0]) / tol)))
-
-
-def run_config(point_config, request: RunRequest, horizon_factor: float):
-    """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
-    set, horizon lengthened by the retry level."""
-    num = point_config.numerics
-    mode = request.mode or num.mode
-    key = "numerics.t_max" if mode == "converge" else "numerics.t_decide"
-    horizon = num.t_max if mode == "converge" else num.t_decide
-    overrides: dict[str, Any] = {"params.mu": request.mu}
-    if mode != num.mode:
-        overrides["numerics.mode"] = mode
-    if request.level:
-        overrides[key] = horizon * horizon_factor**request.level
-    return point_config.with_overrides(overrides)
 
 
 class JumpPlanner:

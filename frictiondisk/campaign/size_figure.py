@@ -1,10 +1,12 @@
 """Size against mu around the jump for a few points (paper Figs 7-8), from results.nc.
 
 For a find_jump line with a `converge` prescan: one size curve per point (prescan runs,
-coloured by point, marker by outcome), every located jump a shaded band [mu_lo, mu_hi],
-and, for the middle point, a zoom on its jump with every bisection run as a dot (the
-paper's middle panel): stick runs at their sticking radius, not-stick runs, whose decide
-run has no converged size, on a strip at the bottom. Nothing here simulates.
+coloured by point, marker by outcome) and every located jump as a vertical line with a
+triangle on top (its bracket [mu_lo, mu_hi] is far narrower than a pixel at this scale);
+the legend sits beside the axes, so it hides no jump. For the middle point, a zoom on its
+jump shows every bisection run (the paper's middle panel) at its mu, in the order the runs
+were made: a decide run that does not stick has no size, so the zoom's height is the run
+number, not a size. Nothing here simulates.
 """
 
 from __future__ import annotations
@@ -14,17 +16,19 @@ import xarray as xr
 from matplotlib import colormaps
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator
 from matplotlib.transforms import blended_transform_factory
 
-from frictiondisk.campaign.figures import (
+from frictiondisk.campaign.figure_style import (
     MU_LABEL,
     OUTCOME_STYLE,
     SIZE_LABEL,
     _value_text,
     new_figure,
+    scene_title,
 )
 
-STRIP_Y = 0.04  # axes fraction of the strip for runs without a size
+JUMP_MARK_Y = 1.0  # axes fraction of the triangle marking a located jump
 
 
 def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figure:
@@ -59,9 +63,20 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
                 markeredgecolor=colors[i],
                 zorder=3,
             )
+        top = blended_transform_factory(ax.transData, ax.transAxes)
         for lo, hi in _jumps(results, dim, i):
             ax.axvspan(lo, hi, color=colors[i], alpha=0.35, lw=0, zorder=1)
-            ax.axvline(0.5 * (lo + hi), color=colors[i], lw=0.8, ls=":", zorder=1)
+            ax.axvline(0.5 * (lo + hi), color=colors[i], lw=1.2, ls="--", zorder=1)
+            ax.plot(
+                0.5 * (lo + hi),
+                JUMP_MARK_Y,
+                "v",
+                color=colors[i],
+                ms=8,
+                transform=top,
+                clip_on=False,
+                zorder=4,
+            )
         text = ", ".join(f"\u03bc* = {0.5 * (lo + hi):.5f}" for lo, hi in _jumps(results, dim, i))
         handles.append(Line2D([], [], color=colors[i], marker="o", label=f"{label}: {text}"))
     handles += [
@@ -71,11 +86,18 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
     ax.set_xlabel(MU_LABEL)
     ax.set_ylabel(SIZE_LABEL)
     ax.grid(True, lw=0.4, alpha=0.5)
-    ax.legend(handles=handles, fontsize="small", loc="best")
-    ax.set_title("size against \u03bc; shaded: located jump [\u03bc_lo, \u03bc_hi]", fontsize=10)
+    ax.legend(
+        handles=handles,
+        fontsize="small",
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.14),
+        ncols=2,
+        frameon=False,
+    )
+    ax.set_title("size against \u03bc; dashed line and \u25bc: located jump \u03bc*", fontsize=10)
     if zoom:
         _zoom(axes[1], results, runs, dim, middle, colors[middle])
-    main.suptitle(f"{results.attrs.get('campaign_name', '')}: limit cycle to sticking")
+    main.suptitle(f"{scene_title(results)}: from the limit cycle to permanent sticking")
     return fig
 
 
@@ -90,7 +112,7 @@ def _zoom(ax, results: xr.Dataset, runs: xr.Dataset, dim: str, i: int, color) ->
     x_value = float(results[dim].values[i])
     jumps = _jumps(results, dim, i)
     ax.set_xlabel(MU_LABEL)
-    ax.set_ylabel(SIZE_LABEL)
+    ax.set_ylabel("bisection run (in order)")
     ax.grid(True, lw=0.4, alpha=0.5)
     if not jumps:
         ax.text(0.5, 0.5, "no jump located", transform=ax.transAxes, ha="center")
@@ -98,48 +120,35 @@ def _zoom(ax, results: xr.Dataset, runs: xr.Dataset, dim: str, i: int, color) ->
     scan_mu = np.asarray(results["scan_mu"].values, dtype=float)
     primary = (float(results["mu_lo"].values[i]), float(results["mu_hi"].values[i]))
     lo, hi = primary if primary in jumps else jumps[0]
-    sizes = np.asarray(results["scan_size"].isel({dim: i}).values, dtype=float)
-    if np.isfinite(sizes).any():
-        ax.set_ylim(0.0, 1.1 * np.nanmax(sizes))
     below, above = scan_mu[scan_mu <= lo], scan_mu[scan_mu >= hi]
     left = float(below.max()) if below.size else lo  # the prescan values around the jump
     right = float(above.min()) if above.size else hi
     sel = (np.asarray(runs[dim].values) == x_value) & (np.asarray(runs["mode"].values) == "decide")
     sel &= (np.asarray(runs["mu"].values) >= left) & (np.asarray(runs["mu"].values) <= right)
-    mu = np.asarray(runs["mu"].values, dtype=float)[sel]
-    size = np.asarray(runs["size"].values, dtype=float)[sel]
+    mu = np.asarray(runs["mu"].values, dtype=float)[sel]  # in run order (runs.nc order)
     stick = np.asarray(runs["outcome"].values).astype(str)[sel] == "stick"
-    order = np.argsort(np.flatnonzero(sel))  # run order: the order they were requested
-    ax.plot(mu[stick], size[stick], "o", color=color, ms=6, label="bisection run: stick")
-    strip = blended_transform_factory(ax.transData, ax.transAxes)
+    number = np.arange(1, mu.size + 1)
+    ax.plot(mu, number, "-", color="0.75", lw=0.8, zorder=1)
+    ax.plot(mu[stick], number[stick], "o", color=color, ms=6, label="bisection run: stick")
     ax.plot(
         mu[~stick],
-        np.full(int((~stick).sum()), STRIP_Y),
+        number[~stick],
         "o",
         mfc="white",
         mec=color,
         ms=6,
-        transform=strip,
-        clip_on=False,
-        label="bisection run: not stick (no size in decide mode)",
+        label="bisection run: not stick",
     )
-    for k, (m, s, st) in enumerate(zip(mu[order], size[order], stick[order], strict=True)):
-        y, transform = (s, ax.transData) if st else (STRIP_Y, strip)
-        ax.annotate(
-            str(k + 1),
-            (m, y),
-            xycoords=transform,
-            fontsize=6,
-            xytext=(3, 3),
-            textcoords="offset points",
-        )
     ax.axvspan(lo, hi, color=color, alpha=0.35, lw=0)
     ax.set_xlim(left - 0.05 * (right - left), right + 0.05 * (right - left))
+    ax.set_ylim(0.5, max(mu.size, 1) + 0.5)
+    ax.invert_yaxis()  # the first run at the top: read downwards as the bracket closes
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.ticklabel_format(axis="x", useOffset=False)
     ax.tick_params(axis="x", labelrotation=30)
-    ax.legend(fontsize="small", loc="upper right")
+    ax.legend(fontsize="small", loc="upper center", bbox_to_anchor=(0.5, -0.22), frameon=False)
     ax.set_title(
-        f"{_value_text(results[dim], x_value)}: runs of the bisection (numbered)\n"
+        f"{_value_text(results[dim], x_value)}: the bisection's runs, in order\n"
         f"\u03bc* in [{lo:.5f}, {hi:.5f}]",
         fontsize=10,
     )

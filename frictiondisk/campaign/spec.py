@@ -3,7 +3,7 @@
 A campaign file holds a `name`, a base scene (the keys of a scene file: `scene`, `params`,
 `contact`, `numerics`) and exactly one task:
 
-- `find_jump`: bisect mu to the jump mu* (MODEL.md section 7) at every point of a line of one
+- `find_jump`: bisect mu to the jump mu* (docs/model.md section 7) at every point of a line of one
   scene key or a grid of two, e.g. `along: {params.x_ms: {start: 0.02, stop: 0.2, num: 10}}`.
 - `scan`: run every point of a grid of mu (and optionally one more scene key) in
   `numerics.mode` `converge` (or `decide`), keeping each run's outcome and measures; this
@@ -98,13 +98,13 @@ BASIN_SAMPLE_ONLY = ("sample", "samples", "target_se", "max_samples", "batch", "
 INITIAL_STATE_KEYS = ("params.x0", "params.y0", "params.vx0", "params.vy0", "params.phidot0")
 DISTRIBUTIONS = {"uniform": "low, high", "normal": "mean, sd"}
 
-# find_jump defaults (MODEL.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
+# find_jump defaults (docs/model.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
 DEFAULT_TOL = 1.0e-4
 DEFAULT_LIMITS = (1.0e-6, 10.0)  # the bracket may be widened within these
 DEFAULT_MAX_RETRIES = 2  # retries of an undetermined run with a longer horizon
 DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_max) by this
 DEFAULT_LANES = 2  # warm-start chains
-DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (MODEL.md section 6)
+DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (docs/model.md section 6)
 DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)
 DEFAULT_BASIN_BATCH = 100  # samples per adaptive batch (target_se): the stop rule's step
 DEFAULT_BASIN_SEED = 0
@@ -360,7 +360,7 @@ class Campaign:
         """Lines `dotted.path: mine -> other's` for each canonical value that differs."""
         mine, theirs = _flatten(self.canonical()), _flatten(other.canonical())
         lines = [
-            f"{path}: {_show_or_absent(mine, path)} -> {_show_or_absent(theirs, path)}"
+            _difference(path, mine, theirs)
             for path in sorted(mine.keys() | theirs.keys())
             if mine.get(path, _MISSING) != theirs.get(path, _MISSING)
         ]
@@ -1056,5 +1056,25 @@ def _flatten(data: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     return out
 
 
-def _show_or_absent(flat: Mapping[str, Any], path: str) -> str:
-    return _show(flat[path]) if path in flat else "(absent)"
+def _show_or_absent(flat: Mapping[str, Any], path: str, digits: int | None = None) -> str:
+    if path not in flat:
+        return "(absent)"
+    return _show(flat[path]) if digits is None else _show(_rounded(flat[path], digits))
+
+
+def _rounded(value: Any, digits: int) -> Any:
+    """Floats (also inside lists) to `digits` significant digits, so that float noise such
+    as 0.09999999999999999 (from a linspace) reads 0.1."""
+    if isinstance(value, float):
+        return float(f"{value:.{digits}g}")
+    if isinstance(value, list | tuple):
+        return [_rounded(v, digits) for v in value]
+    return value
+
+
+def _difference(path: str, mine: Mapping[str, Any], theirs: Mapping[str, Any]) -> str:
+    """`path: mine -> theirs`, rounded to 12 significant digits unless that hides the change."""
+    old, new = _show_or_absent(mine, path, 12), _show_or_absent(theirs, path, 12)
+    if old == new:
+        old, new = _show_or_absent(mine, path), _show_or_absent(theirs, path)
+    return f"{path}: {old} -> {new}"

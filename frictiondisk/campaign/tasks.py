@@ -28,7 +28,7 @@ def run_bisection(
     driver alone writes); a worker that cannot see campaign_dir simply computes.
     Returns (bisection, [(RunRequest, result summary), ...] of the runs computed here)."""
     from frictiondisk.campaign.journal import Journal, run_key
-    from frictiondisk.campaign.plan import run_config
+    from frictiondisk.campaign.requests import run_config
     from frictiondisk.config import scene_from_dict
     from frictiondisk.simulate import simulate
 
@@ -49,6 +49,9 @@ def run_bisection(
 
 def warm_up() -> None:
     """Compile (or load from the cache) the kernel for both scenes in this process."""
+    from frictiondisk.compile_notice import announce_compile
+
+    announce_compile()
     for scene in ("pin", "disk"):
         run_scene(
             {

@@ -3,7 +3,7 @@
 `run` never raises: it returns a status code (kernel/status.py) and fills the monitor
 arrays, from which frictiondisk.simulate builds the outcome.
 
-Hysteresis band (MODEL.md section 3). Stick ends at |k| = F_St, slide ends at
+Hysteresis band (docs/model.md section 3). Stick ends at |k| = F_St, slide ends at
 |k| = F_St + beta eps, so a contact that has just switched sits inside a band where its
 own exit threshold is behind it: a new stick contact has |k| = F_St + beta eps > F_St, a
 new slide contact |k| = F_St < F_St + beta eps. Such a contact is flagged `band` and
@@ -123,7 +123,7 @@ def _in_band(p, pts, modes, y, i):
 
 @kernel_jit
 def _check_entries(p, pts, modes, y, f, entered, band, out_i):
-    """Refused-entry check after switches (MODEL.md section 3). Returns the number refused.
+    """Refused-entry check after switches (docs/model.md section 3). Returns the number refused.
 
     A contact entering stick by crossing its threshold (entered = 1) is refused (stays in
     slide) if, with stick dynamics, |k| - F_St would increase. A re-entry (entered = 2) is

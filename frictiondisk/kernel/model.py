@@ -1,4 +1,4 @@
-"""Equations of motion of the pin and disk scenes (MODEL.md sections 2-4), numba only.
+"""Equations of motion of the pin and disk scenes (docs/model.md sections 2-4), numba only.
 
 State layout, nq = 2 (pin) or 3 (disk):
     y[0:nq]        x, y [m] (, phi [rad])
@@ -8,10 +8,10 @@ State layout, nq = 2 (pin) or 3 (disk):
 Every contact law is written as  F_i = -G_i,  dZ_i/dt = (c_i/beta_i) (G_i - Z_i)  with
     G_i = k_i                      (stick)
     G_i = F_St,i k_i / |k_i|       (slide, plastic flow of paper eq. 9)
-    k_i = Z_i + beta_i u_i,  u_i = v_i + omega_m e_z x z_i   (objective rate, MODEL.md section 3)
+    k_i = Z_i + beta_i u_i,  u_i = v_i + omega_m e_z x z_i   (objective rate, docs/model.md section 3)
 In stick this is dZ/dt = c u; both forms are the same law.
 
-Switching functions of contact i (MODEL.md section 3):
+Switching functions of contact i (docs/model.md section 3):
     stick -> slide when g_i = |k_i| - F_St,i crosses 0 upwards;
     slide -> stick when g_i - beta_i eps crosses 0 downwards (the plastic rate
     (|k| - F_St)/beta falls through eps).
@@ -87,7 +87,7 @@ def contact_arm(p, pts, y, i):
 def contact_state(p, pts, y, i):
     """Arm (ax, ay), sliding velocity v_i, vector k_i and limit F_St,i of contact i.
 
-    v_i = (slave velocity at q_i) - omega_m e_z x q_i, q_i = r + a_i  (MODEL.md section 2).
+    v_i = (slave velocity at q_i) - omega_m e_z x q_i, q_i = r + a_i  (docs/model.md section 2).
     """
     nq = n_coords(p)
     om = p[P_OMEGA]
@@ -169,7 +169,7 @@ def stick_rate(p, pts, modes, y, i, fbuf):
 
 @kernel_jit
 def rhs(p, pts, modes, y, f):
-    """dy/dt of the scene in the given contact modes (paper eqs. 3-10, MODEL.md section 4)."""
+    """dy/dt of the scene in the given contact modes (paper eqs. 3-10, docs/model.md section 4)."""
     nq = n_coords(p)
     ncon = modes.shape[0]
     m = p[P_MS]

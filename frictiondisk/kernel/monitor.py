@@ -1,4 +1,4 @@
-"""Run bookkeeping for the outcome rules of MODEL.md section 6 (numba).
+"""Run bookkeeping for the outcome rules of docs/model.md section 6 (numba).
 
 The monitor sees the run through a few calls from the driver (begin, step, switch) and
 keeps what the classifier needs: whole-body sticking phases (every contact in stick),

@@ -1,0 +1,26 @@
+"""The scene of one run that a search requests (mu, mode, retry level), from its point's
+scene. Shared by the planner (plan.py) and the worker (tasks.py), which import it from
+here rather than from each other.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from frictiondisk.bisection import RunRequest
+from frictiondisk.horizon import horizon_key, horizon_of
+
+
+def run_config(point_config, request: RunRequest, horizon_factor: float):
+    """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
+    set, horizon lengthened by the retry level."""
+    num = point_config.numerics
+    mode = request.mode or num.mode
+    key = f"numerics.{horizon_key(mode)}"
+    horizon = horizon_of(point_config, mode)
+    overrides: dict[str, Any] = {"params.mu": request.mu}
+    if mode != num.mode:
+        overrides["numerics.mode"] = mode
+    if request.level:
+        overrides[key] = horizon * horizon_factor**request.level
+    return point_config.with_overrides(overrides)

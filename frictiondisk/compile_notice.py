@@ -1,0 +1,39 @@
+"""The "compiling the kernel" notice.
+
+numba compiles the kernel on the first run in a process whose on-disk cache is cold (a new
+install, a new numba, an edited kernel): 18-30 s without output, which looks like a hang.
+The commands print one line to stderr before that happens.
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any, TextIO
+
+MESSAGE = "compiling the kernel (first run only, ~20 s)"
+
+
+def needs_compiling(dispatcher: Any = None) -> bool:
+    """Whether the first call of the kernel's entry point (kernel/driver.py `run`) will
+    compile it: not yet compiled or loaded in this process, and no entry in numba's
+    on-disk cache index (which numba itself empties for a changed source or numba)."""
+    if dispatcher is None:
+        from frictiondisk.kernel import driver
+
+        dispatcher = driver.run
+    signatures = getattr(dispatcher, "signatures", None)
+    if signatures is None:  # NUMBA_DISABLE_JIT: plain Python, nothing compiles
+        return False
+    if signatures:
+        return False
+    try:
+        index = dispatcher._cache._cache_file._load_index()  # numba internals: may change
+    except (AttributeError, OSError):
+        return True  # cannot tell: say it
+    return not index
+
+
+def announce_compile(stream: TextIO | None = None) -> None:
+    """Print `MESSAGE` (to stderr by default) if the next kernel call will compile."""
+    if needs_compiling():
+        print(MESSAGE, file=stream or sys.stderr, flush=True)

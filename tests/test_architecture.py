@@ -1,0 +1,118 @@
+"""The package's import graph: no cycles, and a kernel free of orchestration.
+
+Read from the source with `ast` (nothing is imported), so every import counts, also the
+ones inside functions that only run later: a lazy import hides a cycle from the
+interpreter, not from a reader.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "frictiondisk"
+KERNEL_FORBIDDEN = ("dask", "distributed", "xarray", "click", "matplotlib")
+
+
+def module_name(path: Path) -> str:
+    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+MODULES = {module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+
+
+def imported_names(name: str, path: Path) -> set[str]:
+    """Every module `name` imports, absolute and relative; `from pkg import x` counts as an
+    import of the submodule pkg.x when x is one, else of pkg."""
+    is_package = path.name == "__init__.py"
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = name.split(".")
+                if not is_package:
+                    base = base[:-1]
+                base = base[: len(base) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            for alias in node.names:
+                sub = f"{target}.{alias.name}"
+                found.add(sub if sub in MODULES else target)
+    return found
+
+
+def import_graph() -> dict[str, set[str]]:
+    return {
+        name: {m for m in imported_names(name, path) if m in MODULES and m != name}
+        for name, path in MODULES.items()
+    }
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components with more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(graph[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_the_graph_is_read():
+    graph = import_graph()
+    assert "frictiondisk.kernel.driver" in graph["frictiondisk.simulate"]
+    assert "frictiondisk.kernel.monitor" in graph["frictiondisk.simulate"]  # `from .kernel import`
+    assert "frictiondisk.campaign.runner" in MODULES
+
+
+def test_a_cycle_is_detected():
+    assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_no_import_cycles():
+    assert cycles(import_graph()) == []
+
+
+@pytest.mark.parametrize("name", sorted(m for m in MODULES if m.startswith("frictiondisk.kernel")))
+def test_the_kernel_never_imports_orchestration(name):
+    bad = {
+        m
+        for m in imported_names(name, MODULES[name])
+        if m.split(".")[0] in KERNEL_FORBIDDEN
+        or (m.startswith("frictiondisk.") and not m.startswith("frictiondisk.kernel"))
+    }
+    assert not bad, f"{name} imports {sorted(bad)}"

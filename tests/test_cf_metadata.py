@@ -1,0 +1,134 @@
+"""CF-1.10 metadata of every netCDF file we write: results.nc, runs.nc, trajectory.nc and
+accuracy.nc (frictiondisk/cf.py)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+from click.testing import CliRunner
+
+from frictiondisk.campaign.runner import run_campaign
+from frictiondisk.campaign.spec import campaign_from_text
+from frictiondisk.cli import main
+
+ACCURACY_PIN = Path(__file__).resolve().parents[1] / "campaigns" / "accuracy_pin.yaml"
+
+LINE = """\
+name: cf_line
+scene: pin
+numerics: {t_decide: 20.0}
+find_jump:
+  tol: 1.0e-2
+  prescan: {mu: [0.05, 0.2], mode: decide}
+  along: {params.x_ms: [0.1]}
+"""
+SCAN = """\
+name: cf_scan
+scene: pin
+numerics: {t_decide: 20.0}
+scan: {mu: [0.05, 0.2], mode: decide}
+"""
+ORBIT = """\
+name: cf_orbit
+scene: pin
+params: {mu: 0.2}
+numerics: {t_decide: 10.0}
+trajectory: {dt_out: 0.5, show: whole}
+"""
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    root = tmp_path_factory.mktemp("cf")
+    out = {}
+    for name, text in (("line", LINE), ("scan", SCAN), ("orbit", ORBIT)):
+        run_campaign(campaign_from_text(text, "<test>"), root / name, 1, None, False)
+        for nc in (root / name).glob("*.nc"):
+            out[f"{name}/{nc.name}"] = nc
+    acc = root / "accuracy"
+    result = CliRunner().invoke(
+        main,
+        ["accuracy", str(ACCURACY_PIN), "-o", str(acc), "--knobs", "preset"]
+        + ["--quick", "--tol", "1e-3"],
+    )
+    assert result.exit_code == 0, result.output
+    out["accuracy/accuracy.nc"] = acc / "accuracy.nc"
+    return out
+
+
+def test_every_file_is_there(files):
+    assert sorted(files) == [
+        "accuracy/accuracy.nc",
+        "line/results.nc",
+        "line/runs.nc",
+        "orbit/results.nc",
+        "orbit/trajectory.nc",
+        "scan/results.nc",
+        "scan/runs.nc",
+    ]
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "accuracy/accuracy.nc",
+        "line/results.nc",
+        "line/runs.nc",
+        "orbit/results.nc",
+        "orbit/trajectory.nc",
+        "scan/results.nc",
+        "scan/runs.nc",
+    ],
+)
+def test_cf_attributes(files, name):
+    with xr.open_dataset(files[name]) as ds:
+        assert ds.attrs["Conventions"] == "CF-1.10"
+        for key in ("title", "history", "source", "references"):
+            assert isinstance(ds.attrs[key], str) and ds.attrs[key].strip(), key
+        assert "frictiondisk" in ds.attrs["source"] and "numba" in ds.attrs["source"]
+        # the resolved physical parameters
+        scene = yaml.safe_load(ds.attrs["scene_yaml"])
+        assert scene["params"]["omega_m"] == ds.attrs["param_omega_m"] == 1.1
+        assert ds.attrs["param_F_n"] == 1.0 and ds.attrs["param_contact_points"] == 1
+        for var_name, var in ds.variables.items():
+            attrs = var.attrs
+            assert attrs.get("long_name"), f"{name}: {var_name} has no long_name"
+            if var.dtype.kind in "USO":
+                assert "units" not in attrs, f"{name}: text variable {var_name} has units"
+            elif "flag_values" in attrs:
+                values = np.atleast_1d(attrs["flag_values"])
+                meanings = attrs["flag_meanings"].split()
+                assert len(values) == len(meanings) >= 2, var_name
+                assert np.isin(var.values, values).all(), f"{var_name} outside its flags"
+                assert attrs["units"] == "1"
+            elif var_name == "value":  # accuracy.nc: units per row
+                assert "value_units" in ds
+            else:
+                assert isinstance(attrs.get("units"), str), f"{name}: {var_name} has no units"
+
+
+def test_flags_and_text_variables_are_described(files):
+    with xr.open_dataset(files["line/results.nc"]) as ds:
+        assert ds["monotone"].attrs["flag_meanings"] == "contradicts_a_single_jump single_jump"
+        assert list(ds["jump_rising"].attrs["flag_values"]) == [-1, 0, 1]
+        assert "stick_slip" in ds["outcome_hi"].attrs["comment"]
+    with xr.open_dataset(files["line/runs.nc"]) as ds:
+        assert ds["outcome"].attrs["long_name"] == "outcome of the run"
+        assert "creep" in ds["outcome"].attrs["comment"]
+        assert ds["reason"].attrs["long_name"] == "why this outcome"
+    with xr.open_dataset(files["orbit/trajectory.nc"]) as ds:
+        assert ds["mode"].attrs["flag_meanings"] == "slide stick"
+
+
+def test_trajectory_measures_are_numbers_never_the_string_none(files):
+    with xr.open_dataset(files["orbit/trajectory.nc"]) as ds:
+        assert ds.attrs["outcome"] == "stick"
+        for key in ("size", "a", "R1", "t_R1"):
+            assert isinstance(ds.attrs[key], float | np.floating), key
+        assert math.isnan(ds.attrs["a"])  # a stick has no cycle deviation
+        assert ds.attrs["size"] > 0.0
