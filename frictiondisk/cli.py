@@ -204,6 +204,14 @@ def simulate(
         f" ({summary['method']}), t_end = {_fmt(summary['t_end'], 's')}",
         f"wall time:    {_fmt(summary['wall_s'], 's', '.3g')}",
     ]
+    if summary.get("n_revolutions"):
+        lines.insert(
+            -2,
+            f"per rev:      slip {_fmt(summary['slip_per_rev'], 'm', '.3g')}, centre drift "
+            f"{_fmt(summary['drift_per_rev'], 'm', '.3g')}, spin drift "
+            f"{_fmt(summary['spin_drift_per_rev'], 'rad', '.3g')} "
+            f"(last of {summary['n_revolutions']} revolutions)",
+        )
     if outputs["trajectory"]:
         lines.append(f"trajectory:   {outputs['trajectory']}")
     if outputs["plot"]:

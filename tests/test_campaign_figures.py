@@ -38,8 +38,8 @@ from frictiondisk.config import scene_from_dict  # noqa: E402
 
 NUMERICS_YAML = (
     "atol: 1.0e-09\ncycle_count: 3\ncycle_tol: 1.0e-06\ndt: 0.01\nh_max: 0.1\n"
-    "max_events: 200000\nmax_steps: 2000000\nmethod: rodas4\nmode: decide\nrtol: 1.0e-06\n"
-    "stop_on_stick: true\nt_decide: 30.0\nt_max: 3000.0\nwindow_revs: 2.0\n"
+    "horizon_budget: 8.0\nmax_events: 200000\nmax_steps: 2000000\nmethod: rodas4\nmode: decide\nrtol: 1.0e-06\n"
+    "stick_rule: corotation\nstop_on_stick: true\nt_decide: 30.0\nt_max: 3000.0\nwindow_revs: 2.0\n"
 )
 MEASURES = {  # datasets.RUN_MEASURES: name -> units
     "R1": "m",
@@ -52,6 +52,12 @@ MEASURES = {  # datasets.RUN_MEASURES: name -> units
     "n_steps": "1",
     "n_refused": "1",
     "energy_residual": "1",
+    "n_revolutions": "1",
+    "slip_per_rev": "m",
+    "drift_per_rev": "m",
+    "spin_drift_per_rev": "rad",
+    "slip_decay": "1",
+    "slip_limit": "m",
 }
 JUMP_ONLY_ATTRS = ("tol", "runs_saved_by_warm_start")  # results.nc of find_jump, not runs.nc
 KEYS = {  # scene key -> (dimension, units, long_name) as datasets._key_attrs writes them

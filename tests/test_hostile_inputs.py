@@ -10,6 +10,7 @@ campaign (2 points, 14 runs). Ctrl-C and the scheduler use real processes and so
 from __future__ import annotations
 
 import contextlib
+import importlib
 import json
 import os
 import shutil
@@ -76,7 +77,8 @@ def no_kernel(monkeypatch):
     def tripwire(*args, **kwargs):
         raise AssertionError("the kernel ran; the input should have been refused first")
 
-    monkeypatch.setattr("frictiondisk.simulate.simulate", tripwire)
+    # the module, not the package attribute `frictiondisk.simulate` (the public function)
+    monkeypatch.setattr(importlib.import_module("frictiondisk.simulate"), "simulate", tripwire)
     monkeypatch.setattr(runner_module._Driver, "run", tripwire)
 
 
@@ -421,17 +423,20 @@ def test_recording_stops_when_its_buffer_is_full():
     assert result.t_end > 1.0
 
 
-def test_stick_after_zero_steps_is_undetermined():
+@pytest.mark.parametrize("rule", ["contacts", "corotation"])
+def test_stick_after_zero_steps_is_undetermined(rule):
     """Past validation (model_copy skips it), x_ms = omega_m = vx0 = 1e300 made a revolution
-    of 6e-300 s and 'stuck' at t = 0; a stick needs steps, so it is undetermined."""
+    of 6e-300 s and 'stuck' at t = 0; a stick needs steps, so it is undetermined (under
+    `corotation` the first step, cut at that revolution, already underflows)."""
     from frictiondisk.simulate import simulate
 
-    config = scene_from_dict({"scene": "pin"})
+    config = scene_from_dict({"scene": "pin", "numerics": {"stick_rule": rule}})
     huge = {"omega_m": 1e300, "x_ms": 1e300, "vx0": 1e300}
     config = config.model_copy(update={"params": config.params.model_copy(update=huge)})
     result = simulate(config)
     assert result.outcome == "undetermined" and result.n_steps == 0
-    assert "0 steps" in result.reason
+    expected = "0 steps" if rule == "contacts" else "step size underflow"
+    assert expected in result.reason
 
 
 def test_ctrl_c_stops_simulate_within_two_seconds(tmp_path):
