@@ -58,6 +58,7 @@ _KERNEL_SOURCES = (
     "crosscheck.py",
     "result.py",
     "config.py",
+    "layouts.py",
 )
 
 

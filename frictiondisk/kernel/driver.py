@@ -25,6 +25,7 @@ from . import monitor as mon
 from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
+from .linalg import stage_workspace
 from .model import SLIDE, STICK, n_coords, rhs, stick_rate, switch_rate, switch_value
 from .rodas import (
     N_WORK_ROWS,
@@ -44,7 +45,8 @@ O_CYCLE_COUNT = 3
 O_CONVERGE = 4  # 1 = run until the limit cycle converged (or t_max)
 O_STOP_ON_STICK = 5
 O_RECORD = 6
-N_IOPT = 7
+O_DENSE_LU = 7  # 1 = dense LU of the stage matrix (O(N^3), for comparison), 0 = arrow (O(N))
+N_IOPT = 8
 
 # Float options (fopt)
 O_RTOL = 0
@@ -160,9 +162,7 @@ def run(
     ftmp = np.empty(n)
     ybuf = np.empty(n)
     ymid = np.empty(n)
-    jac = np.empty((n, n))
-    lu = np.empty((n, n))
-    piv = np.empty(n, dtype=np.int64)
+    jac, lu, piv = stage_workspace(n, nq, iopt[O_DENSE_LU] == 1)
     wk = np.empty((N_WORK_ROWS, n))
     fresh = np.zeros(ncon, dtype=np.int8)
     band = np.zeros(ncon, dtype=np.int8)
