@@ -26,11 +26,20 @@ from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
 from .linalg import stage_workspace
-from .model import SLIDE, STICK, n_coords, rhs, stick_rate, switch_rate, switch_value
+from .model import (
+    SLIDE,
+    STICK,
+    n_coords,
+    rhs,
+    stick_rate_given,
+    switch_rate,
+    switch_value,
+)
 from .rodas import (
     N_WORK_ROWS,
     W_K6,
     dense_eval,
+    dense_eval_contact,
     error_norm,
     next_step_factor,
     reject_factor,
@@ -245,8 +254,8 @@ def run(
             if band[i] == 1:
                 kind = KIND_RISE if modes[i] == STICK else KIND_REENTRY
                 sign = 1.0 if kind == KIND_RISE else -1.0
-                w0 = sign * stick_rate(p, pts, modes, y, i, ftmp)
-                w1 = sign * stick_rate(p, pts, modes, y1, i, ftmp)
+                w0 = sign * stick_rate_given(p, pts, modes, y, f, i, ftmp)
+                w1 = sign * stick_rate_given(p, pts, modes, y1, f1, i, ftmp)
             else:
                 kind = KIND_SWITCH
                 w0 = sigma * switch_value(p, pts, y, i, modes[i])
@@ -272,7 +281,7 @@ def run(
                 sg = find_graze(p, pts, modes, y, y1, wk, i, sigma, w0, w1, d0, d1, ybuf, ftmp)
                 if sg > 0.0:
                     s_hi = sg
-                    dense_eval(y, y1, wk, sg, ybuf)
+                    dense_eval_contact(y, y1, wk, sg, ybuf, nq, i)
                     w_hi = sigma * switch_value(p, pts, ybuf, i, modes[i])
             if s_hi > 0.0:
                 sr = brent_root(

@@ -86,13 +86,11 @@ def friction_limit(p, fn, speed):
 
 
 @kernel_jit
-def contact_arm(p, pts, y, i):
-    """Arm a_i = R(phi) p_i from the slave centre to contact i [m]."""
+def body_rotation(p, y):
+    """(cos phi, sin phi) of the slave's rotation; (1, 0) for the pin."""
     if p[P_ROT] < 0.5:
-        return 0.0, 0.0
-    c = math.cos(y[2])
-    s = math.sin(y[2])
-    return c * pts[i, 0] - s * pts[i, 1], s * pts[i, 0] + c * pts[i, 1]
+        return 1.0, 0.0
+    return math.cos(y[2]), math.sin(y[2])
 
 
 @kernel_jit
@@ -101,9 +99,21 @@ def contact_state(p, pts, y, i):
 
     v_i = (slave velocity at q_i) - omega_m e_z x q_i, q_i = r + a_i  (MODEL.md section 2).
     """
+    c, s = body_rotation(p, y)
+    return contact_state_rot(p, pts, y, i, c, s)
+
+
+@kernel_jit
+def contact_state_rot(p, pts, y, i, c, s):
+    """contact_state with (cos phi, sin phi) = (c, s) given: loops over the contacts
+    compute them once (body_rotation) instead of once per contact."""
     nq = n_coords(p)
     om = p[P_OMEGA]
-    ax, ay = contact_arm(p, pts, y, i)
+    ax = 0.0
+    ay = 0.0
+    if nq == 3:
+        ax = c * pts[i, 0] - s * pts[i, 1]
+        ay = s * pts[i, 0] + c * pts[i, 1]
     phid = y[nq + 2] if nq == 3 else 0.0
     vx = y[nq] - phid * ay + om * (y[1] + ay)
     vy = y[nq + 1] + phid * ax - om * (y[0] + ax)
@@ -178,6 +188,36 @@ def stick_rate(p, pts, modes, y, i, fbuf):
 
 
 @kernel_jit
+def stick_rate_given(p, pts, modes, y, f, i, fbuf):
+    """stick_rate from f = rhs(y) in `modes`, in O(1) instead of O(N).
+
+    Putting contact i into stick changes only its force G_i (-> k_i) and its own Z rate,
+    so only the entries switch_rate reads are formed in fbuf: the accelerations and
+    Z_i' (the rest of fbuf is left as is)."""
+    if modes[i] == STICK:
+        return switch_rate(p, pts, y, f, i)
+    nq = n_coords(p)
+    ax, ay, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
+    kn = math.sqrt(kx * kx + ky * ky)
+    gx = 0.0
+    gy = 0.0
+    if kn > 0.0:
+        gx = fst * kx / kn
+        gy = fst * ky / kn
+    dx = kx - gx  # change of G_i; the slave feels -G_i
+    dy = ky - gy
+    fbuf[nq] = f[nq] - dx / p[P_MS]
+    fbuf[nq + 1] = f[nq + 1] - dy / p[P_MS]
+    if nq == 3:
+        fbuf[nq + 2] = f[nq + 2] - (ax * dy - ay * dx) / p[P_JS]
+    ci, bi, _ = contact_constants(p, pts, i)
+    zi = 2 * nq + 2 * i
+    fbuf[zi] = ci / bi * (kx - y[zi])
+    fbuf[zi + 1] = ci / bi * (ky - y[zi + 1])
+    return switch_rate(p, pts, y, fbuf, i)
+
+
+@kernel_jit
 def rhs(p, pts, modes, y, f):
     """dy/dt of the scene in the given contact modes (paper eqs. 3-10, MODEL.md section 4)."""
     nq = n_coords(p)
@@ -186,8 +226,9 @@ def rhs(p, pts, modes, y, f):
     fx = -p[P_CS] * (y[0] - p[P_XMS]) - p[P_BETAS] * y[nq]
     fy = -p[P_CS] * y[1] - p[P_BETAS] * y[nq + 1]
     torque = 0.0
+    c, s = body_rotation(p, y)
     for i in range(ncon):
-        ax, ay, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
+        ax, ay, _, _, kx, ky, fst, _ = contact_state_rot(p, pts, y, i, c, s)
         if modes[i] == STICK:
             gx = kx
             gy = ky
@@ -215,7 +256,7 @@ def rhs(p, pts, modes, y, f):
 
 
 @kernel_jit
-def _contact_linearization(p, pts, modes, y, i, dg, pm):
+def _contact_linearization(p, pts, modes, y, i, c, s, dg, pm):
     """Linearization of contact i's force G_i (rhs: F_i = -G_i, Z_i' = (c_i/beta_i)(G_i - Z_i)).
 
     dg (2, 2 nq) receives dG_i/d(x, y, (phi), vx, vy, (phidot)) through the sliding
@@ -227,7 +268,7 @@ def _contact_linearization(p, pts, modes, y, i, dg, pm):
     om = p[P_OMEGA]
     ci, bi, _ = contact_constants(p, pts, i)
     phid = y[nq + 2] if nq == 3 else 0.0
-    ax, ay, vx, vy, kx, ky, fst, dfst = contact_state(p, pts, y, i)
+    ax, ay, vx, vy, kx, ky, fst, dfst = contact_state_rot(p, pts, y, i, c, s)
     kn = math.sqrt(kx * kx + ky * ky)
     # M = dG/dk and g = dG/dF_St
     if modes[i] == STICK or kn == 0.0:
@@ -315,8 +356,9 @@ def jacobian(p, pts, modes, y, jac):
     _rigid_jacobian(p, y, jac)
     dg = np.zeros((2, 2 * nq))
     pm = np.empty((2, 2))
+    c, s = body_rotation(p, y)
     for i in range(modes.shape[0]):
-        ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, dg, pm)
+        ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, c, s, dg, pm)
         zi = 2 * nq + 2 * i
         for col in range(2 * nq):
             dgx = dg[0, col]
@@ -341,33 +383,39 @@ def jacobian(p, pts, modes, y, jac):
 @kernel_jit
 def jacobian_arrow(p, pts, modes, y, jac):
     """Analytic Jacobian d(rhs)/dy in the arrow form of kernel/linalg.py, shape (n, 4 nq + 2):
-    the same numbers as `jacobian`, in O(N) time and memory."""
+    the numbers of `jacobian` (to round-off: 1/m_s, 1/J_s are multiplied), in O(N) time
+    and memory. Every contact entry is written once, so only the rigid rows are zeroed."""
     nq = n_coords(p)
     r = 2 * nq
-    m = p[P_MS]
-    jac[:, :] = 0.0
+    inv_m = 1.0 / p[P_MS]
+    inv_j = 1.0 / p[P_JS]
     _rigid_jacobian(p, y, jac)
     dg = np.zeros((2, r))
     pm = np.empty((2, 2))
+    c, s = body_rotation(p, y)
     for i in range(modes.shape[0]):
-        ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, dg, pm)
+        ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, c, s, dg, pm)
         zi = r + 2 * i
         for col in range(r):
             dgx = dg[0, col]
             dgy = dg[1, col]
-            jac[nq, col] -= dgx / m
-            jac[nq + 1, col] -= dgy / m
-            jac[zi, col] += rate * dgx
-            jac[zi + 1, col] += rate * dgy
+            jac[nq, col] -= dgx * inv_m
+            jac[nq + 1, col] -= dgy * inv_m
+            jac[zi, col] = rate * dgx
+            jac[zi + 1, col] = rate * dgy
             if nq == 3:
-                jac[nq + 2, col] -= (ax * dgy - ay * dgx) / p[P_JS]
+                jac[nq + 2, col] -= (ax * dgy - ay * dgx) * inv_j
         # contact row zi + a: columns r, r + 1 hold its 2x2 block, r + 2 + k holds the
-        # entry (k, zi + a) of the rigid rows (column zi + a of the Jacobian, transposed)
+        # entry (k, zi + a) of the rigid rows (column zi + a of the Jacobian, transposed);
+        # the position rows k < nq do not depend on Z
+        for k in range(nq):
+            jac[zi, r + 2 + k] = 0.0
+            jac[zi + 1, r + 2 + k] = 0.0
         for a in range(2):
             for b in range(2):
-                jac[zi + b, r + 2 + nq + a] -= pm[a, b] / m
-                jac[zi + a, r + b] += rate * (pm[a, b] - (1.0 if a == b else 0.0))
+                jac[zi + b, r + 2 + nq + a] = -pm[a, b] * inv_m
+                jac[zi + a, r + b] = rate * (pm[a, b] - (1.0 if a == b else 0.0))
         if nq == 3:
-            jac[zi, r + 2 + nq + 2] -= (ax * pm[1, 0] - ay * pm[0, 0]) / p[P_JS]
-            jac[zi + 1, r + 2 + nq + 2] -= (ax * pm[1, 1] - ay * pm[0, 1]) / p[P_JS]
-            jac[nq + 2, 2] += (ax * gx + ay * gy) / p[P_JS]
+            jac[zi, r + 2 + nq + 2] = -(ax * pm[1, 0] - ay * pm[0, 0]) * inv_j
+            jac[zi + 1, r + 2 + nq + 2] = -(ax * pm[1, 1] - ay * pm[0, 1]) * inv_j
+            jac[nq + 2, 2] += (ax * gx + ay * gy) * inv_j
