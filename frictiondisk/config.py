@@ -165,7 +165,7 @@ class Contact(BaseModel):
     def _check_points(self) -> None:
         n = len(self.positions)
         if not 1 <= n <= MAX_POINTS:
-            _layout_error("positions", n, f"must hold 1 to {MAX_POINTS} points")
+            _layout_error("positions", self.positions, f"must hold 1 to {MAX_POINTS} points")
         for i, xy in enumerate(self.positions):
             if len(xy) != 2:
                 _layout_error(f"positions.{i}", xy, "must be a pair [x, y] of numbers in m")
@@ -173,9 +173,7 @@ class Contact(BaseModel):
             _layout_error("points", self.points, f"must be null or len(positions) = {n}")
         if self.weights is not None:
             if len(self.weights) != n:
-                _layout_error(
-                    "weights", len(self.weights), f"must have one weight per position ({n})"
-                )
+                _layout_error("weights", self.weights, f"must have one weight per position ({n})")
             for i, w in enumerate(self.weights):
                 if not w > 0.0:
                     _layout_error(f"weights.{i}", w, "must be > 0")
