@@ -2,7 +2,8 @@
 #
 #   make demo    create .venv, install, run the built-in pin example, show where the outputs are
 #   make test    create .venv if needed, install with test extras, run the test suite
-#   make bench   kernel and campaign benchmarks (ratios against baselines run alongside)
+#   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
+#                run alongside; bench_layouts: cost per step against N, arrow vs dense LU)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw figures/<name>.png and .pdf (the README gallery)
 #   make lint    ruff check + ruff format --check
@@ -57,6 +58,7 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kernel.py
 	$(BIN)/python benchmarks/bench_campaign.py
+	$(BIN)/python benchmarks/bench_layouts.py
 
 figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures figures
