@@ -4,9 +4,13 @@ Scene: disk, beta_b = 0.005 N m s/rad, co-rotating start (phidot0 = omega_m), x_
 default numerics (rodas4, rtol 1e-6: integrator error on mu* below 1e-6, config.py
 NUMERICS_PRESETS), t_decide = 30 s; the layouts are the ring of radius 0.05 m (the
 paper's) and the clutch-like annulus 0.063 ... 0.087 m (campaigns/clutch_annulus.yaml).
-mu* is the rising jump located by the campaigns' bisection (frictiondisk/bisection.py,
-horizon retries included) to `--tol` (default 1e-4); each N after the first starts from a
-narrow bracket around the previous N's mu* (the bisection widens it if it is wrong).
+mu* is the LOWEST rising jump: the sticking set in mu need not be an interval (annulus,
+N = 768: stick at 0.46-0.47, stick_slip at 0.475, stick from 0.48), so a bisection from a
+bracket may meet a higher jump. Each (layout, N) is therefore scanned upwards in steps of
+SCAN_STEP from a start that does not stick (the previous N's mu* - SCAN_MARGIN, lowered
+until it does not stick) to the first stick, and that bracket is bisected with the
+campaigns' rules (frictiondisk/bisection.py, horizon retries included) to `--tol`
+(default 1e-4). A stick island narrower than SCAN_STEP below it could be missed.
 
 Reported per layout: mu*(N) with its bracket, the change from the previous N, the
 extrapolated limit (Richardson on the last three N, which double: mu*(N) = mu_inf + C N^-p,
@@ -34,8 +38,9 @@ LAYOUTS = {
     "ring": {"layout": "ring", "ring_radius": 0.05},
     "annulus": {"layout": "annulus", "inner_radius": 0.063, "outer_radius": 0.087},
 }
-FIRST_BRACKET = (0.1, 0.6)
-HALF_BRACKET = 0.004  # half-width of the bracket around the previous N's mu*
+FIRST_START = 0.30  # scan start of the first N
+SCAN_STEP = 0.005  # upward scan step in mu
+SCAN_MARGIN = 0.02  # the next N's scan starts this far below the previous mu*
 
 
 def scene(layout: str, n: int):
@@ -51,14 +56,31 @@ def scene(layout: str, n: int):
     )
 
 
-def locate(layout: str, n: int, bracket, tol: float) -> dict:
-    """mu* of one (layout, N) by the campaigns' bisection rules."""
+def locate(layout: str, n: int, start: float, tol: float) -> dict:
+    """Lowest rising jump mu* of one (layout, N): upward scan, then bisection."""
     from frictiondisk.bisection import Bisection
     from frictiondisk.campaign.tasks import run_bisection
+    from frictiondisk.simulate import simulate
 
     t0 = time.perf_counter()
-    bisection = Bisection(tuple(bracket), tol, (1e-6, 10.0), 2)
-    bisection, _ = run_bisection(bisection, scene(layout, n).canonical(), 2.0, "/nonexistent")
+    base = scene(layout, n)
+    scanned = []
+
+    def sticks(mu):
+        res = simulate(base.with_overrides({"params.mu": round(mu, 6)})).summary()
+        scanned.append((round(mu, 6), res["outcome"], res["n_steps"], res["n_transitions"]))
+        return res["outcome"] == "stick"
+
+    mu = start
+    while sticks(mu) and mu > 2 * SCAN_STEP:
+        mu -= SCAN_STEP
+    while not sticks(mu + SCAN_STEP):
+        mu += SCAN_STEP
+        if mu > 2.0:
+            raise RuntimeError(f"{layout} N={n}: no stick up to mu = 2")
+    bracket = (round(mu, 6), round(mu + SCAN_STEP, 6))
+    bisection = Bisection(bracket, tol, (1e-6, 10.0), 2)
+    bisection, _ = run_bisection(bisection, base.canonical(), 2.0, "/nonexistent")
     res = bisection.result()
     runs = [run.result for run in res.runs]
     return {
@@ -70,9 +92,10 @@ def locate(layout: str, n: int, bracket, tol: float) -> dict:
         "mu_hi": res.mu_hi,
         "mu_star": res.mu_star,
         "monotone": res.monotone,
-        "runs": len(runs),
-        "steps": sum(r["n_steps"] for r in runs),
-        "events": sum(r["n_transitions"] for r in runs),
+        "scan": scanned,
+        "runs": len(runs) + len(scanned),
+        "steps": sum(r["n_steps"] for r in runs) + sum(x[2] for x in scanned),
+        "events": sum(r["n_transitions"] for r in runs) + sum(x[3] for x in scanned),
         "wall_s": time.perf_counter() - t0,
     }
 
@@ -86,12 +109,10 @@ def sweep(layout: str, ns, tol: float, out: Path) -> list[dict]:
             row = json.loads(path.read_text())
         else:
             prev = [r for r in rows if r["status"] == "converged"]
-            if prev:
-                mu = prev[-1]["mu_star"]
-                bracket = (mu - HALF_BRACKET, mu + HALF_BRACKET)
-            else:
-                bracket = FIRST_BRACKET
-            row = locate(layout, n, bracket, tol)
+            start = FIRST_START
+            if prev:  # on the scan grid, SCAN_MARGIN below the previous mu*
+                start = SCAN_STEP * math.floor((prev[-1]["mu_star"] - SCAN_MARGIN) / SCAN_STEP)
+            row = locate(layout, n, start, tol)
             path.write_text(json.dumps(row, indent=1))
         print(
             f"{layout:8s} N={n:4d} mu*={row['mu_star']:.5f} [{row['mu_lo']:.5f}, "
@@ -130,15 +151,17 @@ def report(rows_by_layout, tol):
         ns = [r["N"] for r in good]
         mus = [r["mu_star"] for r in good]
         limit, unc = extrapolate(ns, mus)
-        within = [n for n, m in zip(ns, mus, strict=True) if abs(m - limit) <= 1e-4]
-        needed = next(
-            (n for k, n in enumerate(ns) if all(w in within for w in ns[k:])),
-            None,
-        )
+        unc = max(unc, tol / 2)
+        # the smallest N from which every mu*(N) is within 1e-4 of the limit; only
+        # meaningful if the limit itself is known to better than 1e-4
+        within = [abs(m - limit) <= 1e-4 for m in mus]
+        needed = next((n for k, n in enumerate(ns) if all(within[k:])), None)
+        if unc > 1e-4 or needed == ns[-1]:
+            needed = f"not established (limit known to +- {unc:.5f} only)"
         print(
-            f"{layout}: limit mu* = {limit:.5f} +- {max(unc, tol / 2):.5f} "
+            f"{layout}: limit mu* = {limit:.5f} +- {unc:.5f} "
             f"(Richardson on N = {ns[-3:]}; +- the last change or the bisection half-width); "
-            f"N for |mu*(N) - limit| <= 1e-4: {needed if needed else 'not reached'}"
+            f"N for |mu*(N) - limit| <= 1e-4: {needed}"
         )
 
 
