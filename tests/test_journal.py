@@ -55,7 +55,7 @@ def test_kernel_version_is_16_hex_and_stable():
 def test_kernel_version_changes_with_any_kernel_source(tmp_path):
     (tmp_path / "kernel").mkdir()
     files = ["kernel/a.py", "kernel/b.py", "simulate.py", "classify.py", "crosscheck.py"]
-    files += ["result.py", "config.py"]
+    files += ["result.py", "config.py", "layouts.py"]
     for name in files:
         (tmp_path / name).write_text(f"# {name}\nX = 1\n")
     (tmp_path / "plotting.py").write_text("# not numerics\n")
