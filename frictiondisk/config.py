@@ -92,7 +92,8 @@ class Params(BaseModel):
 
 
 class Contact(BaseModel):
-    """Regularized friction contact (MODEL.md section 3); totals are spread over the points."""
+    """Regularized friction contact (MODEL.md section 3); the totals c, beta, F_n are spread
+    over the points of `layout` by their weights (frictiondisk/layouts.py)."""
 
     model_config = _MODEL_CONFIG
 
