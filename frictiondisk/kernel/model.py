@@ -178,7 +178,8 @@ def switch_rate(p, pts, y, f, i):
 def stick_rate(p, pts, modes, y, i, fbuf):
     """ds_i/dt if contact i were in stick, the other contacts unchanged [N/s].
 
-    Used for the refused-entry check and by contacts in the hysteresis band; fbuf is
+    Used where no state rate at y is at hand (root finding of a band contact's event on
+    the dense output, O(N)); with f = rhs(y), stick_rate_given does it in O(1). fbuf is
     scratch space for the state rate."""
     old = modes[i]
     modes[i] = STICK
