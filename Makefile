@@ -4,7 +4,8 @@
 #                print the mu* table, draw the mu* line and one orbit, show where the outputs are
 #   make test    create .venv if needed, install from the lock file, run the test suite
 #   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows)
-#   make bench   kernel and campaign benchmarks (ratios against baselines run alongside)
+#   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
+#                run alongside; bench_layouts: cost per step against N, arrow vs dense LU)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw figures/<name>.png and .pdf (the README gallery)
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
@@ -76,6 +77,7 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kernel.py
 	$(BIN)/python benchmarks/bench_campaign.py
+	$(BIN)/python benchmarks/bench_layouts.py
 
 figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures figures

@@ -23,6 +23,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from pydantic.fields import FieldInfo
 from pydantic_core import ErrorDetails, PydanticCustomError
 
+from frictiondisk import layouts
 from frictiondisk.yamlio import ConfigError, dump_yaml, load_yaml_file, load_yaml_text
 
 __all__ = [
@@ -38,6 +39,7 @@ __all__ = [
 ]
 
 DEFAULT_DISK_POINTS = 12  # contact points of a disk when contact.points is null
+MAX_POINTS = 1000  # most contact points of a scene
 
 # Upper bounds that keep the kernel's arithmetic meaningful (issue 14). Integers go to the
 # kernel as int64. Lengths, speeds and the master speed are bounded far beyond any friction
@@ -52,6 +54,11 @@ MAX_KEY_PARTS = 8  # parts of a dotted --set key (the deepest scene key has 3)
 
 # strict: no "0.1" -> 0.1, no true -> 1.0, no 1.5 -> int; allow_inf_nan: reject inf/nan.
 _MODEL_CONFIG = ConfigDict(extra="forbid", frozen=True, strict=True, allow_inf_nan=False)
+
+
+def _layout_error(name: str, value: Any, message: str) -> None:
+    """Reject contact.<name> (a layout rule): the message names the field and the rule."""
+    raise PydanticCustomError("layout_rule", message, {"path": f"contact.{name}", "value": value})
 
 
 def _field(default: Any, unit: str | None, doc: str, **constraints: Any) -> Any:
@@ -114,7 +121,8 @@ class Params(BaseModel):
 
 
 class Contact(BaseModel):
-    """Regularized friction contact (docs/model.md section 3); totals are spread over the points."""
+    """Regularized friction contact (docs/model.md section 3); the totals c, beta, F_n are
+    spread over the points of `layout` by their weights (frictiondisk/layouts.py)."""
 
     model_config = _MODEL_CONFIG
 
@@ -129,15 +137,76 @@ class Contact(BaseModel):
         gt=0,
     )
     eps: float = _field(1.0e-9, "m/s", "slip-rate threshold of the slide->stick event", gt=0)
+    layout: Literal["ring", "annulus", "points"] = _field(
+        "ring",
+        None,
+        "where the disk's contacts lie: ring (ring_radius), annulus (inner_radius, "
+        "outer_radius; uniform pressure) or points (positions, weights)",
+    )
     points: int | None = _field(
         None,
         "1",
-        f"number of contact points; null: 1 (pin), {DEFAULT_DISK_POINTS} (disk)",
+        f"number of contact points; null: 1 (pin), {DEFAULT_DISK_POINTS} (disk ring or "
+        "annulus), len(positions) (layout points)",
         ge=1,
-        le=1000,
+        le=MAX_POINTS,
     )
     ring_radius: float = _field(0.05, "m", "radius of the ring of disk contact points", gt=0)
+    inner_radius: float | None = _field(
+        None, "m", "inner radius of the annulus (layout annulus only)", ge=0
+    )
+    outer_radius: float | None = _field(
+        None, "m", "outer radius of the annulus, > inner_radius (layout annulus only)", gt=0
+    )
+    positions: list[list[float]] | None = _field(
+        None, "m", "body-frame contact points [[x, y], ...] (layout points only)"
+    )
+    weights: list[float] | None = _field(
+        None,
+        "1",
+        "share of each point in normal force, stiffness and damping, each > 0, normalized "
+        "to sum 1; null: equal (layout points only)",
+    )
     stribeck: Stribeck = Field(default_factory=Stribeck, description="Stribeck curve")
+
+    @model_validator(mode="after")
+    def _layout_fields(self) -> Contact:
+        """Each layout's own fields are given, the other layouts' are not."""
+        own = {"annulus": ("inner_radius", "outer_radius"), "points": ("positions",)}
+        for layout, names in own.items():
+            for name in names:
+                value = getattr(self, name)
+                if layout == self.layout and value is None:
+                    _layout_error(name, value, f"layout {layout!r} needs it")
+                if layout != self.layout and value is not None:
+                    _layout_error(name, value, f"only used by layout {layout!r}")
+        if self.weights is not None and self.layout != "points":
+            _layout_error("weights", self.weights, "only used by layout 'points'")
+        if self.layout == "annulus" and self.outer_radius <= self.inner_radius:
+            _layout_error(
+                "outer_radius",
+                self.outer_radius,
+                f"must be > inner_radius = {self.inner_radius} m",
+            )
+        if self.layout == "points":
+            self._check_points()
+        return self
+
+    def _check_points(self) -> None:
+        n = len(self.positions)
+        if not 1 <= n <= MAX_POINTS:
+            _layout_error("positions", self.positions, f"must hold 1 to {MAX_POINTS} points")
+        for i, xy in enumerate(self.positions):
+            if len(xy) != 2:
+                _layout_error(f"positions.{i}", xy, "must be a pair [x, y] of numbers in m")
+        if self.points is not None and self.points != n:
+            _layout_error("points", self.points, f"must be null or len(positions) = {n}")
+        if self.weights is not None:
+            if len(self.weights) != n:
+                _layout_error("weights", self.weights, f"must have one weight per position ({n})")
+            for i, w in enumerate(self.weights):
+                if not w > 0.0:
+                    _layout_error(f"weights.{i}", w, "must be > 0")
 
 
 # Numerics presets (issue 5): each sets every key it names unless the scene gives that key
@@ -252,6 +321,12 @@ class SceneConfig(BaseModel):
 
     @model_validator(mode="after")
     def _pin_has_one_contact(self) -> SceneConfig:
+        if self.scene == "pin" and self.contact.layout != "ring":
+            raise PydanticCustomError(
+                "scene_rule",
+                "a pin has exactly one contact, at its centre; use layout 'ring'",
+                {"path": "contact.layout", "value": self.contact.layout, "scene": self.scene},
+            )
         if self.scene == "pin" and self.contact.points not in (None, 1):
             raise PydanticCustomError(
                 "scene_rule",
@@ -279,9 +354,12 @@ class SceneConfig(BaseModel):
 
     @property
     def n_contacts(self) -> int:
-        """Number of contact points N: 1 for a pin, `contact.points` or 12 for a disk."""
+        """Number of contact points N: 1 for a pin; for a disk `contact.points` or 12, or
+        len(contact.positions) for layout points."""
         if self.scene == "pin":
             return 1
+        if self.contact.layout == "points":
+            return len(self.contact.positions)
         return self.contact.points or DEFAULT_DISK_POINTS
 
     @property
@@ -292,17 +370,44 @@ class SceneConfig(BaseModel):
         critical = 2.0 * math.sqrt(self.contact.stiffness * self.params.m_s)
         return self.contact.damping_ratio * critical
 
-    def contact_positions(self) -> np.ndarray:
-        """Body-frame contact points p_i [m], shape (N, 2); a disk's lie evenly on the ring."""
+    def _layout(self) -> tuple[np.ndarray, np.ndarray]:
+        con = self.contact
         if self.scene == "pin":
-            return np.zeros((1, 2))
-        angles = 2.0 * np.pi * np.arange(self.n_contacts) / self.n_contacts
-        return self.contact.ring_radius * np.column_stack((np.cos(angles), np.sin(angles)))
+            return np.zeros((1, 2)), np.ones(1)
+        if con.layout == "annulus":
+            return layouts.annulus(self.n_contacts, con.inner_radius, con.outer_radius)
+        if con.layout == "points":
+            shares = np.ones(self.n_contacts) if con.weights is None else np.array(con.weights)
+            return np.array(con.positions, dtype=float).reshape(-1, 2), shares
+        return layouts.ring(self.n_contacts, con.ring_radius)
+
+    def contact_positions(self) -> np.ndarray:
+        """Body-frame contact points p_i [m], shape (N, 2), of `contact.layout`
+        (frictiondisk/layouts.py); a pin's one contact is at its centre."""
+        return self._layout()[0]
+
+    def contact_weights(self) -> np.ndarray:
+        """Relative weights N w_i (mean 1), shape (N,): contact i carries w_i of F_n, c
+        and beta. Exactly 1.0 for every point of a ring."""
+        return layouts.relative_weights(self._layout()[1])
 
     def canonical(self) -> dict[str, Any]:
-        """Plain JSON-able dict, every default filled in, `points` resolved, keys sorted."""
+        """Plain JSON-able dict, every default filled in, `points` resolved, keys sorted.
+
+        Only the fields of the chosen `contact.layout` are kept (ring: ring_radius;
+        annulus: inner_radius, outer_radius; points: positions and weights, null weights
+        written out as equal ones)."""
         data = self.model_dump(mode="json")
         data["contact"]["points"] = self.n_contacts
+        unused = {
+            "ring": ("inner_radius", "outer_radius", "positions", "weights"),
+            "annulus": ("ring_radius", "positions", "weights"),
+            "points": ("ring_radius", "inner_radius", "outer_radius"),
+        }
+        for name in unused[self.contact.layout]:
+            del data["contact"][name]
+        if self.contact.layout == "points" and self.contact.weights is None:
+            data["contact"]["weights"] = [1.0] * self.n_contacts
         # the preset is resolved into concrete values; its name is not content
         del data["numerics"]["preset"]
         return _sorted(data)
@@ -444,6 +549,9 @@ def _problem(error: ErrorDetails, origins: Mapping[str, str]) -> str:
     if kind == "scene_rule":
         path = ctx["path"]
         text = f"{_show(ctx['value'])} is not allowed for scene {ctx['scene']!r}: {error['msg']}"
+    elif kind == "layout_rule":
+        path = ctx["path"]
+        text = f"{_show(ctx['value'])} is not allowed: {error['msg']}"
     elif kind in ("extra_forbidden", "invalid_key"):
         path = _dotted(loc) if kind == "extra_forbidden" else _dotted(loc[:-1])
         model = _model_at(loc[:-1])
@@ -491,7 +599,10 @@ def _requirement(field: FieldInfo) -> str:
     args = get_args(annotation) if get_origin(annotation) in (Union, types.UnionType) else ()
     nullable = type(None) in args
     base = next(a for a in args if a is not type(None)) if args else annotation
-    if get_origin(base) is Literal:
+    if get_origin(base) is list:
+        item = get_args(base)[0]
+        text = "a list of pairs [x, y]" if get_origin(item) is list else "a list of numbers"
+    elif get_origin(base) is Literal:
         choices = [repr(choice) for choice in get_args(base)]
         text = " or ".join(choices) if len(choices) == 2 else "one of " + ", ".join(choices)
     else:

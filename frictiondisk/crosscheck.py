@@ -18,7 +18,9 @@ side shows as disagreement between the two.
 Integration is piecewise: between switches the contact modes are fixed and `solve_ivp`
 integrates one smooth ODE, with one terminal event per contact, w_i = sigma_i s_i
 (sigma = +1 in stick, -1 in slide) crossing 0 upwards. Radau gets a finite-difference
-Jacobian (scipy's own, one vectorized call of the numpy right-hand side per Jacobian).
+Jacobian (scipy's own, one vectorized call of the numpy right-hand side per Jacobian)
+and its sparsity (`NumpyModel.jacobian_sparsity`: each contact couples only to the
+rigid-body coordinates), so it factors a sparse matrix: usable with hundreds of contacts.
 
 Contacts in the hysteresis band of their mode (kernel/driver.py) watch their stick rate
 ds/dt instead (a stuck one slides when it rises through 0, a sliding one sticks when it
@@ -81,9 +83,9 @@ class NumpyModel:
     J_s: float  # slave inertia [kg m^2]
     beta_b: float  # brake damping [N m s/rad]
     x_ms: float  # axes offset [m]
-    c_i: float  # stiffness per contact c/N [N/m]
-    beta_i: float  # damping per contact beta/N [N s/m]
-    F_n_i: float  # normal force per contact F_n/N [N]
+    c_i: np.ndarray  # stiffness of each contact w_i c [N/m], shape (N, 1)
+    beta_i: np.ndarray  # damping of each contact w_i beta [N s/m], shape (N, 1)
+    F_n_i: np.ndarray  # normal force of each contact w_i F_n [N], shape (N, 1)
     eps: float  # slide->stick threshold of the plastic rate [m/s]
     stribeck_r: float  # mu_kinetic / mu_static
     stribeck_v_s: float  # [m/s]
@@ -95,13 +97,15 @@ class NumpyModel:
 
     @classmethod
     def from_config(cls, config, objective_rate: bool = True) -> NumpyModel:
-        """Read the parameters from a SceneConfig (docs/model.md section 3: totals spread over N).
+        """Read the parameters from a SceneConfig (docs/model.md section 3: totals spread over
+        the N points by the layout's weights w_i, sum w_i = 1).
 
         objective_rate=False drops the rotation term of the contact rate (study only)."""
         par = config.params
         con = config.contact
         n = config.n_contacts
         pts = np.asarray(config.contact_positions(), dtype=float).reshape(n, 2)
+        w = (np.asarray(config.contact_weights(), dtype=float) / n).reshape(n, 1)
         return cls(
             disk=config.scene == "disk",
             pts=pts,
@@ -113,9 +117,9 @@ class NumpyModel:
             J_s=par.J_s,
             beta_b=par.beta_b,
             x_ms=par.x_ms,
-            c_i=con.stiffness / n,
-            beta_i=config.contact_damping / n,
-            F_n_i=par.F_n / n,
+            c_i=w * con.stiffness,
+            beta_i=w * config.contact_damping,
+            F_n_i=w * par.F_n,
             eps=con.eps,
             stribeck_r=con.stribeck.r,
             stribeck_v_s=con.stribeck.v_s,
@@ -191,8 +195,9 @@ class NumpyModel:
         if flat:
             y2 = y2[:, None]
         *_, kx, ky, fst, _, _ = self.contacts(y2)
-        offset = np.where(np.asarray(modes) == STICK, 0.0, self.beta_i * self.eps)
-        s = np.sqrt(kx * kx + ky * ky) - fst - offset[:, None]
+        stick = (np.asarray(modes) == STICK)[:, None]
+        offset = np.where(stick, 0.0, self.beta_i * self.eps)
+        s = np.sqrt(kx * kx + ky * ky) - fst - offset
         return s[:, 0] if flat else s
 
     def in_band(self, y, modes):
@@ -241,6 +246,19 @@ class NumpyModel:
         f[2 * nq :: 2] = Zdx
         f[2 * nq + 1 :: 2] = Zdy
         return f[:, 0] if flat else f
+
+    def jacobian_sparsity(self) -> np.ndarray:
+        """Structure of d(rhs)/dy, (n, n) of 0/1: the rigid-body block is full, contact
+        i's two rows touch the rigid coordinates and Z_i, the accelerations touch every Z."""
+        r = 2 * self.nq
+        n = self.n_states
+        pattern = np.zeros((n, n), dtype=np.int8)
+        pattern[:r, :r] = 1
+        pattern[self.nq : r, r:] = 1
+        pattern[r:, :r] = 1
+        for z in range(r, n, 2):
+            pattern[z : z + 2, z : z + 2] = 1
+        return pattern
 
     def switch_rate(self, y, f):
         """ds_i/dt along the motion y' = f, shape (N,): complex-step derivative of s (the
@@ -296,6 +314,7 @@ class _RadauRun:
         self.horizon = horizon_of(config)
         self.converge = num.mode == "converge"
         n = model.n_contacts
+        self.sparsity = model.jacobian_sparsity()
         self.modes = np.zeros(n, dtype=np.int8)
         self.band = np.zeros(n, dtype=np.int8)
         # contacts whose band was cleared at the last event: their s sits at 0 to round-off
@@ -406,12 +425,14 @@ class _RadauRun:
                     max_step=self.num.h_max,
                     events=[*events, watchdog],
                     vectorized=True,
+                    jac_sparsity=self.sparsity,
                     dense_output=dense,
                 )
         except _StepBudget:
             return partial("budget")
-        except (ArithmeticError, ValueError, np.linalg.LinAlgError):
-            # e.g. brentq on NaN event values: numerical trouble, never an exception to the user
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError, RuntimeError):
+            # e.g. brentq on NaN event values, or splu's "Factor is exactly singular" (a
+            # RuntimeError) on a NaN Jacobian: numerical trouble, never an exception to the user
             return partial("failed", self._failure_code(seen_y[-1] if seen_y else y0))
         ys = np.ascontiguousarray(sol.y.T)
         if sol.status == -1:

@@ -30,7 +30,8 @@ def record_capacity(t_span: float, dt_out: float, limit: int = MAX_RECORD_ROWS) 
 
 
 def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
-    """Parameter vector p (kernel/model.py indices) and body-frame contact points (N, 2)."""
+    """Parameter vector p (kernel/model.py indices) and contacts pts (N, 3): body-frame
+    point [m] and relative weight N w_i of each contact (kernel/model.py)."""
     par = config.params
     con = config.contact
     n = config.n_contacts
@@ -43,7 +44,8 @@ def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
     p[km.P_JS] = par.J_s
     p[km.P_BETAB] = par.beta_b
     p[km.P_XMS] = par.x_ms
-    # Distributed contact: stiffness, damping and normal force spread evenly (docs/model.md section 3).
+    # Distributed contact: stiffness, damping and normal force spread over the points by
+    # their weights (docs/model.md section 3); pts[:, 2] scales these means.
     p[km.P_CI] = con.stiffness / n
     p[km.P_BETAI] = config.contact_damping / n
     p[km.P_FNI] = par.F_n / n
@@ -52,8 +54,8 @@ def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
     p[km.P_STR_VS] = con.stribeck.v_s
     p[km.P_STR_DELTA] = con.stribeck.delta
     p[km.P_ROT] = 1.0 if config.scene == "disk" else 0.0
-    pts = np.ascontiguousarray(config.contact_positions(), dtype=np.float64)
-    return p, pts
+    pts = np.column_stack((config.contact_positions(), config.contact_weights()))
+    return p, np.ascontiguousarray(pts, dtype=np.float64)
 
 
 def initial_modes(p: np.ndarray, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -64,11 +66,15 @@ def initial_modes(p: np.ndarray, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
     return modes
 
 
-def simulate(config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
+def simulate(
+    config, record: bool = False, dt_out: float = 0.0, *, dense_lu: bool = False
+) -> SimulationResult:
     """Run one scene and classify its long-term motion.
 
     record: keep the trajectory (dense-output samples every dt_out seconds plus every
-    switching instant; dt_out = 0 records every step).
+    switching instant; dt_out = 0 records every step). dense_lu: factor the Rosenbrock
+    stage matrix densely, O(N^3) per step, instead of by its arrow structure, O(N)
+    (kernel/linalg.py); for comparisons (benchmarks/bench_layouts.py) only.
     """
     if config.numerics.method == "coulomb":
         from .coulomb import simulate_coulomb
@@ -78,10 +84,10 @@ def simulate(config, record: bool = False, dt_out: float = 0.0) -> SimulationRes
         from .crosscheck import simulate_radau
 
         return simulate_radau(config, record=record, dt_out=dt_out)
-    return _simulate_numba(config, record, dt_out)
+    return _simulate_numba(config, record, dt_out, dense_lu)
 
 
-def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
+def _simulate_numba(config, record: bool, dt_out: float, dense_lu: bool) -> SimulationResult:
     num = config.numerics
     p, pts = pack_parameters(config)
     y0 = initial_state(config)
@@ -97,6 +103,7 @@ def _simulate_numba(config, record: bool, dt_out: float) -> SimulationResult:
     iopt[driver.O_STOP_ON_STICK] = 1 if num.stop_on_stick else 0
     iopt[driver.O_RECORD] = 1 if record else 0
     iopt[driver.O_STICK_RULE] = STICK_RULE_CODES[num.stick_rule]
+    iopt[driver.O_DENSE_LU] = 1 if dense_lu else 0
     fopt = np.zeros(driver.N_FOPT)
     fopt[driver.O_RTOL] = num.rtol
     fopt[driver.O_ATOL] = num.atol

@@ -97,7 +97,15 @@ def test_ladder_references_and_physics_numerics():
     knobs = {k.name: k for k in build_ladder(disk, default_knobs("disk"))}
     ref = knobs["stiffness"].reference.config(disk)
     assert ref.contact.stiffness == max(STIFFNESSES) and ref.numerics.method == "rodas4"
-    assert knobs["points"].reference.config(disk).n_contacts == 48
+    assert knobs["points"].reference.config(disk).n_contacts == 768
+    # the knob refines the campaign's own layout
+    clutch = disk.with_overrides(
+        {"contact.layout": "annulus", "contact.inner_radius": 0.063, "contact.outer_radius": 0.087}
+    )
+    knobs = {k.name: k for k in build_ladder(clutch, default_knobs("disk"))}
+    ref = knobs["points"].reference.config(clutch)
+    assert (ref.contact.layout, ref.n_contacts) == ("annulus", 768)
+    assert "finest annulus" in knobs["points"].note
 
 
 def test_plan_runs_each_scene_once():

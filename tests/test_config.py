@@ -37,8 +37,13 @@ DEFAULTS = {
         "damping": None,
         "damping_ratio": 1.0,
         "eps": 1.0e-9,
+        "layout": "ring",
         "points": None,
         "ring_radius": 0.05,
+        "inner_radius": None,
+        "outer_radius": None,
+        "positions": None,
+        "weights": None,
         "stribeck": {"r": 1.0, "v_s": 1.0e-3, "delta": 1.0},
     },
     "numerics": {

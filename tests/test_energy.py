@@ -26,6 +26,11 @@ INSTANT_SCENES = {
     "pin stribeck": {"scene": "pin", "contact": {"stribeck": STRIBECK}},
     "disk": {"scene": "disk", "params": {"beta_b": 0.005}},
     "disk stribeck": {"scene": "disk", "contact": {"stribeck": STRIBECK, "points": 5}},
+    "disk annulus": {  # unequal contacts: c_i, beta_i, F_n,i in proportion to cell area
+        "scene": "disk",
+        "params": {"beta_b": 0.005},
+        "contact": {"layout": "annulus", "inner_radius": 0.0, "outer_radius": 0.08, "points": 9},
+    },
 }
 
 
@@ -43,7 +48,7 @@ def _random_state(config, p, rng):
     return y, nq
 
 
-def _energy_rate_terms(p, y, f, nq):
+def _energy_rate_terms(p, pts, y, f, nq):
     """The terms of dE/dt = grad E . f [W], from the rhs f alone (not from energy.py)."""
     terms = [
         p[km.P_MS] * y[nq] * f[nq],
@@ -53,7 +58,8 @@ def _energy_rate_terms(p, y, f, nq):
     ]
     if nq == 3:
         terms.append(p[km.P_JS] * y[nq + 2] * f[nq + 2])
-    terms.extend(y[2 * nq :] * f[2 * nq :] / p[km.P_CI])
+    c_i = np.repeat(p[km.P_CI] * pts[:, 2], 2)  # stiffness of contact i, for Z_i's x and y
+    terms.extend(y[2 * nq :] * f[2 * nq :] / c_i)
     return np.asarray(terms)
 
 
@@ -71,7 +77,7 @@ def test_energy_rate_equals_input_minus_dissipation(name, mode_kind):
             modes = np.full(pts.shape[0], km.STICK if mode_kind == "stick" else km.SLIDE, np.int8)
         f = np.empty_like(y)
         km.rhs(p, pts, modes, y, f)
-        terms = _energy_rate_terms(p, y, f, nq)
+        terms = _energy_rate_terms(p, pts, y, f, nq)
         p_in, diss, _ = ken.power_balance(p, pts, modes, y)
         scale = np.abs(terms).sum() + abs(p_in) + abs(diss)
         err = abs(terms.sum() - (p_in - diss)) / scale

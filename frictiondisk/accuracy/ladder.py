@@ -31,8 +31,11 @@ that their error is the modelling error alone:
               Reference: the same c -> infinity limit (damping has no limit of its own; the
               error says which damping approximates Coulomb friction best at this c).
 * `eps`       slide->stick threshold 1e-12 ... 1e-4 m/s. Reference: the smallest eps.
-* `points`    (disk only) contact points N = 1, 4, 12, 48 on the ring. Reference: N = 48,
-              the finest discretization of a continuous ring.
+* `points`    (disk only) contact points N = 1, 4, 12, 48, 192, 768 in the campaign's own
+              contact.layout (ring or annulus). Reference: N = 768, the finest
+              discretization of the continuous ring or facing. (The N = 768 rows at the
+              reference numerics are slow; benchmarks/study_layouts.py runs the same
+              sequence at the default numerics.)
 """
 
 from __future__ import annotations
@@ -53,7 +56,7 @@ T_DECIDES = (1.0, 2.0, 5.0, 10.0, 30.0, 120.0)  # [s]; 120 = 4 x the default 30 
 STIFFNESSES = (2.53e4, 8.0e4, 2.53e5, 8.0e5, 2.53e6, 8.0e6, 2.53e7)  # [N/m]
 DAMPING_RATIOS = (0.1, 0.3, 1.0, 2.0, 5.0)  # fraction of critical 2 sqrt(c m_s)
 EPSS = (1.0e-12, 1.0e-10, 1.0e-9, 1.0e-8, 1.0e-6, 1.0e-4)  # [m/s]
-POINTS = (1, 4, 12, 48)
+POINTS = (1, 4, 12, 48, 192, 768)
 
 # --quick: short ladders and no Python-speed integrators (scipy-radau, coulomb), for tests
 # and a first look. The references stay the same as in the full study (the Coulomb pin
@@ -367,5 +370,6 @@ def _points(base: SceneConfig, quick: bool) -> Knob:
     )
     top = max(POINTS)
     ref = _physics("points", "N contact points", "contact.points", top, f"N={top}")
-    note = f"the finest ring, N = {top} points, {NUMERICS_REFERENCE_LABEL}"
+    layout = "ring" if base.scene == "pin" else base.contact.layout
+    note = f"the finest {layout}, N = {top} points, {NUMERICS_REFERENCE_LABEL}"
     return Knob("points", "physics", settings, ref, note)

@@ -25,6 +25,7 @@ from . import monitor as mon
 from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
+from .linalg import stage_workspace
 from .model import (
     P_EPS,
     P_OMEGA,
@@ -32,7 +33,7 @@ from .model import (
     STICK,
     n_coords,
     rhs,
-    stick_rate,
+    stick_rate_given,
     switch_rate,
     switch_value,
 )
@@ -40,6 +41,7 @@ from .rodas import (
     N_WORK_ROWS,
     W_K6,
     dense_eval,
+    dense_eval_contact,
     error_norm,
     next_step_factor,
     reject_factor,
@@ -55,7 +57,8 @@ O_CONVERGE = 4  # 1 = run until the limit cycle converged (or t_max)
 O_STOP_ON_STICK = 5
 O_RECORD = 6
 O_STICK_RULE = 7  # RULE_CONTACTS or RULE_COROTATION
-N_IOPT = 8
+O_DENSE_LU = 8  # 1 = dense LU of the stage matrix (O(N^3), for comparison), 0 = arrow (O(N))
+N_IOPT = 9
 
 RULE_CONTACTS = 0  # stick = every contact stuck for one revolution
 RULE_COROTATION = 1  # stick = co-rotation without net slip (monitor.corotation_verdict)
@@ -199,9 +202,7 @@ def run(
     ftmp = np.empty(n)
     ybuf = np.empty(n)
     ymid = np.empty(n)
-    jac = np.empty((n, n))
-    lu = np.empty((n, n))
-    piv = np.empty(n, dtype=np.int64)
+    jac, lu, piv = stage_workspace(n, nq, iopt[O_DENSE_LU] == 1)
     wk = np.empty((N_WORK_ROWS, n))
     fresh = np.zeros(ncon, dtype=np.int8)
     band = np.zeros(ncon, dtype=np.int8)
@@ -324,8 +325,8 @@ def run(
             if band[i] == 1:
                 kind = KIND_RISE if modes[i] == STICK else KIND_REENTRY
                 sign = 1.0 if kind == KIND_RISE else -1.0
-                w0 = sign * stick_rate(p, pts, modes, y, i, ftmp)
-                w1 = sign * stick_rate(p, pts, modes, y1, i, ftmp)
+                w0 = sign * stick_rate_given(p, pts, modes, y, f, i, ftmp)
+                w1 = sign * stick_rate_given(p, pts, modes, y1, f1, i, ftmp)
             else:
                 kind = KIND_SWITCH
                 w0 = sigma * switch_value(p, pts, y, i, modes[i])
@@ -351,7 +352,7 @@ def run(
                 sg = find_graze(p, pts, modes, y, y1, wk, i, sigma, w0, w1, d0, d1, ybuf, ftmp)
                 if sg > 0.0:
                     s_hi = sg
-                    dense_eval(y, y1, wk, sg, ybuf)
+                    dense_eval_contact(y, y1, wk, sg, ybuf, nq, i)
                     w_hi = sigma * switch_value(p, pts, ybuf, i, modes[i])
             if s_hi > 0.0:
                 sr = brent_root(

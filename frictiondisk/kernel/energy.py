@@ -33,7 +33,6 @@ import math
 from .jit import kernel_jit
 from .model import (
     P_BETAB,
-    P_BETAI,
     P_BETAS,
     P_CI,
     P_CS,
@@ -42,6 +41,7 @@ from .model import (
     P_OMEGA,
     P_XMS,
     STICK,
+    contact_constants,
     friction_limit,
     n_coords,
 )
@@ -72,7 +72,7 @@ def stored_energy(p, pts, y):
     acc = 0.0
     for i in range(ncon):
         zi = 2 * nq + 2 * i
-        acc += y[zi] * y[zi] + y[zi + 1] * y[zi + 1]
+        acc += (y[zi] * y[zi] + y[zi + 1] * y[zi + 1]) / pts[i, 2]
     return e + 0.5 * acc / p[P_CI]
 
 
@@ -89,9 +89,6 @@ def power_balance(p, pts, modes, y):
     """
     nq = n_coords(p)
     om = p[P_OMEGA]
-    inv_c = 1.0 / p[P_CI]
-    bi = p[P_BETAI]
-    inv_b = 1.0 / bi
     x = y[0]
     yy = y[1]
     vx0 = y[nq]
@@ -108,6 +105,9 @@ def power_balance(p, pts, modes, y):
     p_in = 0.0
     slip = 0.0
     for i in range(modes.shape[0]):
+        ci, bi, fn = contact_constants(p, pts, i)
+        inv_c = 1.0 / ci
+        inv_b = 1.0 / bi
         ax = 0.0
         ay = 0.0
         if nq == 3:
@@ -128,7 +128,7 @@ def power_balance(p, pts, modes, y):
         else:
             kn = math.sqrt(gx * gx + gy * gy)
             if kn > 0.0:
-                fst, _ = friction_limit(p, math.sqrt(vx * vx + vy * vy))
+                fst, _ = friction_limit(p, fn, math.sqrt(vx * vx + vy * vy))
                 gx *= fst / kn
                 gy *= fst / kn
                 diss += fst * (kn - fst) * inv_b

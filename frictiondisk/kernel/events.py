@@ -23,8 +23,8 @@ slide), w = +rate.
 import math
 
 from .jit import kernel_jit
-from .model import stick_rate, switch_value
-from .rodas import dense_eval
+from .model import n_coords, stick_rate, switch_value
+from .rodas import dense_eval, dense_eval_contact
 
 GOLDEN = 0.3819660112501051  # (3 - sqrt(5)) / 2
 GRAZE_SCAN = 24  # golden-section iterations when a graze is suspected
@@ -36,13 +36,17 @@ KIND_RISE = 2
 
 @kernel_jit
 def directed_value(p, pts, modes, y0, y1, wk, s, i, sigma, kind, ybuf, fbuf):
-    """Event function w_i of the given kind at fraction s of the last step (dense output)."""
+    """Event function w_i of the given kind at fraction s of the last step (dense output).
+
+    A switching function reads only the rigid-body coordinates and Z_i, so only those are
+    interpolated (O(1)); a stick rate needs the whole state rate (O(N))."""
+    if kind == KIND_SWITCH:
+        dense_eval_contact(y0, y1, wk, s, ybuf, n_coords(p), i)
+        return sigma * switch_value(p, pts, ybuf, i, modes[i])
     dense_eval(y0, y1, wk, s, ybuf)
     if kind == KIND_REENTRY:
         return -stick_rate(p, pts, modes, ybuf, i, fbuf)
-    if kind == KIND_RISE:
-        return stick_rate(p, pts, modes, ybuf, i, fbuf)
-    return sigma * switch_value(p, pts, ybuf, i, modes[i])
+    return stick_rate(p, pts, modes, ybuf, i, fbuf)
 
 
 @kernel_jit

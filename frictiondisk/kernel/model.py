@@ -1,5 +1,9 @@
 """Equations of motion of the pin and disk scenes (docs/model.md sections 2-4), numba only.
 
+Contacts: pts has one row (px, py, w) per contact: body-frame point p_i [m] and relative
+weight w = N w_i (mean 1; 1.0 on a ring, frictiondisk/layouts.py). Contact i has stiffness
+c_i = w p[P_CI], damping beta_i = w p[P_BETAI] and normal force F_n,i = w p[P_FNI].
+
 State layout, nq = 2 (pin) or 3 (disk):
     y[0:nq]        x, y [m] (, phi [rad])
     y[nq:2nq]      vx, vy [m/s] (, phidot [rad/s])
@@ -35,9 +39,9 @@ P_MS = 4  # slave mass m_s [kg]
 P_JS = 5  # slave inertia J_s [kg m^2]
 P_BETAB = 6  # brake damping beta_b [N m s/rad]
 P_XMS = 7  # axes offset x_ms [m]
-P_CI = 8  # stiffness per contact c/N [N/m]
-P_BETAI = 9  # damping per contact beta/N [N s/m]
-P_FNI = 10  # normal force per contact F_n/N [N]
+P_CI = 8  # mean stiffness per contact c/N [N/m] (times pts[i, 2]: c_i)
+P_BETAI = 9  # mean damping per contact beta/N [N s/m] (times pts[i, 2]: beta_i)
+P_FNI = 10  # mean normal force per contact F_n/N [N] (times pts[i, 2]: F_n,i)
 P_EPS = 11  # slide->stick threshold of the plastic rate eps [m/s]
 P_STR_R = 12  # Stribeck ratio r = mu_kinetic / mu_static
 P_STR_VS = 13  # Stribeck speed v_s [m/s]
@@ -56,9 +60,17 @@ def n_coords(p):
 
 
 @kernel_jit
-def friction_limit(p, speed):
-    """Stribeck limit F_St = F_n,i mu(|v|) [N] and its derivative with respect to |v|."""
-    fn_mu = p[P_FNI] * p[P_MU]
+def contact_constants(p, pts, i):
+    """Stiffness c_i [N/m], damping beta_i [N s/m] and normal force F_n,i [N] of contact i."""
+    w = pts[i, 2]
+    return p[P_CI] * w, p[P_BETAI] * w, p[P_FNI] * w
+
+
+@kernel_jit
+def friction_limit(p, fn, speed):
+    """Stribeck limit F_St = F_n,i mu(|v|) [N] of a contact with normal force fn [N], and
+    its derivative with respect to |v|."""
+    fn_mu = fn * p[P_MU]
     r = p[P_STR_R]
     if r == 1.0:
         return fn_mu, 0.0
@@ -74,13 +86,11 @@ def friction_limit(p, speed):
 
 
 @kernel_jit
-def contact_arm(p, pts, y, i):
-    """Arm a_i = R(phi) p_i from the slave centre to contact i [m]."""
+def body_rotation(p, y):
+    """(cos phi, sin phi) of the slave's rotation; (1, 0) for the pin."""
     if p[P_ROT] < 0.5:
-        return 0.0, 0.0
-    c = math.cos(y[2])
-    s = math.sin(y[2])
-    return c * pts[i, 0] - s * pts[i, 1], s * pts[i, 0] + c * pts[i, 1]
+        return 1.0, 0.0
+    return math.cos(y[2]), math.sin(y[2])
 
 
 @kernel_jit
@@ -89,22 +99,33 @@ def contact_state(p, pts, y, i):
 
     v_i = (slave velocity at q_i) - omega_m e_z x q_i, q_i = r + a_i  (docs/model.md section 2).
     """
+    c, s = body_rotation(p, y)
+    return contact_state_rot(p, pts, y, i, c, s)
+
+
+@kernel_jit
+def contact_state_rot(p, pts, y, i, c, s):
+    """contact_state with (cos phi, sin phi) = (c, s) given: loops over the contacts
+    compute them once (body_rotation) instead of once per contact."""
     nq = n_coords(p)
     om = p[P_OMEGA]
-    ax, ay = contact_arm(p, pts, y, i)
+    ax = 0.0
+    ay = 0.0
+    if nq == 3:
+        ax = c * pts[i, 0] - s * pts[i, 1]
+        ay = s * pts[i, 0] + c * pts[i, 1]
     phid = y[nq + 2] if nq == 3 else 0.0
     vx = y[nq] - phid * ay + om * (y[1] + ay)
     vy = y[nq + 1] + phid * ax - om * (y[0] + ax)
     zi = 2 * nq + 2 * i
     Zx = y[zi]
     Zy = y[zi + 1]
-    ci = p[P_CI]
-    bi = p[P_BETAI]
+    ci, bi, fn = contact_constants(p, pts, i)
     # u = v + omega_m e_z x (Z / c): the master point under the contact has moved by -z.
     kx = Zx + bi * (vx - om * Zy / ci)
     ky = Zy + bi * (vy + om * Zx / ci)
     speed = math.sqrt(vx * vx + vy * vy)
-    fst, dfst = friction_limit(p, speed)
+    fst, dfst = friction_limit(p, fn, speed)
     return ax, ay, vx, vy, kx, ky, fst, dfst
 
 
@@ -115,7 +136,7 @@ def switch_value(p, pts, y, i, mode):
     _, _, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
     g = math.sqrt(kx * kx + ky * ky) - fst
     if mode == SLIDE:
-        g -= p[P_BETAI] * p[P_EPS]
+        g -= p[P_BETAI] * pts[i, 2] * p[P_EPS]
     return g
 
 
@@ -125,8 +146,7 @@ def switch_rate(p, pts, y, f, i):
     by a constant) along the motion with state rate f = dy/dt [N/s]."""
     nq = n_coords(p)
     om = p[P_OMEGA]
-    ci = p[P_CI]
-    bi = p[P_BETAI]
+    ci, bi, _ = contact_constants(p, pts, i)
     ax, ay, vx, vy, kx, ky, fst, dfst = contact_state(p, pts, y, i)
     xd = y[nq]
     yd = y[nq + 1]
@@ -158,7 +178,8 @@ def switch_rate(p, pts, y, f, i):
 def stick_rate(p, pts, modes, y, i, fbuf):
     """ds_i/dt if contact i were in stick, the other contacts unchanged [N/s].
 
-    Used for the refused-entry check and by contacts in the hysteresis band; fbuf is
+    Used where no state rate at y is at hand (root finding of a band contact's event on
+    the dense output, O(N)); with f = rhs(y), stick_rate_given does it in O(1). fbuf is
     scratch space for the state rate."""
     old = modes[i]
     modes[i] = STICK
@@ -168,18 +189,47 @@ def stick_rate(p, pts, modes, y, i, fbuf):
 
 
 @kernel_jit
+def stick_rate_given(p, pts, modes, y, f, i, fbuf):
+    """stick_rate from f = rhs(y) in `modes`, in O(1) instead of O(N).
+
+    Putting contact i into stick changes only its force G_i (-> k_i) and its own Z rate,
+    so only the entries switch_rate reads are formed in fbuf: the accelerations and
+    Z_i' (the rest of fbuf is left as is)."""
+    if modes[i] == STICK:
+        return switch_rate(p, pts, y, f, i)
+    nq = n_coords(p)
+    ax, ay, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
+    kn = math.sqrt(kx * kx + ky * ky)
+    gx = 0.0
+    gy = 0.0
+    if kn > 0.0:
+        gx = fst * kx / kn
+        gy = fst * ky / kn
+    dx = kx - gx  # change of G_i; the slave feels -G_i
+    dy = ky - gy
+    fbuf[nq] = f[nq] - dx / p[P_MS]
+    fbuf[nq + 1] = f[nq + 1] - dy / p[P_MS]
+    if nq == 3:
+        fbuf[nq + 2] = f[nq + 2] - (ax * dy - ay * dx) / p[P_JS]
+    ci, bi, _ = contact_constants(p, pts, i)
+    zi = 2 * nq + 2 * i
+    fbuf[zi] = ci / bi * (kx - y[zi])
+    fbuf[zi + 1] = ci / bi * (ky - y[zi + 1])
+    return switch_rate(p, pts, y, fbuf, i)
+
+
+@kernel_jit
 def rhs(p, pts, modes, y, f):
     """dy/dt of the scene in the given contact modes (paper eqs. 3-10, docs/model.md section 4)."""
     nq = n_coords(p)
     ncon = modes.shape[0]
     m = p[P_MS]
-    ci = p[P_CI]
-    bi = p[P_BETAI]
     fx = -p[P_CS] * (y[0] - p[P_XMS]) - p[P_BETAS] * y[nq]
     fy = -p[P_CS] * y[1] - p[P_BETAS] * y[nq + 1]
     torque = 0.0
+    c, s = body_rotation(p, y)
     for i in range(ncon):
-        ax, ay, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
+        ax, ay, _, _, kx, ky, fst, _ = contact_state_rot(p, pts, y, i, c, s)
         if modes[i] == STICK:
             gx = kx
             gy = ky
@@ -191,6 +241,7 @@ def rhs(p, pts, modes, y, f):
             else:
                 gx = 0.0
                 gy = 0.0
+        ci, bi, _ = contact_constants(p, pts, i)
         zi = 2 * nq + 2 * i
         f[zi] = ci / bi * (gx - y[zi])
         f[zi + 1] = ci / bi * (gy - y[zi + 1])
@@ -206,15 +257,87 @@ def rhs(p, pts, modes, y, f):
 
 
 @kernel_jit
-def jacobian(p, pts, modes, y, jac):
-    """Analytic Jacobian d(rhs)/dy in the given contact modes."""
+def _contact_linearization(p, pts, modes, y, i, c, s, dg, pm):
+    """Linearization of contact i's force G_i (rhs: F_i = -G_i, Z_i' = (c_i/beta_i)(G_i - Z_i)).
+
+    dg (2, 2 nq) receives dG_i/d(x, y, (phi), vx, vy, (phidot)) through the sliding
+    velocity; pm (2, 2) receives dG_i/dZ_i. Returns (ax, ay, gx, gy, c_i/beta_i). The
+    rows of the Jacobian follow from these alone: every contact couples only to the
+    rigid-body coordinates (kernel/linalg.py, arrow form).
+    """
     nq = n_coords(p)
-    ncon = modes.shape[0]
-    m = p[P_MS]
     om = p[P_OMEGA]
-    ci = p[P_CI]
-    bi = p[P_BETAI]
-    jac[:, :] = 0.0
+    ci, bi, _ = contact_constants(p, pts, i)
+    phid = y[nq + 2] if nq == 3 else 0.0
+    ax, ay, vx, vy, kx, ky, fst, dfst = contact_state_rot(p, pts, y, i, c, s)
+    kn = math.sqrt(kx * kx + ky * ky)
+    # M = dG/dk and g = dG/dF_St
+    if modes[i] == STICK or kn == 0.0:
+        m00 = 1.0
+        m01 = 0.0
+        m10 = 0.0
+        m11 = 1.0
+        gx = kx
+        gy = ky
+        g0 = 0.0
+        g1 = 0.0
+    else:
+        ux = kx / kn
+        uy = ky / kn
+        sc = fst / kn
+        m00 = sc * (1.0 - ux * ux)
+        m01 = -sc * ux * uy
+        m10 = m01
+        m11 = sc * (1.0 - uy * uy)
+        gx = fst * ux
+        gy = fst * uy
+        g0 = ux
+        g1 = uy
+    # dk/dZ = I + (beta omega / c) E,  E = [[0, -1], [1, 0]]
+    w = bi * om / ci
+    pm[0, 0] = m00 + m01 * w
+    pm[0, 1] = -m00 * w + m01
+    pm[1, 0] = m10 + m11 * w
+    pm[1, 1] = -m10 * w + m11
+    # Q = beta M + g (dF_St/dv)^T
+    speed = math.sqrt(vx * vx + vy * vy)
+    dsx = 0.0
+    dsy = 0.0
+    if dfst != 0.0 and speed > 0.0:
+        dsx = dfst * vx / speed
+        dsy = dfst * vy / speed
+    q00 = bi * m00 + g0 * dsx
+    q01 = bi * m01 + g0 * dsy
+    q10 = bi * m10 + g1 * dsx
+    q11 = bi * m11 + g1 * dsy
+    # dG/d(coordinate) = Q dv/d(coordinate); dv/dx = (0, -om), dv/dy = (om, 0),
+    # dv/dvx = (1, 0), dv/dvy = (0, 1), dv/dphi = (om - phid) a, dv/dphidot = e_z x a
+    dg[0, 0] = -q01 * om
+    dg[1, 0] = -q11 * om
+    dg[0, 1] = q00 * om
+    dg[1, 1] = q10 * om
+    dg[0, nq] = q00
+    dg[1, nq] = q10
+    dg[0, nq + 1] = q01
+    dg[1, nq + 1] = q11
+    if nq == 3:
+        dpx = (om - phid) * ax
+        dpy = (om - phid) * ay
+        dg[0, 2] = q00 * dpx + q01 * dpy
+        dg[1, 2] = q10 * dpx + q11 * dpy
+        dg[0, nq + 2] = -q00 * ay + q01 * ax
+        dg[1, nq + 2] = -q10 * ay + q11 * ax
+    return ax, ay, gx, gy, ci / bi
+
+
+@kernel_jit
+def _rigid_jacobian(p, y, jac):
+    """The rigid-body part of d(rhs)/dy (rows and columns 0 .. 2 nq - 1) without contacts."""
+    nq = n_coords(p)
+    m = p[P_MS]
+    for i in range(2 * nq):
+        for j in range(2 * nq):
+            jac[i, j] = 0.0
     for j in range(nq):
         jac[j, nq + j] = 1.0
     jac[nq, 0] = -p[P_CS] / m
@@ -223,85 +346,77 @@ def jacobian(p, pts, modes, y, jac):
     jac[nq + 1, nq + 1] = -p[P_BETAS] / m
     if nq == 3:
         jac[nq + 2, nq + 2] = -p[P_BETAB] / p[P_JS]
-        phid = y[nq + 2]
-    else:
-        phid = 0.0
-    # dv/d(coordinate) columns: x, y, (phi), vx, vy, (phidot)
-    ncol = 2 * nq
-    dv = np.zeros((2, ncol))
-    for i in range(ncon):
-        ax, ay, vx, vy, kx, ky, fst, dfst = contact_state(p, pts, y, i)
-        kn = math.sqrt(kx * kx + ky * ky)
-        # M = dG/dk and g = dG/dF_St
-        if modes[i] == STICK or kn == 0.0:
-            m00 = 1.0
-            m01 = 0.0
-            m10 = 0.0
-            m11 = 1.0
-            gx = kx
-            gy = ky
-            g0 = 0.0
-            g1 = 0.0
-        else:
-            ux = kx / kn
-            uy = ky / kn
-            sc = fst / kn
-            m00 = sc * (1.0 - ux * ux)
-            m01 = -sc * ux * uy
-            m10 = m01
-            m11 = sc * (1.0 - uy * uy)
-            gx = fst * ux
-            gy = fst * uy
-            g0 = ux
-            g1 = uy
-        # dk/dZ = I + (beta omega / c) E,  E = [[0, -1], [1, 0]]
-        w = bi * om / ci
-        p00 = m00 + m01 * w
-        p01 = -m00 * w + m01
-        p10 = m10 + m11 * w
-        p11 = -m10 * w + m11
-        # Q = beta M + g (dF_St/dv)^T
-        speed = math.sqrt(vx * vx + vy * vy)
-        dsx = 0.0
-        dsy = 0.0
-        if dfst != 0.0 and speed > 0.0:
-            dsx = dfst * vx / speed
-            dsy = dfst * vy / speed
-        q00 = bi * m00 + g0 * dsx
-        q01 = bi * m01 + g0 * dsy
-        q10 = bi * m10 + g1 * dsx
-        q11 = bi * m11 + g1 * dsy
-        dv[:, :] = 0.0
-        dv[1, 0] = -om
-        dv[0, 1] = om
-        dv[0, nq] = 1.0
-        dv[1, nq + 1] = 1.0
-        if nq == 3:
-            dv[0, 2] = (om - phid) * ax
-            dv[1, 2] = (om - phid) * ay
-            dv[0, nq + 2] = -ay
-            dv[1, nq + 2] = ax
+
+
+@kernel_jit
+def jacobian(p, pts, modes, y, jac):
+    """Analytic Jacobian d(rhs)/dy in the given contact modes, dense (n, n)."""
+    nq = n_coords(p)
+    m = p[P_MS]
+    jac[:, :] = 0.0
+    _rigid_jacobian(p, y, jac)
+    dg = np.zeros((2, 2 * nq))
+    pm = np.empty((2, 2))
+    c, s = body_rotation(p, y)
+    for i in range(modes.shape[0]):
+        ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, c, s, dg, pm)
         zi = 2 * nq + 2 * i
-        rate = ci / bi
-        for col in range(ncol):
-            dgx = q00 * dv[0, col] + q01 * dv[1, col]
-            dgy = q10 * dv[0, col] + q11 * dv[1, col]
+        for col in range(2 * nq):
+            dgx = dg[0, col]
+            dgy = dg[1, col]
             jac[nq, col] -= dgx / m
             jac[nq + 1, col] -= dgy / m
             jac[zi, col] += rate * dgx
             jac[zi + 1, col] += rate * dgy
             if nq == 3:
                 jac[nq + 2, col] -= (ax * dgy - ay * dgx) / p[P_JS]
-        jac[nq, zi] -= p00 / m
-        jac[nq, zi + 1] -= p01 / m
-        jac[nq + 1, zi] -= p10 / m
-        jac[nq + 1, zi + 1] -= p11 / m
-        jac[zi, zi] += rate * (p00 - 1.0)
-        jac[zi, zi + 1] += rate * p01
-        jac[zi + 1, zi] += rate * p10
-        jac[zi + 1, zi + 1] += rate * (p11 - 1.0)
+        for a in range(2):
+            for b in range(2):
+                jac[nq + a, zi + b] -= pm[a, b] / m
+                jac[zi + a, zi + b] += rate * (pm[a, b] - (1.0 if a == b else 0.0))
         if nq == 3:
-            jac[nq + 2, zi] -= (ax * p10 - ay * p00) / p[P_JS]
-            jac[nq + 2, zi + 1] -= (ax * p11 - ay * p01) / p[P_JS]
+            jac[nq + 2, zi] -= (ax * pm[1, 0] - ay * pm[0, 0]) / p[P_JS]
+            jac[nq + 2, zi + 1] -= (ax * pm[1, 1] - ay * pm[0, 1]) / p[P_JS]
             # the arm itself turns with phi: d(a x F)/dphi += -(a . F) with F = -G
             jac[nq + 2, 2] += (ax * gx + ay * gy) / p[P_JS]
+
+
+@kernel_jit
+def jacobian_arrow(p, pts, modes, y, jac):
+    """Analytic Jacobian d(rhs)/dy in the arrow form of kernel/linalg.py, shape (n, 4 nq + 2):
+    the numbers of `jacobian` (to round-off: 1/m_s, 1/J_s are multiplied), in O(N) time
+    and memory. Every contact entry is written once, so only the rigid rows are zeroed."""
+    nq = n_coords(p)
+    r = 2 * nq
+    inv_m = 1.0 / p[P_MS]
+    inv_j = 1.0 / p[P_JS]
+    _rigid_jacobian(p, y, jac)
+    dg = np.zeros((2, r))
+    pm = np.empty((2, 2))
+    c, s = body_rotation(p, y)
+    for i in range(modes.shape[0]):
+        ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, c, s, dg, pm)
+        zi = r + 2 * i
+        for col in range(r):
+            dgx = dg[0, col]
+            dgy = dg[1, col]
+            jac[nq, col] -= dgx * inv_m
+            jac[nq + 1, col] -= dgy * inv_m
+            jac[zi, col] = rate * dgx
+            jac[zi + 1, col] = rate * dgy
+            if nq == 3:
+                jac[nq + 2, col] -= (ax * dgy - ay * dgx) * inv_j
+        # contact row zi + a: columns r, r + 1 hold its 2x2 block, r + 2 + k holds the
+        # entry (k, zi + a) of the rigid rows (column zi + a of the Jacobian, transposed);
+        # the position rows k < nq do not depend on Z
+        for k in range(nq):
+            jac[zi, r + 2 + k] = 0.0
+            jac[zi + 1, r + 2 + k] = 0.0
+        for a in range(2):
+            for b in range(2):
+                jac[zi + b, r + 2 + nq + a] = -pm[a, b] * inv_m
+                jac[zi + a, r + b] = rate * (pm[a, b] - (1.0 if a == b else 0.0))
+        if nq == 3:
+            jac[zi, r + 2 + nq + 2] = -(ax * pm[1, 0] - ay * pm[0, 0]) * inv_j
+            jac[zi + 1, r + 2 + nq + 2] = -(ax * pm[1, 1] - ay * pm[0, 1]) * inv_j
+            jac[nq + 2, 2] += (ax * gx + ay * gy) * inv_j

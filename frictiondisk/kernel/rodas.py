@@ -8,8 +8,8 @@ import math
 
 from . import coefficients as co
 from .jit import kernel_jit
-from .linalg import lu_factor, lu_solve
-from .model import jacobian, rhs
+from .linalg import is_dense, stage_factor, stage_solve
+from .model import jacobian, jacobian_arrow, rhs
 
 # Rows of the work array wk (shape (N_WORK_ROWS, n)).
 W_K1, W_K2, W_K3, W_K4, W_K5, W_K6 = 0, 1, 2, 3, 4, 5
@@ -22,17 +22,16 @@ N_WORK_ROWS = 11
 def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     """Advance from y0 (with f0 = rhs(y0)) by h. Writes y1 and the dense output rows.
 
+    jac, lu, piv come from linalg.stage_workspace: dense, or the O(N) arrow form.
     Returns False if the iteration matrix is singular or a value is not finite. The error
     estimate is left in wk[W_K6] (order-4 minus order-3 solution).
     """
     n = y0.shape[0]
-    jacobian(p, pts, modes, y0, jac)
-    inv_gh = 1.0 / (co.GAMMA * h)
-    for i in range(n):
-        for j in range(n):
-            lu[i, j] = -jac[i, j]
-        lu[i, i] += inv_gh
-    if not lu_factor(lu, piv):
+    if is_dense(piv, n):
+        jacobian(p, pts, modes, y0, jac)
+    else:
+        jacobian_arrow(p, pts, modes, y0, jac)
+    if not stage_factor(jac, 1.0 / (co.GAMMA * h), lu, piv):
         return False
     ytmp = wk[W_Y]
     ftmp = wk[W_F]
@@ -43,35 +42,35 @@ def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     k4 = wk[W_K4]
     k5 = wk[W_K5]
     k6 = wk[W_K6]
-    lu_solve(lu, piv, f0, k1)
+    stage_solve(lu, piv, f0, k1)
 
     for i in range(n):
         ytmp[i] = y0[i] + co.A21 * k1[i]
     rhs(p, pts, modes, ytmp, ftmp)
     for i in range(n):
         b[i] = ftmp[i] + co.C21 * k1[i] / h
-    lu_solve(lu, piv, b, k2)
+    stage_solve(lu, piv, b, k2)
 
     for i in range(n):
         ytmp[i] = y0[i] + co.A31 * k1[i] + co.A32 * k2[i]
     rhs(p, pts, modes, ytmp, ftmp)
     for i in range(n):
         b[i] = ftmp[i] + (co.C31 * k1[i] + co.C32 * k2[i]) / h
-    lu_solve(lu, piv, b, k3)
+    stage_solve(lu, piv, b, k3)
 
     for i in range(n):
         ytmp[i] = y0[i] + co.A41 * k1[i] + co.A42 * k2[i] + co.A43 * k3[i]
     rhs(p, pts, modes, ytmp, ftmp)
     for i in range(n):
         b[i] = ftmp[i] + (co.C41 * k1[i] + co.C42 * k2[i] + co.C43 * k3[i]) / h
-    lu_solve(lu, piv, b, k4)
+    stage_solve(lu, piv, b, k4)
 
     for i in range(n):
         ytmp[i] = y0[i] + co.A51 * k1[i] + co.A52 * k2[i] + co.A53 * k3[i] + co.A54 * k4[i]
     rhs(p, pts, modes, ytmp, ftmp)
     for i in range(n):
         b[i] = ftmp[i] + (co.C51 * k1[i] + co.C52 * k2[i] + co.C53 * k3[i] + co.C54 * k4[i]) / h
-    lu_solve(lu, piv, b, k5)
+    stage_solve(lu, piv, b, k5)
 
     for i in range(n):
         ytmp[i] += k5[i]
@@ -82,7 +81,7 @@ def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
             + (co.C61 * k1[i] + co.C62 * k2[i] + co.C63 * k3[i] + co.C64 * k4[i] + co.C65 * k5[i])
             / h
         )
-    lu_solve(lu, piv, b, k6)
+    stage_solve(lu, piv, b, k6)
 
     q1 = wk[W_Q1]
     q2 = wk[W_Q2]
@@ -114,6 +113,19 @@ def dense_eval(y0, y1, wk, s, out):
     s1 = 1.0 - s
     for i in range(y0.shape[0]):
         out[i] = s1 * y0[i] + s * (y1[i] + s1 * (q1[i] + s * q2[i]))
+
+
+@kernel_jit
+def dense_eval_contact(y0, y1, wk, s, out, nq, i):
+    """dense_eval of only what contact i's switching function reads: the rigid-body
+    coordinates out[0:2nq] and Z_i (O(1) instead of O(N)); the rest of out is left as is."""
+    q1 = wk[W_Q1]
+    q2 = wk[W_Q2]
+    s1 = 1.0 - s
+    zi = 2 * nq + 2 * i
+    for k in range(2 * nq + 2):
+        j = k if k < 2 * nq else zi + k - 2 * nq
+        out[j] = s1 * y0[j] + s * (y1[j] + s1 * (q1[j] + s * q2[j]))
 
 
 @kernel_jit
