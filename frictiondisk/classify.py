@@ -76,7 +76,8 @@ def classify(facts: RunFacts) -> tuple[str, str]:
         return "undetermined", reason
     if facts.status == st.COROTATING:
         how = (
-            "every contact stuck throughout it and it repeated within the integrator's tolerance"
+            "it repeated within the integrator's tolerance, with every contact stuck "
+            f"throughout or no slip above atol + eps T = {revs.tol:.3g} m in the last revolutions"
             if revs.remaining == 0.0
             else f"shakedown: {_trend(revs)} towards a limit of "
             f"{revs.limit:.3g} m <= atol + eps T = {revs.tol:.3g} m (slip still to come "

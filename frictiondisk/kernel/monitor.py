@@ -375,7 +375,9 @@ def corotation_verdict(mf, mi, rv):
 
     stick: every contact stuck throughout the last revolution and it moved nothing (centre
     drift and spin-phase drift, as the arc of the longest arm, within the integrator's
-    tolerance atol + rtol |r|, atol + rtol |arm|: RV_STILL); or the slip
+    tolerance atol + rtol |r|, atol + rtol |arm|: RV_STILL); or, on the small orbit for
+    VERDICT_REVS revolutions, each of them moved nothing and slipped <= tol (contacts that
+    graze their limit without net slip); or the slip
     per revolution decays geometrically (falling, its fall slowing as S_inf + A q^k) to
     an extrapolated limit S_inf <= tol: shakedown.
     creep: the slip per revolution exceeds tol and either no longer falls (over the newer
@@ -398,6 +400,14 @@ def corotation_verdict(mf, mi, rv):
     n_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0)
     if n_orbit < VERDICT_REVS:
         return VERDICT_NONE  # not (long enough) on the small orbit
+    quiet = True
+    for back in range(VERDICT_REVS):
+        row = _row(mi, back)
+        quiet = quiet and rv[row, RV_SLIP] <= tol and rv[row, RV_STILL] == 1.0
+    if quiet:
+        mf[F_REMAIN] = 0.0
+        mi[I_VERDICT] = VERDICT_STICK  # grazing contacts, but no slip to resolve
+        return VERDICT_STICK
     lam, se = _slip_trend(mf, mi, rv)
     mf[F_LAMBDA] = lam
     mf[F_LAMBDA_SE] = se
