@@ -55,6 +55,15 @@ def main(argv: list[str] | None = None) -> int:
     for path in files:
         name, wall = make_figure(path, args.out, args.figures)
         print(f"{name:<24} {wall:7.1f} s   {args.figures / name}.png, .pdf", flush=True)
+    rest, corotating = args.out / "fig11_betab_mu", args.out / "fig11_betab_mu_corotating"
+    if (rest / "results.nc").is_file() and (corotating / "results.nc").is_file():
+        # Fig 11 with both starts and the Melan shakedown and collapse bounds
+        from frictiondisk.campaign.brake_figure import main as brake_figure
+
+        for suffix in (".png", ".pdf"):
+            brake_figure(
+                [str(rest), str(corotating), "-o", str(args.figures / f"fig11_bounds{suffix}")]
+            )
     print(f"{'all figures':<24} {time.perf_counter() - total:7.1f} s")
     return 0
 
