@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from .kernel import monitor as mon
 from .kernel import status as st
 
 ERROR_REASONS = {
@@ -104,11 +105,15 @@ def classify(facts: RunFacts) -> tuple[str, str]:
     if facts.status == st.CYCLE_CONVERGED:
         return "stick_slip", f"limit cycle with sticking and sliding converged at t = {t:.6g} s"
     if revs is not None and revs.settling:
-        where = (
-            "on its small orbit, co-rotation not yet decided"
-            if revs.on_orbit and facts.stick_rule == "corotation"
-            else "still sliding towards a sticking circle"
-        )
+        if facts.stick_rule == "corotation" and revs.count < mon.VERDICT_REVS:
+            where = (
+                f"after {revs.count} whole revolutions ({mon.VERDICT_REVS} are needed to "
+                "tell stick, creep and stick_slip apart)"
+            )
+        elif revs.on_orbit and facts.stick_rule == "corotation":
+            where = "on its small orbit, co-rotation not yet decided"
+        else:
+            where = "still sliding towards a sticking circle"
         return "undetermined", (
             f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}; "
             f"{_trend(revs)} (raise numerics.horizon_budget or t_decide)"

@@ -445,11 +445,13 @@ def _run_length(mi, rv, column, value):
 def still_settling(mf, mi, rv, corotation):
     """Whether an undecided run at its horizon is still on its way to a decision: sliding
     as a whole (never all contacts stuck) for VERDICT_REVS revolutions with its slip per
-    revolution decaying towards a sticking circle, or (corotation: the stick_rule) on the
-    small orbit (some contact stuck at every instant of the last revolution), where
-    corotation_verdict has not spoken yet."""
+    revolution decaying towards a sticking circle, or (corotation: the stick_rule) before
+    VERDICT_REVS revolutions, or on the small orbit (some contact stuck at every instant of
+    the last revolution), where corotation_verdict has not spoken yet."""
     if corotation and mi[I_VERDICT] != VERDICT_NONE:
         return False
+    if corotation and mi[I_NREV] < VERDICT_REVS:
+        return True  # too few revolutions to tell any of the outcomes apart
     if mi[I_NREV] < 1:
         return False
     on_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0) if corotation else 0
