@@ -270,19 +270,17 @@ def run(
                     t_stop += hold
                     continue
                 out_i[C_BUDGET_SPENT] = 1
-            if corotation and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
-                # Never stop inside a sticking phase that may still decide `stick`: it
-                # must cover the first whole revolution of the grid after it began.
+            if mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
+                # Never stop inside a sticking phase that may still decide `stick`: it must
+                # last one revolution (contacts), or cover the first whole revolution of the
+                # grid after it began (corotation).
                 out_i[C_EXTENDED] = 1
-                t_stop = (math.floor(mf[mon.F_T_ALL] / hold) + 2.0) * hold
+                if corotation:
+                    t_stop = (math.floor(mf[mon.F_T_ALL] / hold) + 2.0) * hold
+                else:
+                    t_stop = mf[mon.F_T_ALL] + hold
                 if t < t_stop - t_eps:
                     out_i[C_BUDGET_SPENT] = 0
-                    continue
-            if not corotation and mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0:
-                # Never stop inside a sticking phase that may still decide `stick`.
-                out_i[C_EXTENDED] = 1
-                t_stop = mf[mon.F_T_ALL] + hold
-                if t < t_stop - t_eps:
                     continue
             return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
         if not corotation and out_i[C_EXTENDED] == 1 and mi[mon.I_ALL] == 0:
