@@ -445,7 +445,8 @@ def _run_length(mi, rv, column, value):
 def still_settling(mf, mi, rv, corotation):
     """Whether an undecided run at its horizon is still on its way to a decision: sliding
     as a whole (never all contacts stuck) for VERDICT_REVS revolutions with its slip per
-    revolution decaying towards a sticking circle, or (corotation: the stick_rule) before
+    revolution decaying towards a sticking circle (not settling at a steady sliding rate,
+    by the same Aitken limit as corotation_verdict's), or (corotation: the stick_rule) before
     VERDICT_REVS revolutions, or on the small orbit (some contact stuck at every instant of
     the last revolution), where corotation_verdict has not spoken yet."""
     if corotation and mi[I_VERDICT] != VERDICT_NONE:
@@ -461,4 +462,10 @@ def still_settling(mf, mi, rv, corotation):
     if sliding < VERDICT_REVS:
         return False
     lam, se = _slip_trend(mf, mi, rv)
-    return not math.isnan(lam) and lam + VERDICT_Z * se < 0.0
+    if math.isnan(lam) or lam + VERDICT_Z * se >= 0.0:
+        return False  # steady (or growing) sliding
+    # falling: towards a sticking circle (limit 0), unless it visibly settles at a steady
+    # sliding rate that already holds most of it (limit > tol)
+    s_inf, _ = _limit_slip(mi, rv, sliding)
+    slip = rv[_row(mi, 0), RV_SLIP]
+    return not (s_inf > mf[F_SLIP_TOL] and s_inf >= 0.5 * slip)
