@@ -51,6 +51,8 @@ def numerics(method, **overrides):
         "atol": ATOL,
         "h_max": 0.02,
         "t_decide": 20.0,
+        # the cross-check measures no slip per revolution: both sides use the contacts rule
+        "stick_rule": "contacts",
         **overrides,
     }
 
@@ -59,12 +61,7 @@ def disk_pair(params, contact=None, record=False):
     """The same disk scene run by the kernel and by scipy-radau."""
     runs = {}
     for method in ("rodas4", "scipy-radau"):
-        # the cross-check measures no slip per revolution: both sides use the contacts rule
-        spec = {
-            "scene": "disk",
-            "params": params,
-            "numerics": {**numerics(method), "stick_rule": "contacts"},
-        }
+        spec = {"scene": "disk", "params": params, "numerics": numerics(method)}
         if contact:
             spec["contact"] = contact
         runs[method] = simulate(scene_from_dict(spec), record=record)
