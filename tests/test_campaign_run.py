@@ -199,7 +199,8 @@ def test_a_job_that_keeps_failing_fails_its_point_without_inventing_runs(tmp_pat
     def broken(*args):
         raise RuntimeError("simulated worker crash")
 
-    monkeypatch.setattr(plan, "run_bisection", broken)
+    monkeypatch.setattr(plan, "run_bisection", broken)  # a chain of runs
+    monkeypatch.setattr(plan, "run_batch", broken)  # a batch of independent runs
     run_campaign(pin_line("[0.1]"), tmp_path, workers=1, progress=False)
     with xr.open_dataset(tmp_path / "results.nc") as ds:
         assert ds.status.values[0] == "failed"
