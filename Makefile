@@ -2,7 +2,8 @@
 #
 #   make demo    create .venv, install, run the built-in pin example, show where the outputs are
 #   make test    create .venv if needed, install with test extras, run the test suite
-#   make bench   kernel and campaign benchmarks (ratios against baselines run alongside)
+#   make bench   kernel and campaign benchmarks (ratios against baselines run alongside) and
+#                the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw figures/<name>.png and .pdf (the README gallery)
 #   make lint    ruff check + ruff format --check
@@ -11,6 +12,7 @@
 VENV ?= .venv
 PYTHON ?= python3
 PYTEST_ARGS ?=
+BENCH_SCALING_ARGS ?= --quick
 
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.frictiondisk-installed
@@ -57,6 +59,7 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kernel.py
 	$(BIN)/python benchmarks/bench_campaign.py
+	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures figures

@@ -66,6 +66,7 @@ class RunSummary:
     wall_s: float
     results: Path
     runs: Path
+    task_overhead_s: float | None = None  # measured round trip of an empty Dask task [s]
 
 
 def prepare_directory(out_dir: Path, campaign: Campaign | None) -> Campaign:
@@ -433,6 +434,7 @@ class _Driver:
             wall_s=time.perf_counter() - self.t0,
             results=Path(results),
             runs=Path(runs),
+            task_overhead_s=self.task_overhead_s,
         )
 
 
