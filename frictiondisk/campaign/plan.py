@@ -122,19 +122,23 @@ class JumpPlanner:
         limit = math.inf if sizing.max_jobs is None else sizing.max_jobs
         out: list[tuple[int, Any, tuple]] = []
         pool: list[tuple[int, RunRequest]] = []
-        for i, req in self.requests():
+        self.requests()  # start the points that are ready
+        for i, bis in sorted(self.bisections.items()):
             if len(out) >= limit:
                 break
-            bis = self.bisections[i]
-            single = len(bis.pending()) == 1 and not self.out.get(i)
-            if sizing.chain_s is not None and single:
+            if bis.done or i in self.chained:
+                continue
+            pending = bis.pending()
+            out_now = self.out.get(i, ())
+            ready = [req for req in pending if req not in out_now]
+            if sizing.chain_s is not None and len(pending) == 1 and ready:
                 self.chained.add(i)
                 canonical = self.points[i].config.canonical()
                 budget = None if math.isinf(sizing.chain_s) else sizing.chain_s
                 args = (bis, canonical, self.task.horizon_factor, campaign_dir, budget)
                 out.append((self._new_job("chain", i), run_bisection, args))
             else:
-                pool.append((i, req))
+                pool += [(i, req) for req in ready]
         size = max(1, min(sizing.batch_runs, -(-len(pool) // max(1, sizing.workers))))
         for start in range(0, len(pool), size):
             if len(out) >= limit:

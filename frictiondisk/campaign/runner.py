@@ -197,7 +197,8 @@ class _Driver:
         self._last_status = 0.0
         self._last_bar = 0.0
         self._bar = None
-        self._checked: set[str] = set()  # keys looked up and absent (the journal only grows by put)
+        # keys looked up and absent; the journal only grows by our own put (which clears one)
+        self._checked: set[str] = set()
         self.task_overhead_s: float | None = None  # measured round trip of an empty task
         self.worker_threads = 1
         self._run_s_sum = 0.0  # kernel wall time of the runs computed so far [s]
@@ -346,6 +347,7 @@ class _Driver:
         for point, request, result in self.planner.complete(job, value):
             key = self._key(point, request)
             self.journal.put(key, self.inputs[key], result)
+            self._checked.discard(key)  # another point may ask for the same run
             self.computed += 1
             self._run_s_sum += float(result.get("wall_s") or 0.0)
 
