@@ -162,6 +162,7 @@ def main() -> None:
         workers = sorted({1, cores} | {2**k for k in range(1, 8) if 2**k < cores})
 
     warm_up()
+    import dask.array  # noqa: F401  (xarray imports it when writing results.nc: once per process)
     import distributed  # noqa: F401  (import time is not campaign time)
 
     print("== machine limit: independent kernel loops on N threads, no orchestration ==")

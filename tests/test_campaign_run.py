@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -155,6 +156,9 @@ def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
     assert b"frictiondisk resume" in err
     before = len(Journal(out))
     assert before >= 5
+    # every run finished before the exit is journaled, those of the tasks in flight too
+    reported = re.search(rb"interrupted; (\d+) finished runs are in the journal", err)
+    assert reported and int(reported.group(1)) == before, err.decode()
     result = CliRunner().invoke(main, ["resume", str(out)])
     assert result.exit_code == 0, result.output
     assert max(Journal(out).computed_counts().values()) == 1
