@@ -23,18 +23,24 @@ Targets (issue 10) on 2 cores: (a), (b) 2-worker speed-up >= 90 % of the machine
 from __future__ import annotations
 
 import argparse
+import collections
+import heapq
 import os
+import shutil
 import tempfile
 import threading
 import time
+import types
 from pathlib import Path
 
 import xarray as xr
 
-from frictiondisk.campaign.plan import run_config
-from frictiondisk.campaign.runner import run_campaign
+from frictiondisk.campaign.journal import Journal, run_key
+from frictiondisk.campaign.plan import planner_for, run_config
+from frictiondisk.campaign.runner import run_campaign, task_sizing
 from frictiondisk.campaign.spec import campaign_from_text, load_campaign
-from frictiondisk.campaign.tasks import warm_up
+from frictiondisk.campaign.tasks import run_batch, run_bisection, warm_up
+from frictiondisk.config import scene_from_dict
 from frictiondisk.simulate import simulate
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -111,38 +117,140 @@ def machine_limit(workers: list[int], loop_s: float) -> dict[int, float]:
     return {n: n * walls[1] / walls[n] for n in workers}
 
 
-def time_campaign(text: str, workers: int, repeats: int):
+def _result_of(journal: Journal, canonical: dict) -> dict:
+    return journal.get(run_key(types.SimpleNamespace(canonical=lambda: canonical)))
+
+
+def _emulate(function, args, journal: Journal):
+    """(value, busy seconds) a worker would return for this task, from the journal of a
+    measured run: every run takes the wall time it took there."""
+    if function is run_batch:
+        results = [_result_of(journal, c) for c in args[0]]
+        busy = sum(r["wall_s"] for r in results)
+        return (results, busy), busy
+    assert function is run_bisection
+    bis, point_canonical, horizon_factor, _, budget = args
+    point = scene_from_dict(point_canonical)
+    made, busy = [], 0.0
+    while not bis.done:
+        pending = bis.pending()
+        if budget is not None and ((made and len(pending) > 1) or busy >= budget):
+            break
+        for request in pending:
+            result = _result_of(journal, run_config(point, request, horizon_factor).canonical())
+            busy += result["wall_s"]
+            made.append((request, result))
+            bis.feed(request, result)
+    return (bis, made), busy
+
+
+def modelled_walls(
+    text: str, journal_dir: Path, workers: list[int], overhead_s: float, driver_s: float
+) -> dict[int, float]:
+    """Wall time [s] of the campaign on N ideal cores: the driver's own planner and task
+    sizing, replayed with each run's measured wall time, `overhead_s` per task on its
+    worker and `driver_s` of serial driver time per task that comes back."""
+    campaign = campaign_from_text(text, "<model>")
+    journal = Journal(journal_dir)
+    walls = {}
+    for n in workers:
+        planner = planner_for(campaign)
+        queue: collections.deque = collections.deque()
+        running: list = []  # heap of (end time, sequence, job, value)
+        t = driver_free = run_s = 0.0
+        computed = sequence = 0
+        while not planner.done:
+            mean_run = run_s / computed if computed else None
+            sizing = task_sizing(overhead_s, mean_run, n, len(queue) + len(running))
+            queue.extend(planner.jobs("/model", sizing))
+            while len(running) < n and queue:
+                job, function, args = queue.popleft()
+                value, busy = _emulate(function, args, journal)
+                heapq.heappush(running, (t + overhead_s + busy, sequence, job, value))
+                sequence += 1
+            end, _, job, value = heapq.heappop(running)
+            t = driver_free = max(end, driver_free) + driver_s
+            for _, _, result in planner.complete(job, value):
+                computed += 1
+                run_s += result["wall_s"]
+        walls[n] = t
+    return walls
+
+
+def time_campaign(text: str, workers: int, repeats: int, keep: Path | None = None):
     """Best wall time [s] of a fresh run on `workers` local workers, runs used, the
-    results (mu_lo, mu_hi) and the measured cost per task [s]."""
+    results (results.nc, loaded), the measured cost per task [s] and the driver thread's
+    CPU time [s]; with `keep`, the journal is copied there and the CPU time is counted
+    without the fixed part (lock, replay, netCDF writes: a rerun on the full journal)."""
     best = None
     for _ in range(repeats):
         with tempfile.TemporaryDirectory() as tmp:
             campaign = campaign_from_text(text, "<bench>")
-            t0 = time.perf_counter()
+            t0, cpu0 = time.perf_counter(), time.thread_time()
             summary = run_campaign(campaign, Path(tmp), workers=workers, progress=False)
-            wall = time.perf_counter() - t0
+            wall, cpu = time.perf_counter() - t0, time.thread_time() - cpu0
             with xr.open_dataset(Path(tmp) / "results.nc") as ds:
-                found = (ds.mu_lo.values.tolist(), ds.mu_hi.values.tolist())
+                found = ds.load()
+            if keep is not None:
+                shutil.copytree(Path(tmp) / "journal", keep / "journal", dirs_exist_ok=True)
+                # the fixed part of the driver's CPU: the same campaign on its full journal
+                cpu0 = time.thread_time()
+                run_campaign(campaign, Path(tmp), workers=workers, progress=False)
+                cpu -= time.thread_time() - cpu0
         if best is None or wall < best[0]:
-            best = (wall, summary.runs_total, found, summary.task_overhead_s)
+            best = (wall, summary.runs_total, found, summary.task_overhead_s, cpu)
     return best
 
 
-def scaling_table(label, text, workers, repeats, limit) -> dict[int, float]:
+def scaling_table(text, workers, repeats, limit, model_to: int) -> dict[int, float]:
     rows = {}
     found_1 = None
     print(f"  {'workers':>7} {'wall [s]':>9} {'speed-up':>9} {'efficiency':>10} {'of limit':>9}")
-    for n in workers:
-        wall, runs, found, overhead = time_campaign(text, n, repeats)
-        rows[n] = wall
-        found_1 = found_1 or found
-        speedup = rows[workers[0]] / wall
+    with tempfile.TemporaryDirectory() as keep:
+        for n in workers:
+            keep_here = Path(keep) if n == workers[0] else None
+            wall, runs, found, overhead, cpu = time_campaign(text, n, repeats, keep_here)
+            if n == workers[0]:
+                driver_cpu = cpu
+            rows[n] = wall
+            found_1 = found if found_1 is None else found_1
+            speedup = rows[workers[0]] / wall
+            same = "" if found.identical(found_1) else "  RESULTS DIFFER"
+            print(
+                f"  {n:7d} {wall:9.2f} {speedup:8.2f}x {speedup / n:10.0%} "
+                f"{speedup / limit[n]:9.0%}{same}"
+            )
+        print(f"  runs used: {runs}; cost per task measured by the driver: {overhead * 1e3:.1f} ms")
+        # the model: measured run times, task cost and driver CPU; cores assumed ideal
+        counts = sorted({1, 2, 4, 8, 16, model_to} | set(workers))
+        tasks_1 = _tasks_on_one(text, Path(keep), overhead)
+        driver_s = driver_cpu / max(1, tasks_1)
+        model = modelled_walls(text, Path(keep), counts, overhead, driver_s)
         print(
-            f"  {n:7d} {wall:9.2f} {speedup:8.2f}x {speedup / n:10.0%} "
-            f"{speedup / limit[n]:9.0%}" + ("" if found == found_1 else "  RESULTS DIFFER")
+            f"  model (ideal cores; measured run times, {overhead * 1e3:.1f} ms per task, "
+            f"{driver_s * 1e3:.2f} ms driver CPU per task; {tasks_1} tasks on 1 worker):"
         )
-    print(f"  runs used: {runs}; cost per task measured by the driver: {overhead * 1e3:.1f} ms")
+        print("  " + "  ".join(f"{n}: {model[1] / model[n]:.2f}x" for n in counts))
     return rows
+
+
+def _tasks_on_one(text: str, journal_dir: Path, overhead_s: float) -> int:
+    """How many tasks the driver hands out on 1 worker (the model, counting)."""
+    campaign = campaign_from_text(text, "<model>")
+    journal = Journal(journal_dir)
+    planner = planner_for(campaign)
+    tasks = computed = 0
+    run_s = 0.0
+    while not planner.done:
+        mean_run = run_s / computed if computed else None
+        jobs = planner.jobs("/model", task_sizing(overhead_s, mean_run, 1, 0))
+        for job, function, args in jobs:
+            value, _ = _emulate(function, args, journal)
+            tasks += 1
+            for _, _, result in planner.complete(job, value):
+                computed += 1
+                run_s += result["wall_s"]
+    return tasks
 
 
 def main() -> None:
@@ -182,7 +290,7 @@ def main() -> None:
             "d": "(d) one prescanned disk point",
         }[name]
         print(f"== {title} [{what}] ==")
-        rows = scaling_table(title, text, workers, args.repeats, limit)
+        rows = scaling_table(text, workers, args.repeats, limit, cores)
         if name == "c" and args.split != 2:
             plain = text.replace(f"split: {args.split}", "split: 2")
             wall, runs, _, _ = time_campaign(plain, 1, args.repeats)

@@ -291,19 +291,9 @@ class _Driver:
         self._done_queue.add(future)
 
     def _sizing(self) -> Sizing:
-        """Cut work into tasks that last task_s = overhead / 5 % (at most MAX_TASK_S): a
-        batch holds task_s / (mean run time) independent runs, a chain runs for task_s;
-        TASKS_PER_WORKER tasks per worker thread are in flight."""
-        overhead = self.task_overhead_s or 0.0
-        task_s = min(MAX_TASK_S, overhead * (1 - TASK_OVERHEAD_SHARE) / TASK_OVERHEAD_SHARE)
         mean_run = self._run_s_sum / self.computed if self.computed else None
-        batch = 1 if not mean_run else max(1, int(task_s / mean_run))
-        window = TASKS_PER_WORKER * self.worker_threads
-        return Sizing(
-            batch_runs=batch,
-            chain_s=task_s,
-            max_jobs=max(0, window - len(self.in_flight)),
-            workers=self.worker_threads,
+        return task_sizing(
+            self.task_overhead_s or 0.0, mean_run, self.worker_threads, len(self.in_flight)
         )
 
     def _drain(self, client) -> None:
@@ -354,10 +344,13 @@ class _Driver:
     def _key(self, point: int, request) -> str:
         cached = self.keys.get((point, request))
         if cached is None:
-            config = self.planner.config_for(point, request)
-            cached = run_key(config)
+            canonical = self.planner.config_for(point, request).canonical()
+            cached = run_key(_Canonical(canonical))  # canonical() once: it costs ~0.4 ms
             self.keys[(point, request)] = cached
-            self.inputs[cached] = config.canonical()
+            self.inputs[cached] = canonical
+            remember = getattr(self.planner, "remember_canonical", None)
+            if remember is not None:
+                remember(point, request, canonical)
         return cached
 
     # ---- progress and status ------------------------------------------------------------
@@ -438,6 +431,32 @@ class _Driver:
             runs=Path(runs),
             task_overhead_s=self.task_overhead_s,
         )
+
+
+@dataclasses.dataclass(frozen=True)
+class _Canonical:
+    """A scene's canonical dict, as run_key takes it (anything with .canonical())."""
+
+    value: dict
+
+    def canonical(self) -> dict:
+        return self.value
+
+
+def task_sizing(
+    overhead_s: float, mean_run_s: float | None, worker_threads: int, in_flight: int
+) -> Sizing:
+    """Cut work into tasks that last task_s = overhead / 5 % (at most MAX_TASK_S): a batch
+    holds task_s / mean_run_s independent runs (1 while no run time is known yet), a chain
+    runs for task_s; TASKS_PER_WORKER tasks per worker thread are in flight."""
+    task_s = min(MAX_TASK_S, overhead_s * (1 - TASK_OVERHEAD_SHARE) / TASK_OVERHEAD_SHARE)
+    batch = max(1, int(task_s / mean_run_s)) if mean_run_s else 1
+    return Sizing(
+        batch_runs=batch,
+        chain_s=task_s,
+        max_jobs=max(0, TASKS_PER_WORKER * worker_threads - in_flight),
+        workers=worker_threads,
+    )
 
 
 def measure_task_overhead(client, probes: int = OVERHEAD_PROBES) -> float:
