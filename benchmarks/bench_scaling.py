@@ -133,10 +133,9 @@ def _emulate(function, args, journal: Journal):
     point = scene_from_dict(point_canonical)
     made, busy = [], 0.0
     while not bis.done:
-        pending = bis.pending()
-        if budget is not None and ((made and len(pending) > 1) or busy >= budget):
+        if budget is not None and busy >= budget:
             break
-        for request in pending:
+        for request in bis.pending():
             result = _result_of(journal, run_config(point, request, horizon_factor).canonical())
             busy += result["wall_s"]
             made.append((request, result))

@@ -53,7 +53,7 @@ def run_config(point_config, request: RunRequest, horizon_factor: float):
 class Sizing:
     """How the driver wants work cut into tasks (performance only: results never depend
     on it). batch_runs: independent runs per task; chain_s: time budget [s] of a task that
-    advances one point run after run (None: no chains, every run is its own unit);
+    advances one point step after step (None: no chains, every run is its own unit);
     max_jobs: most tasks to hand out now; workers: how many share the runs out now."""
 
     batch_runs: int = 1
@@ -69,8 +69,9 @@ class JumpPlanner:
 
     Work units are smaller than a point: every run a point can start now (a prescan, the
     rounds of its jumps, the k - 1 points of a multisection round) is handed out on its
-    own, in batches across points; a point whose next step is a single run is handed out
-    whole, as a chain (tasks.run_bisection)."""
+    own, in batches across points; a point whose next step fits in one task (a single
+    run, or as many short runs as a batch holds) is handed out whole, as a chain
+    (tasks.run_bisection) that goes on for the task's time budget."""
 
     def __init__(self, campaign):
         self.campaign = campaign
@@ -136,7 +137,9 @@ class JumpPlanner:
             pending = bis.pending()
             out_now = self.out.get(i, ())
             ready = [req for req in pending if req not in out_now]
-            if sizing.chain_s is not None and len(pending) == 1 and ready:
+            # a step that fits in one task goes whole, and the steps after it with it
+            whole = len(ready) == len(pending) and len(pending) <= max(1, sizing.batch_runs)
+            if sizing.chain_s is not None and whole:
                 self.chained.add(i)
                 canonical = self.points[i].config.canonical()
                 budget = None if math.isinf(sizing.chain_s) else sizing.chain_s

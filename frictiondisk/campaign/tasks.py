@@ -3,10 +3,10 @@ point's sequential runs.
 
 Independent runs (a prescan, the rounds of several jumps, the k - 1 points of a
 multisection round) go out as batches (`run_batch`), sized by the driver so that a task
-lasts long enough to amortize the scheduler's cost per task. Where a point's next step is
-a single run (a plain bisection), its state machine goes to one worker (`run_bisection`),
-which advances it run after run, without a round trip each, until it fans out again, ends
-or has used its time budget; the driver journals the runs it made.
+lasts long enough to amortize the scheduler's cost per task. Where a point's next step
+fits in one task (a single run, or a few short ones), its state machine goes to one
+worker (`run_bisection`), which advances it step after step, without a round trip each,
+until it ends or has used its time budget; the driver journals the runs it made.
 """
 
 from __future__ import annotations
@@ -43,9 +43,8 @@ def run_bisection(
     campaign_dir: str,
     budget_s: float | None = None,
 ):
-    """Advance `bisection` (a Bisection or JumpSearch) on this worker: to its end, or, with
-    `budget_s`, until it asks for several runs at once (the driver spreads those) or has
-    run for budget_s seconds, whichever comes first.
+    """Advance `bisection` (a Bisection or JumpSearch) on this worker, one step after the
+    other: to its end, or, with `budget_s`, until it has run for budget_s seconds.
 
     A run the campaign's journal already holds is read, not computed (read-only: the
     driver alone writes); a worker that cannot see campaign_dir simply computes.
@@ -59,12 +58,9 @@ def run_bisection(
     made = []
     t0 = time.perf_counter()
     while not bisection.done:
-        pending = bisection.pending()
-        if budget_s is not None and (
-            (made and len(pending) > 1) or time.perf_counter() - t0 >= budget_s
-        ):
+        if budget_s is not None and time.perf_counter() - t0 >= budget_s:
             break
-        for request in pending:
+        for request in bisection.pending():
             if bisection.done:
                 break
             config = run_config(point_config, request, horizon_factor)
