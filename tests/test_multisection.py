@@ -98,3 +98,31 @@ def test_jump_search_bisects_every_jump_with_the_split_and_any_order():
 def test_split_below_two_is_refused():
     with pytest.raises(ValueError, match="split"):
         Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 0, split=1)
+
+
+@pytest.mark.parametrize("value", [1, 0, 2.5, 65, "three"])
+def test_a_bad_split_is_refused_naming_the_field_and_range(value):
+    from frictiondisk.campaign.spec import campaign_from_text
+    from frictiondisk.config import ConfigError
+
+    text = f"""name: c
+scene: pin
+find_jump:
+  bracket: [0.05, 0.3]
+  split: {value}
+  along: {{params.x_ms: [0.1]}}
+"""
+    with pytest.raises(ConfigError) as info:
+        campaign_from_text(text, "<test>")
+    assert "find_jump.split" in str(info.value) and "2" in str(info.value)
+
+
+def test_split_two_keeps_the_campaign_hash_and_other_splits_change_it():
+    from frictiondisk.campaign.spec import campaign_from_text
+
+    base = "name: c\nscene: pin\nfind_jump:\n  bracket: [0.05, 0.3]\n{}  along: {{params.x_ms: [0.1]}}\n"
+    plain = campaign_from_text(base.format(""), "<t>")
+    two = campaign_from_text(base.format("  split: 2\n"), "<t>")
+    three = campaign_from_text(base.format("  split: 3\n"), "<t>")
+    assert plain.task.canonical() == two.task.canonical()
+    assert three.task.canonical()["split"] == 3 and plain.diff(three)
