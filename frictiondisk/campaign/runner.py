@@ -137,7 +137,7 @@ def write_status(
         "points_done": points_done,
         "points_failed": points_failed,
         "runs_done": runs_done,
-        "jobs_in_flight": jobs_in_flight,  # points (find_jump) or runs (scan)
+        "jobs_in_flight": jobs_in_flight,  # Dask tasks: batches of runs, or chains of a point
         "runs_computed_now": runs_computed_now,
         "elapsed_s": elapsed_s,
         "eta_s": eta_s,
@@ -203,7 +203,6 @@ class _Driver:
         self.worker_threads = 1
         self._run_s_sum = 0.0  # kernel wall time of the runs computed so far [s]
         self._draining = False
-        self.drained = 0  # runs journaled from the tasks in flight after Ctrl-C
         self.dashboard: str | None = None
 
     # ---- the loop -----------------------------------------------------------------------
@@ -307,7 +306,6 @@ class _Driver:
             "(Ctrl-C again to drop them)",
             file=sys.stderr,
         )
-        before = self.computed
         deadline = time.monotonic() + DRAIN_TIMEOUT_S
         try:
             while self.in_flight and time.monotonic() < deadline:
@@ -318,7 +316,6 @@ class _Driver:
                 time.sleep(0.01)
         except KeyboardInterrupt:
             pass
-        self.drained = self.computed - before
 
     def _collect(self, client, future, value) -> None:
         job, function, args, _ = self.in_flight.pop(future.key)
