@@ -292,7 +292,7 @@ def main() -> None:
         rows = scaling_table(text, workers, args.repeats, limit, cores)
         if name == "c" and args.split != 2:
             plain = text.replace(f"split: {args.split}", "split: 2")
-            wall, runs, _, _ = time_campaign(plain, 1, args.repeats)
+            wall, runs, *_ = time_campaign(plain, 1, args.repeats)
             best = min(rows.values())
             print(
                 f"  plain bisection (split 2) on 1 worker: {wall:.2f} s, {runs} runs; "

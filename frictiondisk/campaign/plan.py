@@ -129,21 +129,31 @@ class JumpPlanner:
         out: list[tuple[int, Any, tuple]] = []
         pool: list[tuple[int, RunRequest]] = []
         self.requests()  # start the points that are ready
+        steps = []  # (point, its pending runs, those not out yet)
         for i, bis in sorted(self.bisections.items()):
+            if not bis.done and i not in self.chained:
+                pending = bis.pending()
+                out_now = self.out.get(i, ())
+                steps.append((i, pending, [req for req in pending if req not in out_now]))
+        # With enough runs to keep every worker busy in full batches, a step of several
+        # short runs goes whole (fewer tasks); otherwise its runs spread over idle workers.
+        ready_runs = sum(len(ready) for _, _, ready in steps)
+        saturated = ready_runs >= sizing.workers * sizing.batch_runs
+        for i, pending, ready in steps:
             if len(out) >= limit:
                 break
-            if bis.done or i in self.chained:
-                continue
-            pending = bis.pending()
-            out_now = self.out.get(i, ())
-            ready = [req for req in pending if req not in out_now]
-            # a step that fits in one task goes whole, and the steps after it with it
-            whole = len(ready) == len(pending) and len(pending) <= max(1, sizing.batch_runs)
-            if sizing.chain_s is not None and whole:
+            fits = len(pending) == 1 or (saturated and len(pending) <= sizing.batch_runs)
+            if sizing.chain_s is not None and ready and len(ready) == len(pending) and fits:
                 self.chained.add(i)
                 canonical = self.points[i].config.canonical()
                 budget = None if math.isinf(sizing.chain_s) else sizing.chain_s
-                args = (bis, canonical, self.task.horizon_factor, campaign_dir, budget)
+                args = (
+                    self.bisections[i],
+                    canonical,
+                    self.task.horizon_factor,
+                    campaign_dir,
+                    budget,
+                )
                 out.append((self._new_job("chain", i), run_bisection, args))
             else:
                 pool += [(i, req) for req in ready]
