@@ -296,7 +296,7 @@ def main() -> None:
             best = min(rows.values())
             print(
                 f"  plain bisection (split 2) on 1 worker: {wall:.2f} s, {runs} runs; "
-                f"split {args.split} at its best ({best:.2f} s) is {wall / best:.2f}x faster"
+                f"split {args.split} at its best ({best:.2f} s): {wall / best:.2f}x its speed"
             )
 
 
