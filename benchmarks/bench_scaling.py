@@ -224,12 +224,16 @@ def scaling_table(text, workers, repeats, limit, model_to: int) -> dict[int, flo
         counts = sorted({1, 2, 4, 8, 16, model_to} | set(workers))
         tasks_1 = _tasks_on_one(text, Path(keep), overhead)
         driver_s = driver_cpu / max(1, tasks_1)
-        model = modelled_walls(text, Path(keep), counts, overhead, driver_s)
+        model = modelled_walls(text, Path(keep), [*counts, 4096], overhead, driver_s)
         print(
             f"  model (ideal cores; measured run times, {overhead * 1e3:.1f} ms per task, "
             f"{driver_s * 1e3:.2f} ms driver CPU per task; {tasks_1} tasks on 1 worker):"
         )
         print("  " + "  ".join(f"{n}: {model[1] / model[n]:.2f}x" for n in counts))
+        print(
+            f"  bound from the campaign's longest chain of dependent runs (4096 workers): "
+            f"{model[1] / model[4096]:.1f}x"
+        )
     return rows
 
 
