@@ -231,7 +231,7 @@ def scaling_table(text, workers, repeats, limit, model_to: int) -> dict[int, flo
         )
         print("  " + "  ".join(f"{n}: {model[1] / model[n]:.2f}x" for n in counts))
         print(
-            f"  bound from the campaign's longest chain of dependent runs (4096 workers): "
+            f"  model on 4096 workers (the longest chain of dependent runs, plus task costs): "
             f"{model[1] / model[4096]:.1f}x"
         )
     return rows
