@@ -92,6 +92,7 @@ class JumpSearch:
         self.bisections: list[Bisection] = []
         self._bisection_runs: list[RunRecord] = []
         self._issued: set[RunRequest] = set()  # prescan requests asked for
+        self._pending: list[RunRequest] | None = None  # pending() until the next change
 
     # ---- what to run ------------------------------------------------------------------
     @property
@@ -103,21 +104,25 @@ class JumpSearch:
         return not self.scanning and all(b.done for b in self.bisections)
 
     def pending(self) -> list[RunRequest]:
-        if self.scanning:
-            requests = [
-                RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
-                for mu in self.mus
-                if mu not in self._settled
-            ]
-        else:
-            return [r for b in self.bisections if not b.done for r in b.pending()]
-        self._issued.update(requests)
-        return requests
+        """Every run that can go now (do not modify the list: it is kept until the next
+        feed, since a driver asks for it after every result of every point)."""
+        if self._pending is None:
+            if self.scanning:
+                self._pending = [
+                    RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
+                    for mu in self.mus
+                    if mu not in self._settled
+                ]
+                self._issued.update(self._pending)
+            else:
+                self._pending = [r for b in self.bisections if not b.done for r in b.pending()]
+        return self._pending
 
     # ---- what came back ---------------------------------------------------------------
     def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
         if request not in self.pending():
             raise ValueError(f"unexpected run {request}")
+        self._pending = None
         if self.scanning:
             self._scan_runs.append(RunRecord(request, result))
             if result["outcome"] != UNDETERMINED or request.level >= self.max_retries:
@@ -135,6 +140,7 @@ class JumpSearch:
     def abort(self, reason: str) -> None:
         """End as failed without more runs (e.g. its worker kept dying)."""
         self._failure = reason
+        self._pending = None
         self._settled.update(self.mus)
         for bisection in self.bisections:
             bisection.abort(reason)
