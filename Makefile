@@ -6,6 +6,7 @@
 #   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows)
 #   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
 #                run alongside; bench_layouts: cost per step against N, arrow vs dense LU)
+#                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw figures/<name>.png and .pdf (the README gallery)
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
@@ -16,6 +17,7 @@
 VENV ?= .venv
 PYTHON ?= python3
 PYTEST_ARGS ?=
+BENCH_SCALING_ARGS ?= --quick
 
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.frictiondisk-installed
@@ -78,6 +80,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kernel.py
 	$(BIN)/python benchmarks/bench_campaign.py
 	$(BIN)/python benchmarks/bench_layouts.py
+	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures figures

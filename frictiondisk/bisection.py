@@ -15,6 +15,13 @@ never guess):
 * an inverted bracket (stick at mu_lo, not stick at mu_hi) fails with both outcomes named;
 * every run is kept; runs that contradict monotonicity (a stick below a not-stick) are
   listed in the result instead of being hidden.
+
+Multisection (`split` = k >= 2): each round asks for the k - 1 interior points that cut
+[mu_lo, mu_hi] into k equal parts, all at once (they may run in parallel), and moves only
+when all of them are decided: the new bracket is the lowest part whose ends differ in the
+jump's direction. The schedule is fixed by k, never by how many workers are idle or the
+order results arrive in, so results do not depend on either. k = 2 is plain bisection.
+The last round uses the fewest parts that reach tol (at most k), so no run is wasted.
 """
 
 from __future__ import annotations
@@ -92,10 +99,14 @@ class Bisection:
         limits: tuple[float, float],
         max_retries: int,
         rising: bool = True,
+        split: int = 2,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
             raise ValueError(f"bad bracket {bracket} for limits {limits} and tol {tol}")
+        if split < 2:
+            raise ValueError(f"split must be >= 2 (parts per round), got {split}")
+        self.split = split
         self.lo = lo
         self.hi = hi
         self.tol = tol
@@ -107,7 +118,10 @@ class Bisection:
         self._known: dict[float, str] = {}  # mu -> stick / not-stick (determined runs only)
         self._level: dict[float, int] = {}  # mu -> retry level to ask for next
         self._failure: str | None = None
-        self._issued: dict[RunRequest, int] = {}  # request -> order of first request
+        # request -> (round, level, mu) when first asked for: the order runs are reported in,
+        # fixed by the schedule, never by the order results arrive in
+        self._issued: dict[RunRequest, tuple[int, int, float]] = {}
+        self._round = 0  # bumped whenever the bracket or the phase changes
 
     # ---- what to run ------------------------------------------------------------------
     def pending(self) -> list[RunRequest]:
@@ -117,18 +131,28 @@ class Bisection:
         if self.phase == "check":
             mus = [mu for mu in (self.lo, self.hi) if mu not in self._known]
         else:
-            mus = [self._midpoint()]
+            mus = [mu for mu in self._interior() if mu not in self._known]
         requests = [RunRequest(mu, self._level.get(mu, 0)) for mu in mus]
         for request in requests:
-            self._issued.setdefault(request, len(self._issued))
+            self._issued.setdefault(request, (self._round, request.level, request.mu))
         return requests
 
     @property
     def done(self) -> bool:
         return self._failure is not None or self.phase == "converged"
 
-    def _midpoint(self) -> float:
-        return self.lo + 0.5 * (self.hi - self.lo)
+    def schedule_key(self, request: RunRequest) -> tuple[int, int, float] | None:
+        """(round, level, mu) of a request this bisection asked for (None otherwise)."""
+        return self._issued.get(request)
+
+    def _interior(self) -> list[float]:
+        """The interior points of this round, increasing: lo + j (hi - lo) / parts."""
+        width = self.hi - self.lo
+        parts = self.split
+        # the last round: the fewest parts that reach tol (same test as _maybe_converged)
+        while parts > 2 and width / (parts - 1) <= self.tol * (1 + 1e-9):
+            parts -= 1
+        return [self.lo + j * width / parts for j in range(1, parts)]
 
     # ---- what came back ---------------------------------------------------------------
     def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
@@ -150,11 +174,7 @@ class Bisection:
         if self.phase == "check":
             self._after_check()
         else:
-            if (outcome == STICK) == self.rising:
-                self.hi = request.mu
-            else:
-                self.lo = request.mu
-            self._maybe_converged()
+            self._after_round()
 
     def abort(self, reason: str) -> None:
         """End the bisection as failed without a run (e.g. its worker kept dying)."""
@@ -169,8 +189,7 @@ class Bisection:
         width = self.hi - self.lo
         if not self.rising:
             if lo_stick and not hi_stick:
-                self.phase = "bisect"
-                self._maybe_converged()
+                self._next_round(phase="bisect")
             else:  # a falling jump is only ever bisected inside a bracket found by a scan
                 self._failure = (
                     f"no falling jump in the bracket: mu_lo = {self.lo:.10g} gave "
@@ -178,8 +197,7 @@ class Bisection:
                     f"{self._outcome_at(self.hi)}"
                 )
         elif not lo_stick and hi_stick:
-            self.phase = "bisect"
-            self._maybe_converged()
+            self._next_round(phase="bisect")
         elif lo_stick and not hi_stick:
             self._failure = (
                 f"bracket inverted: mu_lo = {self.lo:.10g} gave stick, "
@@ -193,7 +211,7 @@ class Bisection:
                     f"{self._outcome_at(self.hi)}"
                 )
             else:
-                self.lo, self.hi = self.hi, min(self.limits[1], self.hi + WIDEN_FACTOR * width)
+                self._next_round(self.hi, min(self.limits[1], self.hi + WIDEN_FACTOR * width))
         else:  # both ends stick: the jump lies below
             if self.lo <= self.limits[0]:
                 self._failure = (
@@ -201,7 +219,30 @@ class Bisection:
                     f"mu_hi = {self.hi:.10g} gave stick"
                 )
             else:
-                self.lo, self.hi = max(self.limits[0], self.lo - WIDEN_FACTOR * width), self.lo
+                self._next_round(max(self.limits[0], self.lo - WIDEN_FACTOR * width), self.lo)
+
+    def _after_round(self) -> None:
+        """Once every interior point is decided: the lowest part whose ends differ in the
+        jump's direction becomes the bracket (with one point, plain bisection)."""
+        interior = self._interior()
+        if any(mu not in self._known for mu in interior):
+            return
+        ends = [self.lo, *interior, self.hi]
+        # the bracket ends are known and differ; a change is found by walking up from lo
+        lo_kind = self._known[self.lo]
+        for a, b in zip(ends, ends[1:], strict=False):
+            if self._known[b] != lo_kind:
+                self._next_round(a, b)
+                return
+
+    def _next_round(self, lo: float | None = None, hi: float | None = None, phase=None) -> None:
+        if lo is not None:
+            self.lo, self.hi = lo, hi
+        if phase is not None:
+            self.phase = phase
+        self._round += 1
+        if self.phase == "bisect":
+            self._maybe_converged()
 
     def _outcome_at(self, mu: float) -> str:
         for run in reversed(self.runs):

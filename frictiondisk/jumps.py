@@ -8,7 +8,9 @@ stick above) or a *falling* one (stick below, not stick above). Jumps narrower t
 prescan spacing are not seen; the spacing is the campaign's resolution and is reported.
 
 Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
-nothing of simulation, I/O or Dask. Prescan runs may use their own numerics.mode (e.g.
+nothing of simulation, I/O or Dask. Its `pending()` lists every run that can go now: the
+whole prescan at once, then the current round of every jump's bisection together, so a
+driver may run them in parallel. Prescan runs may use their own numerics.mode (e.g.
 `converge`, for size-versus-mu curves); the bisections always decide.
 """
 
@@ -74,6 +76,7 @@ class JumpSearch:
         tol: float,
         max_retries: int,
         scan_mode: str | None = None,
+        split: int = 2,
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -81,13 +84,15 @@ class JumpSearch:
         self.tol = tol
         self.max_retries = max_retries
         self.scan_mode = scan_mode
+        self.split = split  # parts per bisection round (bisection.Bisection)
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}
         self._settled: set[float] = set()  # determined, or undetermined after every retry
         self.bisections: list[Bisection] = []
         self._bisection_runs: list[RunRecord] = []
-        self._issued: dict[RunRequest, int] = {}
+        self._issued: set[RunRequest] = set()  # prescan requests asked for
+        self._pending: list[RunRequest] | None = None  # pending() until the next change
 
     # ---- what to run ------------------------------------------------------------------
     @property
@@ -99,22 +104,25 @@ class JumpSearch:
         return not self.scanning and all(b.done for b in self.bisections)
 
     def pending(self) -> list[RunRequest]:
-        if self.scanning:
-            requests = [
-                RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
-                for mu in self.mus
-                if mu not in self._settled
-            ]
-        else:
-            requests = [r for b in self.bisections if not b.done for r in b.pending()]
-        for request in requests:
-            self._issued.setdefault(request, len(self._issued))
-        return requests
+        """Every run that can go now (do not modify the list: it is kept until the next
+        feed, since a driver asks for it after every result of every point)."""
+        if self._pending is None:
+            if self.scanning:
+                self._pending = [
+                    RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
+                    for mu in self.mus
+                    if mu not in self._settled
+                ]
+                self._issued.update(self._pending)
+            else:
+                self._pending = [r for b in self.bisections if not b.done for r in b.pending()]
+        return self._pending
 
     # ---- what came back ---------------------------------------------------------------
     def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
         if request not in self.pending():
             raise ValueError(f"unexpected run {request}")
+        self._pending = None
         if self.scanning:
             self._scan_runs.append(RunRecord(request, result))
             if result["outcome"] != UNDETERMINED or request.level >= self.max_retries:
@@ -132,6 +140,7 @@ class JumpSearch:
     def abort(self, reason: str) -> None:
         """End as failed without more runs (e.g. its worker kept dying)."""
         self._failure = reason
+        self._pending = None
         self._settled.update(self.mus)
         for bisection in self.bisections:
             bisection.abort(reason)
@@ -147,7 +156,9 @@ class JumpSearch:
         for (mu_a, stick_a), (mu_b, stick_b) in zip(known, known[1:], strict=False):
             if stick_a == stick_b:
                 continue
-            bisection = Bisection((mu_a, mu_b), self.tol, (mu_a, mu_b), self.max_retries, stick_b)
+            bisection = Bisection(
+                (mu_a, mu_b), self.tol, (mu_a, mu_b), self.max_retries, stick_b, self.split
+            )
             # its end checks are the prescan runs: fed, not run again
             for mu in (mu_a, mu_b):
                 bisection.feed(RunRequest(mu, 0), last[mu].result)
@@ -196,5 +207,14 @@ class JumpSearch:
         """mu -> its last prescan run (the one at the highest retry level)."""
         return {run.request.mu: run for run in self._scan_runs}
 
-    def _order(self, run: RunRecord) -> int:
-        return self._issued.get(run.request, len(self._issued))
+    def _order(self, run: RunRecord) -> tuple:
+        """Prescan runs first (by retry level, then mu), then each bisection's runs in its
+        own schedule order: fixed by the campaign, not by the order results arrived in."""
+        request = run.request
+        if request in self._issued:
+            return (0, request.level, request.mu)
+        for index, bisection in enumerate(self.bisections):
+            key = bisection.schedule_key(request)
+            if key is not None:
+                return (1, index, *key)
+        return (2, request.level, request.mu)

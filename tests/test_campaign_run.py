@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -155,6 +156,9 @@ def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
     assert b"frictiondisk resume" in err
     before = len(Journal(out))
     assert before >= 5
+    # every run finished before the exit is journaled, those of the tasks in flight too
+    reported = re.search(rb"interrupted; (\d+) finished runs are in the journal", err)
+    assert reported and int(reported.group(1)) == before, err.decode()
     result = CliRunner().invoke(main, ["resume", str(out)])
     assert result.exit_code == 0, result.output
     assert max(Journal(out).computed_counts().values()) == 1
@@ -200,7 +204,8 @@ def test_a_job_that_keeps_failing_fails_its_point_without_inventing_runs(tmp_pat
     def broken(*args):
         raise RuntimeError("simulated worker crash")
 
-    monkeypatch.setattr(plan, "run_bisection", broken)
+    monkeypatch.setattr(plan, "run_bisection", broken)  # a chain of runs
+    monkeypatch.setattr(plan, "run_batch", broken)  # a batch of independent runs
     run_campaign(pin_line("[0.1]"), tmp_path, workers=1, progress=False)
     with xr.open_dataset(tmp_path / "results.nc") as ds:
         assert ds.status.values[0] == "failed"

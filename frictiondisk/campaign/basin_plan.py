@@ -152,7 +152,7 @@ class BasinPlanner:
         self._take(i, j, result)
         self._advance(i)
 
-    def jobs(self, campaign_dir: str) -> list[tuple[tuple[int, int], Any, tuple]]:
+    def jobs(self, campaign_dir: str, sizing=None) -> list[tuple[tuple[int, int], Any, tuple]]:
         """Every requested sample not yet out, JOB_RUNS to a job (run_samples)."""
         wanted = [(i, req.index) for i, req in self.requests()]
         out = []

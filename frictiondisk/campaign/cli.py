@@ -218,7 +218,7 @@ def status(out_dir: Path) -> None:
         f"points:    {info.get('points_done', 0)} of {total} done, "
         f"{info.get('points_failed', 0)} failed",
         f"runs:      {runs_done} done; "
-        f"{info.get('jobs_in_flight', 0) if holder else 0} jobs (points) in flight",
+        f"{info.get('jobs_in_flight', 0) if holder else 0} tasks in flight",
     ]
     eta = info.get("eta_s")
     if holder is not None and eta is not None:

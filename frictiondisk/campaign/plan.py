@@ -18,13 +18,14 @@ identical results.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
 from frictiondisk.bisection import Bisection, BisectionResult, RunRequest
 from frictiondisk.campaign.basin_plan import BasinPlanner
 from frictiondisk.campaign.requests import run_config
-from frictiondisk.campaign.tasks import run_bisection, run_scene
+from frictiondisk.campaign.tasks import run_batch, run_bisection, run_scene
 from frictiondisk.jumps import JumpSearch, JumpSearchResult
 
 WARM_HALF_WIDTH_TOLS = 3.0  # half-width of a predicted bracket, in units of tol
@@ -35,10 +36,29 @@ def cold_run_count(bracket: tuple[float, float], tol: float) -> int:
     return 2 + max(0, math.ceil(math.log2((bracket[1] - bracket[0]) / tol)))
 
 
+@dataclasses.dataclass(frozen=True)
+class Sizing:
+    """How the driver wants work cut into tasks (performance only: results never depend
+    on it). batch_runs: independent runs per task; chain_s: time budget [s] of a task that
+    advances one point step after step (None: no chains, every run is its own unit);
+    max_jobs: most tasks to hand out now; workers: how many share the runs out now."""
+
+    batch_runs: int = 1
+    chain_s: float | None = None
+    max_jobs: int | None = None
+    workers: int = 1
+
+
 class JumpPlanner:
     """find_jump: one bisection per point, warm-started along lanes; with a prescan, one
     `JumpSearch` per point instead (every jump bisected; no warm start: the prescan
-    fixes the runs)."""
+    fixes the runs).
+
+    Work units are smaller than a point: every run a point can start now (a prescan, the
+    rounds of its jumps, the k - 1 points of a multisection round) is handed out on its
+    own, in batches across points; a point whose next step fits in one task (a single
+    run, or as many short runs as a batch holds) is handed out whole, as a chain
+    (tasks.run_bisection) that goes on for the task's time budget."""
 
     def __init__(self, campaign):
         self.campaign = campaign
@@ -48,7 +68,15 @@ class JumpPlanner:
         self.bisections: dict[int, Bisection | JumpSearch] = {}
         self.results: dict[int, BisectionResult | JumpSearchResult] = {}
         self.warm: dict[int, bool] = {}
-        self.busy: set[int] = set()  # points whose bisection is out on a worker
+        self.chained: set[int] = set()  # points whose search is out on a worker
+        self.out: dict[int, set[RunRequest]] = {}  # point -> its runs out in batches
+        self._jobs: dict[int, tuple[str, Any]] = {}  # job -> ("chain", i) | ("runs", units)
+        self._next_job = 0
+        self._canonicals: dict[tuple[int, RunRequest], dict] = {}  # the driver computed these
+
+    def remember_canonical(self, i: int, request: RunRequest, canonical: dict) -> None:
+        """Keep a run's canonical scene the driver already built (saves ~1 ms a run)."""
+        self._canonicals[(i, request)] = canonical
 
     def config_for(self, i: int, request: RunRequest):
         return run_config(self.points[i].config, request, self.task.horizon_factor)
@@ -58,55 +86,116 @@ class JumpPlanner:
         return len(self.results) == len(self.points)
 
     def requests(self) -> list[tuple[int, RunRequest]]:
+        """Runs the started points need now and nobody is computing."""
         for i in range(len(self.points)):
             if i not in self.bisections and self._ready(i):
                 self._start(i)
         return [
             (i, req)
             for i, bis in sorted(self.bisections.items())
-            if not bis.done and i not in self.busy
+            if not bis.done and i not in self.chained
             for req in bis.pending()
+            if req not in self.out.get(i, ())
         ]
 
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
         """Take a result; a result the point no longer waits for is ignored."""
         bis = self.bisections[i]
-        if bis.done or i in self.busy or request not in bis.pending():
+        if bis.done or i in self.chained or request not in bis.pending():
             return
         bis.feed(request, result)
         if bis.done:
             self.results[i] = bis.result()
 
-    def jobs(self, campaign_dir: str) -> list[tuple[int, Any, tuple]]:
-        """(point, function, args) for every started point the journal could not finish;
-        the rest of its bisection runs on one worker (tasks.run_bisection), which reads
-        any later run the journal holds from campaign_dir instead of computing it."""
-        out = []
+    def jobs(self, campaign_dir: str, sizing: Sizing | None = None) -> list[tuple[int, Any, tuple]]:
+        """(job, function, args) for the runs the journal could not answer: chains
+        (tasks.run_bisection, which reads any later run the journal holds from
+        campaign_dir) and batches of independent runs (tasks.run_batch), in point order."""
+        sizing = sizing or Sizing(chain_s=float("inf"))
+        limit = math.inf if sizing.max_jobs is None else sizing.max_jobs
+        out: list[tuple[int, Any, tuple]] = []
+        pool: list[tuple[int, RunRequest]] = []
+        self.requests()  # start the points that are ready
+        steps = []  # (point, its pending runs, those not out yet)
         for i, bis in sorted(self.bisections.items()):
-            if bis.done or i in self.busy:
-                continue
-            self.busy.add(i)
-            canonical = self.points[i].config.canonical()
-            args = (bis, canonical, self.task.horizon_factor, campaign_dir)
-            out.append((i, run_bisection, args))
+            if not bis.done and i not in self.chained:
+                pending = bis.pending()
+                out_now = self.out.get(i, ())
+                steps.append((i, pending, [req for req in pending if req not in out_now]))
+        # With enough runs to keep every worker busy in full batches, a step of several
+        # short runs goes whole (fewer tasks); otherwise its runs spread over idle workers.
+        ready_runs = sum(len(ready) for _, _, ready in steps)
+        saturated = ready_runs >= sizing.workers * sizing.batch_runs
+        for i, pending, ready in steps:
+            if len(out) >= limit:
+                break
+            fits = len(pending) == 1 or (saturated and len(pending) <= sizing.batch_runs)
+            if sizing.chain_s is not None and ready and len(ready) == len(pending) and fits:
+                self.chained.add(i)
+                canonical = self.points[i].config.canonical()
+                budget = None if math.isinf(sizing.chain_s) else sizing.chain_s
+                args = (
+                    self.bisections[i],
+                    canonical,
+                    self.task.horizon_factor,
+                    campaign_dir,
+                    budget,
+                )
+                out.append((self._new_job("chain", i), run_bisection, args))
+            else:
+                pool += [(i, req) for req in ready]
+        size = max(1, min(sizing.batch_runs, -(-len(pool) // max(1, sizing.workers))))
+        for start in range(0, len(pool), size):
+            if len(out) >= limit:
+                break
+            units = pool[start : start + size]
+            for i, req in units:
+                self.out.setdefault(i, set()).add(req)
+            configs = [
+                self._canonicals.pop((i, req), None) or self.config_for(i, req).canonical()
+                for i, req in units
+            ]
+            out.append((self._new_job("runs", units), run_batch, (configs,)))
         return out
 
-    def complete(self, i: int, value) -> list[tuple[int, RunRequest, dict[str, Any]]]:
-        """Take a finished job back; returns the runs it made, for the journal."""
-        bis, made = value
-        self.busy.discard(i)
-        self.bisections[i] = bis
-        if bis.done:
-            self.results[i] = bis.result()
-        return [(i, request, result) for request, result in made]
+    def _new_job(self, kind: str, what: Any) -> int:
+        job, self._next_job = self._next_job, self._next_job + 1
+        self._jobs[job] = (kind, what)
+        return job
 
-    def fail(self, i: int, reason: str) -> None:
-        """A job that never came back (its worker kept dying): the point fails with that
-        reason; no run is invented for it."""
-        self.busy.discard(i)
-        bis = self.bisections[i]
-        bis.abort(reason)
-        self.results[i] = bis.result()
+    def complete(self, job: int, value) -> list[tuple[int, RunRequest, dict[str, Any]]]:
+        """Take a finished job back; returns the runs it made, for the journal."""
+        kind, what = self._jobs.pop(job)
+        if kind == "chain":
+            bis, made = value
+            self.chained.discard(what)
+            self.bisections[what] = bis
+            if bis.done:
+                self.results[what] = bis.result()
+            return [(what, request, result) for request, result in made]
+        results, _ = value
+        made = []
+        for (i, request), result in zip(what, results, strict=True):
+            self.out[i].discard(request)
+            self.feed(i, request, result)
+            made.append((i, request, result))
+        return made
+
+    def fail(self, job: int, reason: str) -> None:
+        """A job that never came back (its worker kept dying): its points fail with that
+        reason; no run is invented for them."""
+        kind, what = self._jobs.pop(job)
+        if kind == "chain":
+            self.chained.discard(what)
+            points = [what]
+        else:
+            for i, request in what:
+                self.out[i].discard(request)
+            points = sorted({i for i, _ in what})
+        for i in points:
+            bis = self.bisections[i]
+            bis.abort(reason)
+            self.results[i] = bis.result()
 
     # ---- warm-start window ------------------------------------------------------------
     def _row_pos(self, i: int) -> tuple[int, int]:
@@ -128,14 +217,18 @@ class JumpPlanner:
         if prescan is not None:
             self.warm[i] = False
             self.bisections[i] = JumpSearch(
-                prescan.mu, self.task.tol, self.task.max_retries, prescan.mode
+                prescan.mu, self.task.tol, self.task.max_retries, prescan.mode, self.task.split
             )
             return
         bracket = self._predicted_bracket(i)
         self.warm[i] = bracket is not None
         bracket = bracket or tuple(self.task.bracket)
         self.bisections[i] = Bisection(
-            bracket, self.task.tol, tuple(self.task.limits), self.task.max_retries
+            bracket,
+            self.task.tol,
+            tuple(self.task.limits),
+            self.task.max_retries,
+            split=self.task.split,
         )
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:
@@ -189,10 +282,14 @@ class ScanPlanner:
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
         self.results.setdefault(i, result)
 
-    def jobs(self, campaign_dir: str) -> list[tuple[int, Any, tuple]]:
-        """One job per point not yet known: a single (long, converge-mode) run."""
+    def jobs(self, campaign_dir: str, sizing: Sizing | None = None) -> list[tuple[int, Any, tuple]]:
+        """One job per point not yet known: a single (long, converge-mode) run; at most
+        sizing.max_jobs of them."""
+        limit = math.inf if sizing is None or sizing.max_jobs is None else sizing.max_jobs
         out = []
         for i, point in enumerate(self.points):
+            if len(out) >= limit:
+                break
             if i in self.results or i in self.busy:
                 continue
             self.busy.add(i)

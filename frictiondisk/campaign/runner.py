@@ -25,9 +25,9 @@ from typing import Any
 
 from frictiondisk.campaign import basin_datasets, datasets
 from frictiondisk.campaign.journal import CampaignLock, Journal, run_key
-from frictiondisk.campaign.plan import planner_for
+from frictiondisk.campaign.plan import Sizing, planner_for
 from frictiondisk.campaign.spec import Campaign, campaign_from_dict, load_campaign
-from frictiondisk.campaign.tasks import warm_up
+from frictiondisk.campaign.tasks import noop, warm_up
 from frictiondisk.config import ConfigError
 from frictiondisk.files import atomic_write_netcdf, atomic_write_text
 from frictiondisk.paths import refuse_symlink
@@ -56,6 +56,11 @@ _DIR_NAMES = (
     "journal/computed.log",
     "journal/corrupt",
 )
+TASK_OVERHEAD_SHARE = 0.05  # a task should last long enough that its scheduling costs <= 5 %
+MAX_TASK_S = 2.0  # [s] ... but no longer: an interrupt waits for (or loses) the tasks in flight
+TASKS_PER_WORKER = 2  # tasks in flight per worker thread: one running, one queued behind it
+OVERHEAD_PROBES = 8  # round trips of an empty task timed to measure the cost per task
+DRAIN_TIMEOUT_S = 30.0  # [s] Ctrl-C waits this long for the tasks in flight, then drops them
 
 
 class CampaignChanged(Exception):
@@ -89,6 +94,7 @@ class RunSummary:
     results: Path
     runs: Path
     moved_aside: list[str] = dataclasses.field(default_factory=list)  # rejected entries
+    task_overhead_s: float | None = None  # measured round trip of an empty Dask task [s]
 
 
 def prepare_directory(out_dir: Path, campaign: Campaign | None) -> Campaign:
@@ -229,7 +235,7 @@ def write_status(
         "points_done": points_done,
         "points_failed": points_failed,
         "runs_done": runs_done,
-        "jobs_in_flight": jobs_in_flight,  # points (find_jump) or runs (scan)
+        "jobs_in_flight": jobs_in_flight,  # Dask tasks: batches of runs, or chains of a point
         "runs_computed_now": runs_computed_now,
         "elapsed_s": elapsed_s,
         "eta_s": eta_s,
@@ -291,6 +297,13 @@ class _Driver:
         self._bar = None
         self.scheduled = False  # True with --scheduler: watch for live workers
         self.worker_wait = WORKER_WAIT
+        # keys looked up and absent; the journal only grows by our own put (which clears one)
+        self._checked: set[str] = set()
+        self.task_overhead_s: float | None = None  # measured round trip of an empty task
+        self.worker_threads = 1
+        self._run_s_sum = 0.0  # kernel wall time of the runs computed so far [s]
+        self._draining = False
+        self.dashboard: str | None = None
 
     # ---- the loop -----------------------------------------------------------------------
     def run(self, workers: int, scheduler: str | None, processes: bool) -> RunSummary:
@@ -305,8 +318,13 @@ class _Driver:
         while progressed and not self.planner.done:
             progressed = False
             for point, request in self.planner.requests():
-                cached = self.journal.get(self._key(point, request))
-                if cached is not None:
+                key = self._key(point, request)
+                if key in self._checked:
+                    continue
+                cached = self.journal.get(key)
+                if cached is None:
+                    self._checked.add(key)
+                else:
                     self.planner.feed(point, request, cached)
                     progressed = True
 
@@ -328,14 +346,22 @@ class _Driver:
                 n_workers=workers,
                 threads_per_worker=1,
                 processes=processes,
-                dashboard_address=None,
+                dashboard_address=":0",  # a free port: never clashes with another run
             )
             client = Client(cluster)
             if not processes:
                 _send_without_batching_delay(client, cluster)
+        self.dashboard = _dashboard_link(client)
+        if self.progress:
+            print(f"Dask dashboard: {self.dashboard}", file=sys.stderr)
+        self.worker_threads = max(1, sum(client.nthreads().values()))
+        self.task_overhead_s = measure_task_overhead(client)
         self._open_bar()
         try:
             self._loop(client)
+        except KeyboardInterrupt:
+            self._drain(client)
+            raise
         finally:
             for *_, future in self.in_flight.values():
                 future.cancel()
@@ -352,9 +378,10 @@ class _Driver:
 
         # Results come back gathered, in batches: no blocking round trip per future.
         self._done_queue = as_completed(with_results=True, raise_errors=False)
+        campaign_dir = str(self.out_dir.resolve())
         while not self.planner.done:
             self._replay()
-            for job, function, args in self.planner.jobs(str(self.out_dir.resolve())):
+            for job, function, args in self.planner.jobs(campaign_dir, self._sizing()):
                 self._submit(client, job, function, args)
             if self.planner.done:
                 break
@@ -402,8 +429,38 @@ class _Driver:
         self.in_flight[future.key] = (job, function, args, future)
         self._done_queue.add(future)
 
+    def _sizing(self) -> Sizing:
+        mean_run = self._run_s_sum / self.computed if self.computed else None
+        return task_sizing(
+            self.task_overhead_s or 0.0, mean_run, self.worker_threads, len(self.in_flight)
+        )
+
+    def _drain(self, client) -> None:
+        """After Ctrl-C: journal the runs of the tasks in flight as they finish (at most
+        DRAIN_TIMEOUT_S; a second Ctrl-C drops them), submitting nothing new."""
+        if not self.in_flight:
+            return
+        self._draining = True
+        print(
+            f"\ninterrupted: journaling the runs of {len(self.in_flight)} tasks in flight "
+            "(Ctrl-C again to drop them)",
+            file=sys.stderr,
+        )
+        deadline = time.monotonic() + DRAIN_TIMEOUT_S
+        try:
+            while self.in_flight and time.monotonic() < deadline:
+                for *_, future in list(self.in_flight.values()):
+                    if future.status in ("finished", "error", "cancelled", "lost"):
+                        value = future.result() if future.status == "finished" else None
+                        self._collect(client, future, value)
+                time.sleep(0.01)
+        except KeyboardInterrupt:
+            pass
+
     def _collect(self, client, future, value) -> None:
         job, function, args, _ = self.in_flight.pop(future.key)
+        if future.status != "finished" and self._draining:
+            return  # not journaled: a resume computes it
         if future.status != "finished":  # a worker died or the job raised: bounded retries
             self.failures[job] = self.failures.get(job, 0) + 1
             if self.failures[job] <= MAX_WORKER_FAILURES:
@@ -417,15 +474,20 @@ class _Driver:
         for point, request, result in self.planner.complete(job, value):
             key = self._key(point, request)
             self.journal.put(key, self.inputs[key], result)
+            self._checked.discard(key)  # another point may ask for the same run
             self.computed += 1
+            self._run_s_sum += float(result.get("wall_s") or 0.0)
 
     def _key(self, point: int, request) -> str:
         cached = self.keys.get((point, request))
         if cached is None:
-            config = self.planner.config_for(point, request)
-            cached = run_key(config)
+            canonical = self.planner.config_for(point, request).canonical()
+            cached = run_key(_Canonical(canonical))  # canonical() once: it costs ~0.4 ms
             self.keys[(point, request)] = cached
-            self.inputs[cached] = config.canonical()
+            self.inputs[cached] = canonical
+            remember = getattr(self.planner, "remember_canonical", None)
+            if remember is not None:
+                remember(point, request, canonical)
         return cached
 
     # ---- progress and status ------------------------------------------------------------
@@ -506,7 +568,64 @@ class _Driver:
             results=Path(results),
             runs=Path(runs),
             moved_aside=list(self.journal.corrupt_reasons),
+            task_overhead_s=self.task_overhead_s,
         )
+
+
+@dataclasses.dataclass(frozen=True)
+class _Canonical:
+    """A scene's canonical dict, as run_key takes it (anything with .canonical())."""
+
+    value: dict
+
+    def canonical(self) -> dict:
+        return self.value
+
+
+def task_sizing(
+    overhead_s: float, mean_run_s: float | None, worker_threads: int, in_flight: int
+) -> Sizing:
+    """Cut work into tasks that last task_s = overhead / 5 % (at most MAX_TASK_S): a batch
+    holds task_s / mean_run_s independent runs (1 while no run time is known yet), a chain
+    runs for task_s; TASKS_PER_WORKER tasks per worker thread are in flight."""
+    task_s = min(MAX_TASK_S, overhead_s * (1 - TASK_OVERHEAD_SHARE) / TASK_OVERHEAD_SHARE)
+    batch = max(1, int(task_s / mean_run_s)) if mean_run_s else 1
+    return Sizing(
+        batch_runs=batch,
+        chain_s=task_s,
+        max_jobs=max(0, TASKS_PER_WORKER * worker_threads - in_flight),
+        workers=worker_threads,
+    )
+
+
+def measure_task_overhead(client, probes: int = OVERHEAD_PROBES) -> float:
+    """Median round trip [s] of an empty task through this client's scheduler: the cost
+    per task that a batch must amortize (the first, cold, round trip is not counted)."""
+    client.submit(noop, pure=False).result()
+    times = []
+    for _ in range(probes):
+        t0 = time.perf_counter()
+        client.submit(noop, pure=False).result()
+        times.append(time.perf_counter() - t0)
+    return sorted(times)[len(times) // 2]
+
+
+def _has_dashboard() -> bool:
+    """Whether the Dask dashboard can be served here (it needs bokeh)."""
+    import importlib.util
+
+    return importlib.util.find_spec("bokeh") is not None
+
+
+def _dashboard_link(client) -> str:
+    """The scheduler's dashboard address, or why there is none."""
+    try:
+        link = client.dashboard_link  # a scheduler without a dashboard lists no such service
+    except (KeyError, AttributeError, TypeError):
+        link = None
+    if link and (client.cluster is None or _has_dashboard()):
+        return link
+    return "not available (the Dask dashboard needs bokeh: pip install 'bokeh>=3.1')"
 
 
 def _send_without_batching_delay(client, cluster) -> None:

@@ -85,6 +85,7 @@ FIND_JUMP_KEYS = (
     "lanes",
     "along",
     "prescan",
+    "split",
 )
 SCAN_KEYS = ("mu", "along", "mode")
 PRESCAN_KEYS = ("mu", "mode")
@@ -104,6 +105,8 @@ DEFAULT_LIMITS = (1.0e-6, 10.0)  # the bracket may be widened within these
 DEFAULT_MAX_RETRIES = 2  # retries of an undetermined run with a longer horizon
 DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_max) by this
 DEFAULT_LANES = 2  # warm-start chains
+DEFAULT_SPLIT = 2  # parts per bisection round: 2 = plain bisection (bisection.Bisection)
+MAX_SPLIT = 64
 DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (docs/model.md section 6)
 DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)
 DEFAULT_BASIN_BATCH = 100  # samples per adaptive batch (target_se): the stop rule's step
@@ -157,10 +160,12 @@ class FindJump:
     lanes: int
     along: dict[str, tuple[float, ...]]
     prescan: Prescan | None = None
+    split: int = DEFAULT_SPLIT  # parts per bisection round (k - 1 runs per round, at once)
 
     def canonical(self) -> dict[str, Any]:
         """JSON-able dict, keys sorted except `along`, whose order is the dims order.
-        `prescan` appears only when given, so campaigns without one keep their hash."""
+        `prescan` and `split` appear only when given (split != 2), so campaigns without
+        them keep their hash."""
         out = {
             "along": {key: list(values) for key, values in self.along.items()},
             "bracket": list(self.bracket),
@@ -173,6 +178,8 @@ class FindJump:
         }
         if self.prescan is not None:
             out["prescan"] = self.prescan.canonical()
+        if self.split != DEFAULT_SPLIT:
+            out["split"] = self.split
         return {key: out[key] for key in sorted(out)}
 
 
@@ -473,6 +480,14 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
     lanes = _number(
         spec.get("lanes", DEFAULT_LANES), "find_jump.lanes", problems, integer=True, ge=1, le=64
     )
+    split = _number(
+        spec.get("split", DEFAULT_SPLIT),
+        "find_jump.split",
+        problems,
+        integer=True,
+        ge=2,
+        le=MAX_SPLIT,
+    )
     if bracket is not None:
         lo, hi = bracket
         if tol is not None and tol >= hi - lo:
@@ -495,7 +510,7 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
     )
     if base is not None and None not in (max_retries, horizon_factor):
         _check_retry_horizon(base, prescan, max_retries, horizon_factor, problems)
-    if None in (bracket, tol, limits, max_retries, horizon_factor, lanes, along):
+    if None in (bracket, tol, limits, max_retries, horizon_factor, lanes, split, along):
         return None
     return FindJump(
         parameter=parameter,
@@ -507,6 +522,7 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
         lanes=lanes,
         along=along,
         prescan=prescan,
+        split=split,
     )
 
 

@@ -1,14 +1,31 @@
-"""What a Dask worker executes (no I/O): one run, or the rest of one point's bisection.
+"""What a Dask worker executes (no I/O): a batch of independent runs, or a chain of one
+point's sequential runs.
 
-A bisection's runs are sequential and a decision run takes 1-7 ms, less than one Dask
-round trip (3-10 ms), so a find_jump point is shipped whole: the worker advances the
-pure `Bisection` to its end and returns it with the runs it made; the driver journals
-them. Scan runs (converge mode, 0.1-1 s each) go one per task.
+Independent runs (a prescan, the rounds of several jumps, the k - 1 points of a
+multisection round) go out as batches (`run_batch`), sized by the driver so that a task
+lasts long enough to amortize the scheduler's cost per task. Where a point's next step
+fits in one task (a single run, or a few short ones), its state machine goes to one
+worker (`run_bisection`), which advances it step after step, without a round trip each,
+until it ends or has used its time budget; the driver journals the runs it made.
 """
 
 from __future__ import annotations
 
+import time
 from typing import Any
+
+
+def noop() -> None:
+    """An empty task: the driver times its round trip (the scheduler's cost per task)."""
+
+
+def run_batch(canonicals: list[dict[str, Any]]) -> tuple[list[dict[str, Any]], float]:
+    """Simulate each scene (`SceneConfig.canonical()`), in order.
+
+    Returns (result summaries, wall time of the whole batch [s])."""
+    t0 = time.perf_counter()
+    results = [run_scene(canonical) for canonical in canonicals]
+    return results, time.perf_counter() - t0
 
 
 def run_scene(canonical: dict[str, Any]) -> dict[str, Any]:
@@ -20,9 +37,14 @@ def run_scene(canonical: dict[str, Any]) -> dict[str, Any]:
 
 
 def run_bisection(
-    bisection, point_canonical: dict[str, Any], horizon_factor: float, campaign_dir: str
+    bisection,
+    point_canonical: dict[str, Any],
+    horizon_factor: float,
+    campaign_dir: str,
+    budget_s: float | None = None,
 ):
-    """Advance `bisection` (frictiondisk.bisection.Bisection) to its end on this worker.
+    """Advance `bisection` (a Bisection or JumpSearch) on this worker, one step after the
+    other: to its end, or, with `budget_s`, until it has run for budget_s seconds.
 
     A run the campaign's journal already holds is read, not computed (read-only: the
     driver alone writes); a worker that cannot see campaign_dir simply computes.
@@ -34,7 +56,10 @@ def run_bisection(
 
     point_config = scene_from_dict(point_canonical)
     made = []
+    t0 = time.perf_counter()
     while not bisection.done:
+        if budget_s is not None and time.perf_counter() - t0 >= budget_s:
+            break
         for request in bisection.pending():
             if bisection.done:
                 break

@@ -1,0 +1,303 @@
+"""Strong scaling of campaigns: workers 1, 2, 4, ... up to the machine's cores.
+
+First the machine's own limit: N independent loops of kernel runs on N threads, no
+orchestration (speed-up = N x one loop's time / N loops' time). Then, for each campaign,
+the wall time on 1, 2, ... workers, the speed-up, the parallel efficiency and the speed-up
+as a fraction of the machine's limit:
+
+  (a) the 10-point disk-from-rest prescan line (campaigns/disk_xms_at_rest.yaml);
+  (b) the Fig 11 campaign (campaigns/fig11_betab_mu.yaml);
+  (c) one point searched to tol 1e-8 (the co-rotating disk at x_ms 0.1; multisection split 3,
+      with the runs and rounds of plain bisection for comparison);
+  (d) one prescanned disk point (the disk from rest at x_ms = 0.1).
+
+`--quick` (the default of `make bench`) uses reduced copies of (a) and (b) (coarser
+prescan, tol 1e-3) and (d) (coarser prescan) so the whole bench takes minutes on 2 cores; `--full` runs the campaign files as they are. Ratios are measured in this process
+after JIT warm-up; on a shared machine the numbers are noisy: repeat with --repeats.
+
+Targets (issue 10) on 2 cores: (a), (b) 2-worker speed-up >= 90 % of the machine's limit;
+(c), (d) 2 workers >= 1.6x faster than 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import heapq
+import os
+import shutil
+import tempfile
+import threading
+import time
+import types
+from pathlib import Path
+
+import xarray as xr
+
+from frictiondisk.campaign.journal import Journal, run_key
+from frictiondisk.campaign.plan import planner_for, run_config
+from frictiondisk.campaign.runner import run_campaign, task_sizing
+from frictiondisk.campaign.spec import campaign_from_text, load_campaign
+from frictiondisk.campaign.tasks import run_batch, run_bisection, warm_up
+from frictiondisk.config import scene_from_dict
+from frictiondisk.simulate import simulate
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def campaign_text(name: str, quick: bool) -> tuple[str, str]:
+    """(YAML text, what it is) of bench campaign `name`."""
+    if name == "a":
+        text = (ROOT / "campaigns/disk_xms_at_rest.yaml").read_text()
+        if quick:
+            text = text.replace("num: 59}", "num: 20}").replace("tol: 1.0e-4", "tol: 1.0e-3")
+            return text, "disk_xms_at_rest.yaml, quick: prescan of 20 mu, tol 1e-3"
+        return text, "campaigns/disk_xms_at_rest.yaml as is"
+    if name == "b":
+        text = (ROOT / "campaigns/fig11_betab_mu.yaml").read_text()
+        if quick:
+            text = text.replace("num: 91}", "num: 19}").replace("tol: 1.0e-4", "tol: 1.0e-3")
+            return text, "fig11_betab_mu.yaml, quick: prescan of 19 mu, tol 1e-3"
+        return text, "campaigns/fig11_betab_mu.yaml as is"
+    if name == "c":
+        text = """name: bench_one_point_fine
+scene: disk
+params: {x_ms: 0.1, phidot0: 1.1}
+numerics: {mode: decide, t_decide: 30.0}
+find_jump:
+  bracket: [0.1, 0.6]
+  tol: 1.0e-8
+  split: SPLIT
+  along:
+    params.x_ms: [0.1]
+"""
+        return text, "co-rotating disk, x_ms 0.1, bracket [0.1, 0.6], tol 1e-8, split SPLIT"
+    if name == "d":
+        text = (ROOT / "campaigns/disk_xms_at_rest.yaml").read_text()
+        text = text.replace("params.x_ms: {start: 0.02, stop: 0.2, num: 10}", "params.x_ms: [0.1]")
+        if quick:
+            text = text.replace("num: 59}", "num: 30}")
+            return text, "disk from rest at x_ms 0.1, quick: prescan of 30 mu, tol 1e-4"
+        return text, "disk from rest at x_ms 0.1, prescan of 59 mu, tol 1e-4"
+    raise ValueError(name)
+
+
+def machine_limit(workers: list[int], loop_s: float) -> dict[int, float]:
+    """Speed-up of N independent loops of kernel runs on N threads over one loop."""
+    campaign = load_campaign(ROOT / "campaigns/disk_xms_at_rest.yaml")
+    point = campaign.points()[4].config
+    from frictiondisk.bisection import RunRequest
+
+    configs = [run_config(point, RunRequest(mu, 0, "decide"), 2.0) for mu in (0.1, 0.2, 0.3)]
+    t0 = time.perf_counter()
+    n_loop = 0
+    while time.perf_counter() - t0 < loop_s:  # one loop lasts about loop_s
+        simulate(configs[n_loop % len(configs)])
+        n_loop += 1
+    todo = [configs[k % len(configs)] for k in range(n_loop)]
+
+    def loop():
+        for config in todo:
+            simulate(config)
+
+    walls = {}
+    for n in workers:
+        threads = [threading.Thread(target=loop) for _ in range(n)]
+        t0 = time.perf_counter()
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        walls[n] = time.perf_counter() - t0
+    return {n: n * walls[1] / walls[n] for n in workers}
+
+
+def _result_of(journal: Journal, canonical: dict) -> dict:
+    return journal.get(run_key(types.SimpleNamespace(canonical=lambda: canonical)))
+
+
+def _emulate(function, args, journal: Journal):
+    """(value, busy seconds) a worker would return for this task, from the journal of a
+    measured run: every run takes the wall time it took there."""
+    if function is run_batch:
+        results = [_result_of(journal, c) for c in args[0]]
+        busy = sum(r["wall_s"] for r in results)
+        return (results, busy), busy
+    assert function is run_bisection
+    bis, point_canonical, horizon_factor, _, budget = args
+    point = scene_from_dict(point_canonical)
+    made, busy = [], 0.0
+    while not bis.done:
+        if budget is not None and busy >= budget:
+            break
+        for request in bis.pending():
+            result = _result_of(journal, run_config(point, request, horizon_factor).canonical())
+            busy += result["wall_s"]
+            made.append((request, result))
+            bis.feed(request, result)
+    return (bis, made), busy
+
+
+def modelled_walls(
+    text: str, journal_dir: Path, workers: list[int], overhead_s: float, driver_s: float
+) -> dict[int, float]:
+    """Wall time [s] of the campaign on N ideal cores: the driver's own planner and task
+    sizing, replayed with each run's measured wall time, `overhead_s` per task on its
+    worker and `driver_s` of serial driver time per task that comes back."""
+    campaign = campaign_from_text(text, "<model>")
+    journal = Journal(journal_dir)
+    walls = {}
+    for n in workers:
+        planner = planner_for(campaign)
+        queue: collections.deque = collections.deque()
+        running: list = []  # heap of (end time, sequence, job, value)
+        t = driver_free = run_s = 0.0
+        computed = sequence = 0
+        while not planner.done:
+            mean_run = run_s / computed if computed else None
+            sizing = task_sizing(overhead_s, mean_run, n, len(queue) + len(running))
+            queue.extend(planner.jobs("/model", sizing))
+            while len(running) < n and queue:
+                job, function, args = queue.popleft()
+                value, busy = _emulate(function, args, journal)
+                heapq.heappush(running, (t + overhead_s + busy, sequence, job, value))
+                sequence += 1
+            end, _, job, value = heapq.heappop(running)
+            t = driver_free = max(end, driver_free) + driver_s
+            for _, _, result in planner.complete(job, value):
+                computed += 1
+                run_s += result["wall_s"]
+        walls[n] = t
+    return walls
+
+
+def time_campaign(text: str, workers: int, repeats: int, keep: Path | None = None):
+    """Best wall time [s] of a fresh run on `workers` local workers, runs used, the
+    results (results.nc, loaded), the measured cost per task [s] and the driver thread's
+    CPU time [s]; with `keep`, the journal is copied there and the CPU time is counted
+    without the fixed part (lock, replay, netCDF writes: a rerun on the full journal)."""
+    best = None
+    for _ in range(repeats):
+        with tempfile.TemporaryDirectory() as tmp:
+            campaign = campaign_from_text(text, "<bench>")
+            t0, cpu0 = time.perf_counter(), time.thread_time()
+            summary = run_campaign(campaign, Path(tmp), workers=workers, progress=False)
+            wall, cpu = time.perf_counter() - t0, time.thread_time() - cpu0
+            with xr.open_dataset(Path(tmp) / "results.nc") as ds:
+                found = ds.load()
+            if keep is not None:
+                shutil.copytree(Path(tmp) / "journal", keep / "journal", dirs_exist_ok=True)
+                # the fixed part of the driver's CPU: the same campaign on its full journal
+                cpu0 = time.thread_time()
+                run_campaign(campaign, Path(tmp), workers=workers, progress=False)
+                cpu -= time.thread_time() - cpu0
+        if best is None or wall < best[0]:
+            best = (wall, summary.runs_total, found, summary.task_overhead_s, cpu)
+    return best
+
+
+def scaling_table(text, workers, repeats, limit, model_to: int) -> dict[int, float]:
+    rows = {}
+    found_1 = None
+    print(f"  {'workers':>7} {'wall [s]':>9} {'speed-up':>9} {'efficiency':>10} {'of limit':>9}")
+    with tempfile.TemporaryDirectory() as keep:
+        for n in workers:
+            keep_here = Path(keep) if n == workers[0] else None
+            wall, runs, found, overhead, cpu = time_campaign(text, n, repeats, keep_here)
+            if n == workers[0]:
+                driver_cpu = cpu
+            rows[n] = wall
+            found_1 = found if found_1 is None else found_1
+            speedup = rows[workers[0]] / wall
+            same = "" if found.identical(found_1) else "  RESULTS DIFFER"
+            print(
+                f"  {n:7d} {wall:9.2f} {speedup:8.2f}x {speedup / n:10.0%} "
+                f"{speedup / limit[n]:9.0%}{same}"
+            )
+        print(f"  runs used: {runs}; cost per task measured by the driver: {overhead * 1e3:.1f} ms")
+        # the model: measured run times, task cost and driver CPU; cores assumed ideal
+        counts = sorted({1, 2, 4, 8, 16, model_to} | set(workers))
+        tasks_1 = _tasks_on_one(text, Path(keep), overhead)
+        driver_s = driver_cpu / max(1, tasks_1)
+        model = modelled_walls(text, Path(keep), [*counts, 4096], overhead, driver_s)
+        print(
+            f"  model (ideal cores; measured run times, {overhead * 1e3:.1f} ms per task, "
+            f"{driver_s * 1e3:.2f} ms driver CPU per task; {tasks_1} tasks on 1 worker):"
+        )
+        print("  " + "  ".join(f"{n}: {model[1] / model[n]:.2f}x" for n in counts))
+        print(
+            f"  model on 4096 workers (the longest chain of dependent runs, plus task costs): "
+            f"{model[1] / model[4096]:.1f}x"
+        )
+    return rows
+
+
+def _tasks_on_one(text: str, journal_dir: Path, overhead_s: float) -> int:
+    """How many tasks the driver hands out on 1 worker (the model, counting)."""
+    campaign = campaign_from_text(text, "<model>")
+    journal = Journal(journal_dir)
+    planner = planner_for(campaign)
+    tasks = computed = 0
+    run_s = 0.0
+    while not planner.done:
+        mean_run = run_s / computed if computed else None
+        jobs = planner.jobs("/model", task_sizing(overhead_s, mean_run, 1, 0))
+        for job, function, args in jobs:
+            value, _ = _emulate(function, args, journal)
+            tasks += 1
+            for _, _, result in planner.complete(job, value):
+                computed += 1
+                run_s += result["wall_s"]
+    return tasks
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--full", action="store_true", help="the campaign files as they are")
+    parser.add_argument("--quick", action="store_true", help="reduced copies (default)")
+    parser.add_argument("--repeats", type=int, default=1, help="best of this many runs")
+    parser.add_argument("--workers", help="comma-separated worker counts (default 1, 2, 4, ...)")
+    parser.add_argument("--only", default="abcd", help="which of a, b, c, d (default all)")
+    parser.add_argument("--split", type=int, default=3, help="(c): parts per round (default 3)")
+    args = parser.parse_args()
+    quick = not args.full
+    cores = os.cpu_count() or 1
+    if args.workers:
+        workers = sorted({int(w) for w in args.workers.split(",")} | {1})
+    else:
+        workers = sorted({1, cores} | {2**k for k in range(1, 8) if 2**k < cores})
+
+    warm_up()
+    import dask.array  # noqa: F401  (xarray imports it when writing results.nc: once per process)
+    import distributed  # noqa: F401  (import time is not campaign time)
+
+    print("== machine limit: independent kernel loops on N threads, no orchestration ==")
+    limit = machine_limit(workers, loop_s=3.0)
+    for n in workers:
+        print(f"  {n:3d} threads: speed-up {limit[n]:5.2f}x ({limit[n] / n:.0%} of {n})")
+
+    for name in args.only:
+        text, what = campaign_text(name, quick)
+        if name == "c":
+            text = text.replace("SPLIT", str(args.split))
+            what = what.replace("SPLIT", str(args.split))
+        title = {
+            "a": "(a) 10-point disk-from-rest prescan line",
+            "b": "(b) Fig 11 campaign",
+            "c": "(c) one point searched to tol 1e-8",
+            "d": "(d) one prescanned disk point",
+        }[name]
+        print(f"== {title} [{what}] ==")
+        rows = scaling_table(text, workers, args.repeats, limit, cores)
+        if name == "c" and args.split != 2:
+            plain = text.replace(f"split: {args.split}", "split: 2")
+            wall, runs, *_ = time_campaign(plain, 1, args.repeats)
+            best = min(rows.values())
+            print(
+                f"  plain bisection (split 2) on 1 worker: {wall:.2f} s, {runs} runs; "
+                f"split {args.split} at its best ({best:.2f} s): {wall / best:.2f}x its speed"
+            )
+
+
+if __name__ == "__main__":
+    main()

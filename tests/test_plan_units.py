@@ -1,0 +1,104 @@
+"""Work units below a point (campaign/plan.py): however the runs are cut into tasks
+(batch size, chains, workers) and whatever order the tasks come back in, the planner
+reaches the same results. Synthetic outcomes, no simulation."""
+
+import random
+
+import pytest
+
+from frictiondisk.campaign.plan import JumpPlanner, Sizing
+from frictiondisk.campaign.spec import campaign_from_text
+from frictiondisk.campaign.tasks import run_batch, run_bisection
+
+PRESCAN = """\
+name: units
+scene: pin
+find_jump:
+  tol: 1.0e-6
+  split: {split}
+  prescan: {{mu: {{start: 0.05, stop: 0.4, num: 8}}}}
+  along: {{params.x_ms: {{start: 0.02, stop: 0.2, num: 4}}}}
+"""
+WARM = """\
+name: units
+scene: pin
+find_jump:
+  bracket: [0.05, 0.4]
+  tol: 1.0e-6
+  split: {split}
+  along: {{params.x_ms: {{start: 0.02, stop: 0.2, num: 5}}}}
+"""
+
+
+def outcome(mu: float, x_ms: float) -> str:
+    """Stick above 0.1 + x_ms, and in a narrow window below it (two jumps and a third)."""
+    window = 0.06 + x_ms <= mu <= 0.075 + x_ms
+    return "stick" if mu >= 0.1 + x_ms or window else "stick_slip"
+
+
+def fake(canonical):
+    params = canonical["params"]
+    return {"outcome": outcome(params["mu"], params["x_ms"]), "reason": "oracle", "wall_s": 0}
+
+
+def execute(function, args):
+    """What a worker would return, with outcomes from the oracle."""
+    if function is run_batch:
+        return [fake(c) for c in args[0]], 0.0
+    assert function is run_bisection
+    bis, point, _, _, budget = args
+    made = []
+    while not bis.done:
+        for request in bis.pending():
+            x_ms = point["params"]["x_ms"]
+            result = {"outcome": outcome(request.mu, x_ms), "reason": "oracle", "wall_s": 0}
+            bis.feed(request, result)
+            made.append((request, result))
+        if budget is not None and len(made) >= 3:  # a small budget, in runs
+            break
+    return bis, made
+
+
+def run_planner(text: str, sizing: Sizing, rng: random.Random):
+    planner = JumpPlanner(campaign_from_text(text, "<test>"))
+    in_flight = []
+    journaled = []
+    while not planner.done:
+        planner.requests()
+        for job, function, args in planner.jobs("/nonexistent", sizing):
+            in_flight.append((job, function, args))
+        assert in_flight, "stalled"
+        job, function, args = in_flight.pop(rng.randrange(len(in_flight)))
+        journaled += planner.complete(job, execute(function, args))
+    results = [planner.results[i] for i in range(len(planner.points))]
+    return results, sorted((i, r.mu, r.level) for i, r, _ in journaled)
+
+
+@pytest.mark.parametrize("template", [PRESCAN, WARM])
+@pytest.mark.parametrize("split", [2, 4])
+def test_results_do_not_depend_on_how_runs_are_cut_or_their_order(template, split):
+    text = template.format(split=split)
+    sizings = [
+        Sizing(),  # one run per task, no chains
+        Sizing(batch_runs=5, chain_s=1.0, max_jobs=2, workers=2),
+        Sizing(batch_runs=64, chain_s=1.0, max_jobs=None, workers=16),
+        Sizing(batch_runs=1, chain_s=None, max_jobs=1, workers=1),
+    ]
+    reference, runs = run_planner(text, sizings[0], random.Random(0))
+    assert all(r.status == "converged" for r in reference), [r.reason for r in reference]
+    assert len(runs) == len(set(runs))  # no run computed twice
+    for k, sizing in enumerate(sizings[1:]):
+        results, again = run_planner(text, sizing, random.Random(k + 1))
+        assert results == reference
+        assert again == runs
+
+
+def test_a_prescan_goes_out_at_once_in_batches_across_workers():
+    planner = JumpPlanner(campaign_from_text(PRESCAN.format(split=2), "<test>"))
+    jobs = planner.jobs("/nonexistent", Sizing(batch_runs=3, chain_s=1.0, workers=4))
+    sizes = [len(args[0]) for _, function, args in jobs if function is run_batch]
+    assert sum(sizes) == 4 * 8  # every prescan run of every point, none twice
+    assert max(sizes) == 3
+    # a window of 2 tasks hands out 2 tasks; the rest follow as tasks come back
+    planner = JumpPlanner(campaign_from_text(PRESCAN.format(split=2), "<test>"))
+    assert len(planner.jobs("/nonexistent", Sizing(batch_runs=3, max_jobs=2, workers=4))) == 2
