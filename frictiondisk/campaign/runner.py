@@ -354,6 +354,8 @@ class _Driver:
         self.dashboard = _dashboard_link(client)
         if self.progress:
             print(f"Dask dashboard: {self.dashboard}", file=sys.stderr)
+        if self.scheduled:
+            self._await_a_worker(client)  # the overhead probe below needs one
         self.worker_threads = max(1, sum(client.nthreads().values()))
         self.task_overhead_s = measure_task_overhead(client)
         self._open_bar()
@@ -407,22 +409,34 @@ class _Driver:
                 return
             except TimeoutError:
                 pass
-            if client.scheduler_info().get("workers"):
-                alone_since = None
-                continue
-            now = time.monotonic()
-            if alone_since is None:
-                alone_since = now
-                print(
-                    f"warning: no worker is alive at the scheduler; waiting up to "
-                    f"{self.worker_wait:g} s for one (--worker-wait)",
-                    file=sys.stderr,
-                )
-            elif now - alone_since >= self.worker_wait:
-                raise SchedulerFailed(
-                    f"no worker alive at the scheduler for {self.worker_wait:g} s; "
-                    "start workers and resume (the journal keeps every finished run)"
-                )
+            alone_since = self._no_worker_since(client, alone_since)
+
+    def _await_a_worker(self, client) -> None:
+        """Return once some worker is alive at --scheduler (same warning and limit)."""
+        alone_since = self._no_worker_since(client, None)
+        while alone_since is not None:
+            time.sleep(min(POLL, self.worker_wait))
+            alone_since = self._no_worker_since(client, alone_since)
+
+    def _no_worker_since(self, client, alone_since: float | None) -> float | None:
+        """None if a worker is alive; else since when none is [monotonic s]: warns at the
+        start and raises SchedulerFailed after `worker_wait` seconds."""
+        if client.scheduler_info().get("workers"):
+            return None
+        now = time.monotonic()
+        if alone_since is None:
+            print(
+                f"warning: no worker is alive at the scheduler; waiting up to "
+                f"{self.worker_wait:g} s for one (--worker-wait)",
+                file=sys.stderr,
+            )
+            return now
+        if now - alone_since >= self.worker_wait:
+            raise SchedulerFailed(
+                f"no worker alive at the scheduler for {self.worker_wait:g} s; "
+                "start workers and resume (the journal keeps every finished run)"
+            )
+        return alone_since
 
     def _submit(self, client, job: int, function, args: tuple) -> None:
         future = client.submit(function, *args, pure=False)
