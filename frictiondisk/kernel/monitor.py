@@ -39,14 +39,13 @@ F_DR2 = 10  # the one before [m]
 F_CYCLE_TOL = 11
 F_T_REV = 12  # start of the current revolution [s]
 F_SLIP_REV = 13  # slip integral at the start of the current revolution [m]
-F_Q = 14  # decay ratio of the slip per revolution behind the last verdict [1]
-F_LAMBDA = 15  # mean log decay of the slip per revolution over the verdict window [1/rev]
-F_LAMBDA_SE = 16  # its standard error [1/rev]
-F_REMAIN = 17  # predicted slip still to come under geometric decay [m]
-F_ARM = 18  # longest contact arm max |p_i| [m] (0 for the pin)
-F_SLIP_TOL = 19  # slip per revolution that counts as none: atol + eps T [m]
-F_S_INF = 20  # extrapolated limit of the slip per revolution [m]
-N_MF = 21
+F_LAMBDA = 14  # mean log decay of the slip per revolution over the verdict window [1/rev]
+F_LAMBDA_SE = 15  # its standard error [1/rev]
+F_REMAIN = 16  # predicted slip still to come under geometric decay [m]
+F_ARM = 17  # longest contact arm max |p_i| [m] (0 for the pin)
+F_SLIP_TOL = 18  # slip per revolution that counts as none: atol + eps T [m]
+F_S_INF = 19  # extrapolated limit of the slip per revolution [m]
+N_MF = 20
 
 # mi indices
 I_ALL = 0  # 1 while every contact sticks
@@ -72,13 +71,12 @@ RV_T = 0  # end of the revolution [s]
 RV_SLIP = 1  # net plastic slip sum_i int |w_i'| dt over the revolution [m]
 RV_DRIFT_R = 2  # |r(t) - r(t - T)|: drift of the slave centre in the master frame [m]
 RV_DRIFT_PHI = 3  # phi(t) - phi(t - T) - omega_m T: drift of the spin phase [rad]
-RV_REPEAT = 4  # largest change of any state over the revolution / its tolerance [1]
-RV_SWITCHES = 5  # contact mode switches during the revolution
-RV_ALL_STUCK = 6  # 1 if every contact stuck throughout the revolution
-RV_ANY_STUCK = 7  # 1 if some contact stuck at every instant of the revolution
-RV_EVER_ALL = 8  # 1 if every contact stuck at some instant of the revolution
-RV_STILL = 9  # 1 if centre and spin phase repeated within the integrator's tolerance
-N_RV = 10
+RV_SWITCHES = 4  # contact mode switches during the revolution
+RV_ALL_STUCK = 5  # 1 if every contact stuck throughout the revolution
+RV_ANY_STUCK = 6  # 1 if some contact stuck at every instant of the revolution
+RV_EVER_ALL = 7  # 1 if every contact stuck at some instant of the revolution
+RV_STILL = 8  # 1 if centre and spin phase repeated within the integrator's tolerance
+N_RV = 9
 REV_RING = 64
 
 # corotation_verdict
@@ -281,29 +279,17 @@ def monitor_revolution(mf, mi, rv, yrev, t, y, slip, spin, rtol, atol):
 
     spin: the master's rotation over one revolution, omega_m T [rad]. The master frame has
     turned by a whole number of turns, so its drift is the plain difference of the states.
-    RV_REPEAT measures every state's change against the integrator's own tolerance
-    atol + rtol |y|; for the spin phase, whose value grows without bound, against
-    atol + rtol 2 pi (its change over one revolution).
+    RV_STILL compares the drifts with the integrator's own tolerance.
     """
     nq = mi[I_NQ]
     k = mi[I_NREV] % REV_RING
     dx = y[0] - yrev[0]
     dy = y[1] - yrev[1]
     dphi = (y[2] - yrev[2] - spin) if nq == 3 else 0.0
-    repeat = 0.0
-    for j in range(y.shape[0]):
-        d = y[j] - yrev[j]
-        if nq == 3 and j == 2:
-            d = dphi
-            scale = atol + rtol * 2.0 * math.pi
-        else:
-            scale = atol + rtol * max(abs(y[j]), abs(yrev[j]))
-        repeat = max(repeat, abs(d) / scale)
     rv[k, RV_T] = t
     rv[k, RV_SLIP] = slip - mf[F_SLIP_REV]
     rv[k, RV_DRIFT_R] = math.sqrt(dx * dx + dy * dy)
     rv[k, RV_DRIFT_PHI] = dphi
-    rv[k, RV_REPEAT] = repeat
     rv[k, RV_SWITCHES] = mi[I_NTRANS] - mi[I_REV_NTRANS]
     rv[k, RV_ALL_STUCK] = 1.0 - mi[I_REV_NOT_ALL]
     rv[k, RV_ANY_STUCK] = 1.0 - mi[I_REV_NONE]
