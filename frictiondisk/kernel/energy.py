@@ -52,8 +52,8 @@ E_W_IN = 0  # work put in by the master, integral of P_in [J]
 E_W_DISS = 1  # energy dissipated, integral of D [J]
 E_P_IN = 2  # P_in at the current state and modes [W] (start value of the next piece)
 E_D = 3  # D at the current state and modes [W]
-E_SLIP = 4  # net plastic slip, integral of sum_i |w_i'| [m]
-E_S = 5  # plastic slip rate sum_i |w_i'| at the current state and modes [m/s]
+E_SLIP = 4  # net plastic slip of the mean contact, integral of sum_i w_i |w_i'| [m]
+E_S = 5  # its rate at the current state and modes [m/s]
 N_OUT_F = 6
 
 
@@ -80,8 +80,10 @@ def stored_energy(p, pts, y):
 def power_balance(p, pts, modes, y):
     """(P_in [W], D [W], slip rate [m/s]) at state y in the given contact modes: the power
     the master puts in, the power the dampers and friction dissipate (module docstring,
-    eq. *), and the net plastic slip rate sum_i |w_i'| = sum_i ||k_i| - F_St,i| / beta_i
-    over the sliding contacts (paper eq. 9; 0 in stick).
+    eq. *), and the net plastic slip rate of the mean contact, sum_i w_i |w_i'| with the
+    contact shares w_i (sum 1) and |w_i'| = ||k_i| - F_St,i| / beta_i over the sliding
+    contacts (paper eq. 9; 0 in stick). Weighted, it is the plastic work per unit of
+    friction force mu F_n, so it does not grow with the number of contacts N.
 
     The contact kinematics are model.contact_state's, inlined: this runs twice per step,
     and computing cos/sin of phi once and F_St only in slide keeps it cheaper than an rhs
@@ -132,7 +134,7 @@ def power_balance(p, pts, modes, y):
                 gx *= fst / kn
                 gy *= fst / kn
                 diss += fst * (kn - fst) * inv_b
-                slip += abs(kn - fst) * inv_b
+                slip += pts[i, 2] * abs(kn - fst) * inv_b  # weighted: summed below / N
             else:
                 gx = 0.0
                 gy = 0.0
@@ -144,7 +146,7 @@ def power_balance(p, pts, modes, y):
         mx = x + ax - Zx * inv_c
         my = yy + ay - Zy * inv_c
         p_in += om * (gx * my - gy * mx)
-    return p_in, diss, slip
+    return p_in, diss, slip / modes.shape[0]
 
 
 @kernel_jit

@@ -68,7 +68,7 @@ N_MI = 15
 # Columns of the revolution ring rv (one row per completed revolution, newest at
 # (I_NREV - 1) % REV_RING)
 RV_T = 0  # end of the revolution [s]
-RV_SLIP = 1  # net plastic slip sum_i int |w_i'| dt over the revolution [m]
+RV_SLIP = 1  # net plastic slip of the mean contact, sum_i w_i int |w_i'| dt [m]
 RV_DRIFT_R = 2  # |r(t) - r(t - T)|: drift of the slave centre in the master frame [m]
 RV_DRIFT_PHI = 3  # phi(t) - phi(t - T) - omega_m T: drift of the spin phase [rad]
 RV_SWITCHES = 4  # contact mode switches during the revolution
