@@ -20,6 +20,7 @@ import sys
 import time
 from pathlib import Path
 
+import psutil
 import pytest
 import xarray as xr
 import yaml
@@ -453,7 +454,13 @@ def test_ctrl_c_stops_simulate_within_two_seconds(tmp_path):
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(8.0)  # imports and the cached kernel load; then it runs for minutes
+    # Wait until the kernel runs: `simulate` starts it in a second (daemon) thread after its
+    # imports; a SIGINT during the imports would test the imports, not the kernel.
+    child = psutil.Process(process.pid)
+    deadline = time.monotonic() + 120.0
+    while child.num_threads() < 2 and time.monotonic() < deadline:
+        time.sleep(0.2)
+    time.sleep(2.0)  # the cached kernel loads; then it runs for minutes
     assert process.poll() is None
     process.send_signal(signal.SIGINT)
     t0 = time.monotonic()
