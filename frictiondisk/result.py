@@ -94,7 +94,9 @@ class SimulationResult:
     # Co-rotation measures (kernel/monitor.py), over the last whole master revolution; NaN
     # before the first one and for integrators without them (scipy-radau, coulomb).
     n_revolutions: int = 0  # whole master revolutions completed
-    slip_per_rev: float = math.nan  # net plastic slip of the mean contact, sum_i w_i int |w_i'| dt [m]
+    slip_per_rev: float = (
+        math.nan
+    )  # net plastic slip of the mean contact, sum_i w_i int |w_i'| dt [m]
     drift_per_rev: float = math.nan  # drift of the slave centre in the master frame [m]
     spin_drift_per_rev: float = math.nan  # drift of the spin phase phi - omega_m t [rad]
     slip_decay: float = math.nan  # mean log ratio of successive slips per revolution [1/rev]

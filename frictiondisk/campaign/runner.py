@@ -351,19 +351,20 @@ class _Driver:
             client = Client(cluster)
             if not processes:
                 _send_without_batching_delay(client, cluster)
-        self.dashboard = _dashboard_link(client)
-        if self.progress:
-            print(f"Dask dashboard: {self.dashboard}", file=sys.stderr)
-        if self.scheduled:
-            self._await_a_worker(client)  # the overhead probe below needs one
-        self.worker_threads = max(1, sum(client.nthreads().values()))
-        self.task_overhead_s = measure_task_overhead(client)
-        self._open_bar()
-        try:
-            self._loop(client)
-        except KeyboardInterrupt:
-            self._drain(client)
-            raise
+        try:  # from here on the client (and a local cluster) is always closed
+            self.dashboard = _dashboard_link(client)
+            if self.progress:
+                print(f"Dask dashboard: {self.dashboard}", file=sys.stderr)
+            if self.scheduled:
+                self._await_a_worker(client)  # the overhead probe below needs one
+            self.worker_threads = max(1, sum(client.nthreads().values()))
+            self.task_overhead_s = measure_task_overhead(client)
+            self._open_bar()
+            try:
+                self._loop(client)
+            except KeyboardInterrupt:
+                self._drain(client)
+                raise
         finally:
             for *_, future in self.in_flight.values():
                 future.cancel()
