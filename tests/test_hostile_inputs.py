@@ -453,6 +453,9 @@ def test_ctrl_c_stops_simulate_within_two_seconds(tmp_path):
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        # an ignored SIGINT is inherited across exec (and some earlier test in the same
+        # pytest process leaves it ignored): give the child the default, like a terminal
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     # Wait until the kernel runs: `simulate` starts it in a second (daemon) thread after its
     # imports; a SIGINT during the imports would test the imports, not the kernel.
