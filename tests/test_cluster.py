@@ -1,6 +1,6 @@
 """A campaign on a real Dask cluster: `dask scheduler` and `dask worker` processes on
 127.0.0.1 (loopback only), one worker killed mid-run; results identical to local runs on
-1 and 3 workers (runs below a point: a prescan and a 3-way multisection)."""
+1, 2 and 16 workers (runs below a point: a prescan and a 3-way multisection)."""
 
 from __future__ import annotations
 
@@ -126,9 +126,10 @@ def local_reference(tmp_path_factory):
     return out
 
 
-def test_one_and_three_local_workers_give_identical_results(local_reference, tmp_path):
-    out = tmp_path / "w3"
-    run_campaign(campaign_from_text(PIN_PRESCAN, "<test>"), out, workers=3, progress=False)
+@pytest.mark.parametrize("workers", [2, 16])
+def test_more_local_workers_give_identical_results(local_reference, tmp_path, workers):
+    out = tmp_path / f"w{workers}"
+    run_campaign(campaign_from_text(PIN_PRESCAN, "<test>"), out, workers=workers, progress=False)
     _identical(local_reference, out)
     with xr.open_dataset(out / "results.nc") as ds:
         assert (ds.status.values == "converged").all()
