@@ -192,11 +192,29 @@ class Journal:
         self.corrupt_dir = refuse_symlink(self.path / "corrupt")
         self.n_corrupt = 0
         self.corrupt_reasons: list[str] = []
+        # Shard folders this object has checked (not a link) and made: a driver puts
+        # thousands of entries, and on slow file systems the lstat and mkdir of each put
+        # cost more than the rest of the put. Only the lock holder writes the journal.
+        self._shards: set[str] = set()
+        self._log_fd: int | None = None  # computed.log, open for appending after the first put
+
+    def close(self) -> None:
+        """Close computed.log if a put opened it (puts after this open it again)."""
+        fd, self._log_fd = self._log_fd, None
+        if fd is not None:
+            os.close(fd)
+
+    def __del__(self) -> None:
+        with contextlib.suppress(Exception):
+            self.close()
 
     def entry_path(self, key: str) -> Path:
         """Where the entry of `key` lives: `path/<key[:2]>/<key>.json`."""
         _check_key(key)
-        return refuse_symlink(self.path / key[:2]) / f"{key}.json"
+        shard = key[:2]
+        if shard in self._shards:
+            return self.path / shard / f"{key}.json"
+        return refuse_symlink(self.path / shard) / f"{key}.json"
 
     # reading ------------------------------------------------------------------------------
 
@@ -438,26 +456,39 @@ class Journal:
         # compact: indent would switch json to its pure-Python encoder (3x slower here)
         data = (json.dumps(entry, sort_keys=True, allow_nan=False) + "\n").encode()
 
+        path = self.entry_path(key)
+        if key[:2] not in self._shards:
+            path.parent.mkdir(exist_ok=True)
+            self._shards.add(key[:2])
         # no fsync: a torn entry fails its sha256 on read and is computed again
-        atomic_write_bytes(self.entry_path(key), data, durable=False)
+        atomic_write_bytes(path, data, durable=False, make_parents=False)
         self._log(key)
 
     def _log(self, key: str) -> None:
-        """Append `<key>\\n` to computed.log in one write (O_APPEND: atomic per line)."""
-        self._append(self.log_path, f"{key}\n")
+        """Append `<key>\\n` to computed.log in one write (O_APPEND: atomic per line). The
+        file stays open for the next put (see `close`): on slow file systems opening it by
+        name cost more than the rest of a put."""
+        if self._log_fd is None:
+            self._log_fd = _open_nofollow(self.log_path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
+        self._write_line(self._log_fd, f"{key}\n")
 
     @staticmethod
-    def _append(path: Path, text: str) -> None:
+    def _write_line(fd: int, text: str) -> None:
+        """Append one line to the open file `fd` in one write."""
+        line = text.encode()
+        size = os.fstat(fd).st_size
+        if size and os.pread(fd, 1, size - 1) != b"\n":
+            # A previous append was cut short: end that line first, so it cannot
+            # swallow this key (computed_counts ignores the fragment).
+            line = b"\n" + line
+        os.write(fd, line)
+
+    @classmethod
+    def _append(cls, path: Path, text: str) -> None:
         """Append one line to `path` in one write (O_APPEND, O_NOFOLLOW)."""
         fd = _open_nofollow(path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
         try:
-            line = text.encode()
-            size = os.fstat(fd).st_size
-            if size and os.pread(fd, 1, size - 1) != b"\n":
-                # A previous append was cut short: end that line first, so it cannot
-                # swallow this key (computed_counts ignores the fragment).
-                line = b"\n" + line
-            os.write(fd, line)
+            cls._write_line(fd, text)
         finally:
             os.close(fd)
 

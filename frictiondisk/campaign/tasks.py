@@ -11,8 +11,25 @@ until it ends or has used its time budget; the driver journals the runs it made.
 
 from __future__ import annotations
 
+import dataclasses
 import time
+from collections.abc import Callable
 from typing import Any
+
+
+@dataclasses.dataclass(frozen=True)
+class Sealed:
+    """A task's function and arguments as one object, which Dask ships as it is. Dask walks
+    the nested lists and dicts of a task's arguments looking for futures (there are none
+    here); for a batch of scenes that cost the driver about 0.5 ms per task."""
+
+    function: Callable[..., Any]
+    args: tuple
+
+
+def run_sealed(sealed: Sealed) -> Any:
+    """Execute a `Sealed` task."""
+    return sealed.function(*sealed.args)
 
 
 def noop() -> None:
