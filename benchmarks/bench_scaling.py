@@ -155,11 +155,17 @@ def _emulate(function, args, journal: Journal):
 
 
 def modelled_walls(
-    text: str, journal_dir: Path, workers: list[int], overhead_s: float, driver_s: float
+    text: str,
+    journal_dir: Path,
+    workers: list[int],
+    overhead_s: float,
+    driver_task_s: float,
+    driver_run_s: float,
 ) -> dict[int, float]:
     """Wall time [s] of the campaign on N ideal cores: the driver's own planner and task
     sizing, replayed with each run's measured wall time, `overhead_s` per task on its
-    worker and `driver_s` of serial driver time per task that comes back."""
+    worker, and serial driver time for each task that comes back: `driver_task_s` plus
+    `driver_run_s` per run it made (keys, journal, planner)."""
     campaign = campaign_from_text(text, "<model>")
     journal = Journal(journal_dir)
     walls = {}
@@ -179,8 +185,9 @@ def modelled_walls(
                 heapq.heappush(running, (t + overhead_s + busy, sequence, job, value))
                 sequence += 1
             end, _, job, value = heapq.heappop(running)
-            t = driver_free = max(end, driver_free) + driver_s
-            for _, _, result in planner.complete(job, value):
+            made = planner.complete(job, value)
+            t = driver_free = max(end, driver_free) + driver_task_s + driver_run_s * len(made)
+            for _, _, result in made:
                 computed += 1
                 run_s += result["wall_s"]
         walls[n] = t
@@ -212,7 +219,7 @@ def time_campaign(text: str, workers: int, repeats: int, keep: Path | None = Non
     return best
 
 
-def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops):
+def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops, driver_task_s: float):
     """Time the campaign on each worker count and the machine's limit in `repeats` rounds.
 
     The machine is shared and its speed drifts by tens of per cent within a minute, so
@@ -275,11 +282,15 @@ def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops):
         # the model: measured run times, task cost and driver CPU; cores assumed ideal
         counts = sorted({1, 2, 4, 8, 16, model_to} | set(workers))
         tasks_1 = _tasks_on_one(text, Path(keep), overhead)
-        driver_s = driver_cpu / max(1, tasks_1)
-        model = modelled_walls(text, Path(keep), [*counts, 4096], overhead, driver_s)
+        runs_1 = len(Journal(Path(keep)))
+        driver_run_s = max(0.0, driver_cpu - driver_task_s * tasks_1) / max(1, runs_1)
+        model = modelled_walls(
+            text, Path(keep), [*counts, 4096], overhead, driver_task_s, driver_run_s
+        )
         print(
-            f"  model (ideal cores; measured run times, {overhead * 1e3:.1f} ms per task, "
-            f"{driver_s * 1e3:.2f} ms driver CPU per task; {tasks_1} tasks on 1 worker):"
+            f"  model (ideal cores; measured: run times, {overhead * 1e3:.1f} ms per task on "
+            f"its worker, driver CPU {driver_task_s * 1e3:.2f} ms per task + "
+            f"{driver_run_s * 1e3:.2f} ms per run; {tasks_1} tasks on 1 worker):"
         )
         print("  " + "  ".join(f"{n}: {model[1] / model[n]:.2f}x" for n in counts))
         print(
@@ -287,6 +298,31 @@ def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops):
             f"{model[1] / model[4096]:.1f}x"
         )
     return rows, limit
+
+
+def driver_cpu_per_task(tasks: int = 300) -> float:
+    """CPU time [s] of the driver's thread per task, for empty tasks submitted and collected
+    the way the runner does (in-process cluster, sealed tasks, our keys, as_completed)."""
+    from distributed import Client, LocalCluster, as_completed
+
+    from frictiondisk.campaign.runner import _send_without_batching_delay
+    from frictiondisk.campaign.tasks import Sealed, noop, run_sealed
+
+    with (
+        LocalCluster(
+            n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None
+        ) as cluster,
+        Client(cluster) as client,
+    ):
+        _send_without_batching_delay(client, cluster)
+        client.submit(noop, pure=False).result()
+        done = as_completed(with_results=True, raise_errors=False)
+        cpu0 = time.thread_time()
+        for k in range(tasks):
+            done.add(client.submit(run_sealed, Sealed(noop, ()), key=f"noop-bench-{k}"))
+            for _ in done.next_batch(block=True):
+                pass
+        return (time.thread_time() - cpu0) / tasks
 
 
 def _tasks_on_one(text: str, journal_dir: Path, overhead_s: float) -> int:
@@ -331,6 +367,11 @@ def main() -> None:
     import distributed  # noqa: F401  (import time is not campaign time)
 
     loops = KernelLoops(loop_s=2.0)
+    driver_task_s = driver_cpu_per_task()
+    print(
+        f"driver CPU per task (empty tasks through an in-process cluster): "
+        f"{driver_task_s * 1e3:.2f} ms"
+    )
     for name in args.only:
         text, what = campaign_text(name, quick)
         text = text.replace("SPLIT", str(args.split))
@@ -342,7 +383,7 @@ def main() -> None:
             "d": "(d) one prescanned disk point",
         }[name]
         print(f"== {title} [{what}] ==")
-        rows, limit = scaling_table(text, workers, args.repeats, cores, loops)
+        rows, limit = scaling_table(text, workers, args.repeats, cores, loops, driver_task_s)
         if 2 in rows:
             speedup = rows[2]
             if name in "ab":
