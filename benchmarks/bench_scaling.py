@@ -248,7 +248,8 @@ def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops, dri
                 if n not in timed or candidate[0] < timed[n][0]:
                     timed[n] = candidate
             for n in workers:
-                limit_now = n * loop_wall[workers[0]] / loop_wall[n]
+                # above n only when the one loop was slowed by a neighbour: capped
+                limit_now = min(n, n * loop_wall[workers[0]] / loop_wall[n])
                 speedup_now = wall[workers[0]] / wall[n]
                 limits[n].append(limit_now)
                 speedups[n].append(speedup_now)
@@ -297,7 +298,7 @@ def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops, dri
             f"  model on 4096 workers (the longest chain of dependent runs, plus task costs): "
             f"{model[1] / model[4096]:.1f}x"
         )
-    return rows, limit
+    return rows, limit, {n: statistics.median(of_limit[n]) for n in workers}
 
 
 def driver_cpu_per_task(tasks: int = 300) -> float:
@@ -383,16 +384,21 @@ def main() -> None:
             "d": "(d) one prescanned disk point",
         }[name]
         print(f"== {title} [{what}] ==")
-        rows, limit = scaling_table(text, workers, args.repeats, cores, loops, driver_task_s)
+        rows, limit, of_limit = scaling_table(
+            text, workers, args.repeats, cores, loops, driver_task_s
+        )
         if 2 in rows:
             speedup = rows[2]
-            if name in "ab":
-                verdict = speedup >= 0.9 * limit[2]
-                target = f">= 90 % of the limit {limit[2]:.2f}x"
+            if name in "ab":  # the paired ratio: speed-up / limit of the same round
+                verdict = of_limit[2] >= 0.9
+                target = f"2 workers >= 90 % of the machine's limit: {of_limit[2]:.0%}"
             else:
                 verdict = speedup >= 1.6
-                target = f">= 1.6x (the machine's limit is {limit[2]:.2f}x)"
-            print(f"  target, 2 workers {target}: {speedup:.2f}x {'met' if verdict else 'NOT MET'}")
+                target = (
+                    f"2 workers >= 1.6x faster than 1: {speedup:.2f}x "
+                    f"(the machine's limit {limit[2]:.2f}x)"
+                )
+            print(f"  target, {target}: {'met' if verdict else 'NOT MET'}")
         if name in "cd" and args.split != 2:
             plain = text.replace(f"split: {args.split}", "split: 2")
             wall, runs, *_ = time_campaign(plain, 1, args.repeats)

@@ -26,6 +26,7 @@ from frictiondisk.campaign.datasets import (
     _num,
     campaign_attrs,
     dim_names,
+    run_columns,
 )
 from frictiondisk.result import OUTCOMES
 from frictiondisk.yamlio import dump_yaml
@@ -154,7 +155,6 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
         for i in range(len(planner.points))
         for j, result in enumerate(planner.results[i].results)
     ]
-    names = dim_names(campaign)
     data_vars: dict[str, Any] = {
         "point": ("run", np.asarray([r[0] for r in rows], np.int64), {"long_name": "point index"}),
         "sample": (
@@ -167,31 +167,14 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             np.asarray([planner.points[r[0]].config.params.mu for r in rows], float),
             {"units": "1", "long_name": "mu"},
         ),
-        "outcome": ("run", np.asarray([r[2]["outcome"] for r in rows], str), {}),
-        "reason": ("run", np.asarray([r[2].get("reason", "") for r in rows], str), {}),
-        "key": (
-            "run",
-            np.asarray([key_of(i, SampleRequest(j)) for i, j, _ in rows], str),
-            {"long_name": "journal key (content hash of the run's inputs + kernel version)"},
-        ),
-        "wall_s": (
-            "run",
-            np.asarray([_num(r[2].get("wall_s")) for r in rows]),
-            {"units": "s", "long_name": "wall time of the kernel run"},
-        ),
     }
-    for key in campaign.dims:
-        if key == "params.mu":
-            continue
-        values = [planner.points[r[0]].coords[key] for r in rows]
-        data_vars[names[key]] = ("run", np.asarray(values, float), _key_attrs(key))
+    keys = [key_of(i, SampleRequest(j)) for i, j, _ in rows]
+    results = [r[2] for r in rows]
+    data_vars.update(run_columns(campaign, planner, [r[0] for r in rows], results, keys))
     for key in campaign.task.sample:
         values = [planner.sample_values(i, j)[key] for i, j, _ in rows]
         attrs = {**_key_attrs(key), "long_name": "sampled " + _key_attrs(key)["long_name"]}
         data_vars[key.split(".")[-1]] = ("run", np.asarray(values, float), attrs)
-    for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([_num(r[2].get(name)) for r in rows])
-        data_vars[name] = ("run", values, {"units": units, "long_name": long_name})
     return xr.Dataset(data_vars, attrs=_basin_attrs(campaign, outcome_list(planner)))
 
 

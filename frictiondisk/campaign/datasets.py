@@ -297,10 +297,39 @@ def _run_rows(campaign, planner):
             yield i, RunRequest(point.config.params.mu), planner.results[i]
 
 
+def run_columns(campaign, planner, points, results, keys) -> dict[str, Any]:
+    """The columns every runs.nc has, one row per run: outcome, reason, journal key, wall
+    time, the point's coordinates (but mu) and the run measures. points: each run's point
+    index; results: its result summary; keys: its journal key."""
+    names = dim_names(campaign)
+    columns: dict[str, Any] = {
+        "outcome": ("run", np.asarray([r["outcome"] for r in results], str), {}),
+        "reason": ("run", np.asarray([r.get("reason", "") for r in results], str), {}),
+        "key": (
+            "run",
+            np.asarray(keys, str),
+            {"long_name": "journal key (content hash of the run's inputs + kernel version)"},
+        ),
+        "wall_s": (
+            "run",
+            np.asarray([_num(r.get("wall_s")) for r in results]),
+            {"units": "s", "long_name": "wall time of the kernel run"},
+        ),
+    }
+    for key in campaign.dims:
+        if key == "params.mu":
+            continue
+        values = [planner.points[i].coords[key] for i in points]
+        columns[names[key]] = ("run", np.asarray(values, float), _key_attrs(key))
+    for name, (units, long_name) in RUN_MEASURES.items():
+        values = np.asarray([_num(r.get(name)) for r in results])
+        columns[name] = ("run", values, {"units": units, "long_name": long_name})
+    return columns
+
+
 def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
     """Every run: its point, mu, retry level, outcome, measures and wall time."""
     rows = list(_run_rows(campaign, planner))
-    names = dim_names(campaign)
     data_vars: dict[str, Any] = {
         "point": ("run", np.asarray([r[0] for r in rows], np.int64), {"long_name": "point index"}),
         "mu": ("run", np.asarray([r[1].mu for r in rows]), {"units": "1", "long_name": "mu"}),
@@ -314,27 +343,10 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             np.asarray([r[1].mode or planner.points[r[0]].config.numerics.mode for r in rows], str),
             {"long_name": "numerics.mode of the run (decide or converge)"},
         ),
-        "outcome": ("run", np.asarray([r[2]["outcome"] for r in rows], str), {}),
-        "reason": ("run", np.asarray([r[2].get("reason", "") for r in rows], str), {}),
-        "key": (
-            "run",
-            np.asarray([key_of(r[0], r[1]) for r in rows], str),
-            {"long_name": "journal key (content hash of the run's inputs + kernel version)"},
-        ),
-        "wall_s": (
-            "run",
-            np.asarray([_num(r[2].get("wall_s")) for r in rows]),
-            {"units": "s", "long_name": "wall time of the kernel run"},
-        ),
     }
-    for key in campaign.dims:
-        if key == "params.mu":
-            continue
-        values = [planner.points[r[0]].coords[key] for r in rows]
-        data_vars[names[key]] = ("run", np.asarray(values, float), _key_attrs(key))
-    for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([_num(r[2].get(name)) for r in rows])
-        data_vars[name] = ("run", values, {"units": units, "long_name": long_name})
+    points = [r[0] for r in rows]
+    keys = [key_of(r[0], r[1]) for r in rows]
+    data_vars.update(run_columns(campaign, planner, points, [r[2] for r in rows], keys))
     return cf.complete(
         xr.Dataset(data_vars, attrs=campaign_attrs(campaign)),
         title=f"frictiondisk campaign {campaign.name}: every run",
