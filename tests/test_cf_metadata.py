@@ -61,30 +61,22 @@ def files(tmp_path_factory):
     return out
 
 
+FILES = [  # every netCDF file the workflow writes, sorted
+    "accuracy/accuracy.nc",
+    "line/results.nc",
+    "line/runs.nc",
+    "orbit/results.nc",
+    "orbit/trajectory.nc",
+    "scan/results.nc",
+    "scan/runs.nc",
+]
+
+
 def test_every_file_is_there(files):
-    assert sorted(files) == [
-        "accuracy/accuracy.nc",
-        "line/results.nc",
-        "line/runs.nc",
-        "orbit/results.nc",
-        "orbit/trajectory.nc",
-        "scan/results.nc",
-        "scan/runs.nc",
-    ]
+    assert sorted(files) == FILES
 
 
-@pytest.mark.parametrize(
-    "name",
-    [
-        "accuracy/accuracy.nc",
-        "line/results.nc",
-        "line/runs.nc",
-        "orbit/results.nc",
-        "orbit/trajectory.nc",
-        "scan/results.nc",
-        "scan/runs.nc",
-    ],
-)
+@pytest.mark.parametrize("name", FILES)
 def test_cf_attributes(files, name):
     with xr.open_dataset(files[name]) as ds:
         assert ds.attrs["Conventions"] == "CF-1.10"
