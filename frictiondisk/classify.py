@@ -113,7 +113,10 @@ def classify(facts: RunFacts) -> tuple[str, str]:
         elif revs.on_orbit and facts.stick_rule == "corotation":
             where = "on its small orbit, co-rotation not yet decided"
         else:
-            where = "still sliding towards a sticking circle"
+            where = (
+                "not shown stationary: its slip or spin drift per revolution still falls, "
+                "or its sticking time per revolution still grows, towards permanent stick"
+            )
         return "undetermined", (
             f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}; "
             f"{_trend(revs)} (raise numerics.horizon_budget or t_decide)"

@@ -245,7 +245,9 @@ def run(
         t_eps = 1e-12 * max(1.0, abs(t))
         verdict = mon.VERDICT_NONE
         if t >= t_rev - t_eps:
-            mon.monitor_revolution(mf, mi, rv, yrev, t, y, out_f[en.E_SLIP], spin, rtol, atol)
+            mon.monitor_revolution(
+                mf, mi, rv, yrev, ring_all, t, y, out_f[en.E_SLIP], spin, rtol, atol
+            )
             t_rev += hold
             verdict = mon.corotation_verdict(mf, mi, rv)
         if corotation:
@@ -262,9 +264,12 @@ def run(
                 return st.COROTATING, t  # decided, kept running for stop_on_stick false
             if corotation and mi[mon.I_VERDICT] == mon.VERDICT_CREEP:
                 return st.CREEPING, t
-            # An undecided run still settling extends its horizon, revolution by
-            # revolution, up to the budget.
-            if not converge and mon.still_settling(mf, mi, rv, corotation):
+            # An undecided run still settling, or not yet shown stationary (a slow measure
+            # still moving towards stick), extends its horizon, revolution by revolution,
+            # up to the budget: no not-stick verdict without evidence.
+            if not converge and (
+                mon.still_settling(mf, mi, rv, corotation) or mon.trend_to_stick(mf, mi, rv)
+            ):
                 if t_stop + hold <= budget + t_eps:
                     out_i[C_SETTLE_REVS] += 1
                     t_stop += hold

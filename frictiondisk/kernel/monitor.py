@@ -76,7 +76,8 @@ RV_ALL_STUCK = 5  # 1 if every contact stuck throughout the revolution
 RV_ANY_STUCK = 6  # 1 if some contact stuck at every instant of the revolution
 RV_EVER_ALL = 7  # 1 if every contact stuck at some instant of the revolution
 RV_STILL = 8  # 1 if centre and spin phase repeated within the integrator's tolerance
-N_RV = 9
+RV_STICK_T = 9  # time with every contact stuck during the revolution [s]
+N_RV = 10
 REV_RING = 64
 
 # corotation_verdict
@@ -89,6 +90,12 @@ VERDICT_CREEP = 2
 VERDICT_REVS = 5
 # Standard errors by which a decay must be established (about 97.5 % one-sided).
 VERDICT_Z = 2.0
+# Stationarity (trend_to_stick): two windows of TREND_REVS revolutions each are compared.
+# Three revolutions average the stick-slip cycle's beat against the master revolution; a
+# slow measure that moves towards stick by more than TREND_REL of its size (slip, spin
+# drift) or of a revolution (stick time) from one window to the next is a trend.
+TREND_REVS = 3
+TREND_REL = 0.02
 # Spacing (revolutions) below which Aitken's limit is not trusted: measured on the braked
 # disk, spacings of 2 revolutions still mistake the last fast transient for the limit
 # (from rest, beta_b = 0.005, mu = 0.22: limit 4.5e-8 m read at 51 s, true limit 0).
@@ -274,7 +281,7 @@ def begin_revolution(mf, mi, t, y, slip, yrev):
 
 
 @kernel_jit
-def monitor_revolution(mf, mi, rv, yrev, t, y, slip, spin, rtol, atol):
+def monitor_revolution(mf, mi, rv, yrev, ring_all, t, y, slip, spin, rtol, atol):
     """Close the revolution ending at t (state y, slip integral [m]) and start the next.
 
     spin: the master's rotation over one revolution, omega_m T [rad]. The master frame has
@@ -299,6 +306,7 @@ def monitor_revolution(mf, mi, rv, yrev, t, y, slip, spin, rtol, atol):
     still_r = rv[k, RV_DRIFT_R] <= atol + rtol * math.sqrt(y[0] * y[0] + y[1] * y[1])
     still_phi = abs(dphi) * arm <= atol + rtol * arm
     rv[k, RV_STILL] = 1.0 if still_r and still_phi else 0.0
+    rv[k, RV_STICK_T] = _overlap(ring_all, mi[I_RS_N], mf[F_T_ALL], mf[F_T_REV], t)
     mi[I_NREV] += 1
     begin_revolution(mf, mi, t, y, slip, yrev)
 
@@ -455,3 +463,44 @@ def still_settling(mf, mi, rv, corotation):
     s_inf, _ = _limit_slip(mi, rv, sliding)
     slip = rv[_row(mi, 0), RV_SLIP]
     return not (s_inf > mf[F_SLIP_TOL] and s_inf >= 0.5 * slip)
+
+
+@kernel_jit
+def _window_mean(mi, rv, column, first, count, absolute):
+    """Mean of `column` over `count` revolutions from `first` back (0 = newest)."""
+    acc = 0.0
+    for back in range(first, first + count):
+        value = rv[_row(mi, back), column]
+        acc += abs(value) if absolute else value
+    return acc / count
+
+
+@kernel_jit
+def trend_to_stick(mf, mi, rv):
+    """Whether a run without a verdict is not yet shown stationary: fewer than
+    2 TREND_REVS revolutions, or from the older to the newer window of TREND_REVS
+    revolutions a slow measure moved towards permanent stick: the slip per revolution fell,
+    the whole-body stick time per revolution grew, or (disk) the spin phase's drift per
+    revolution shrank (still spinning up towards co-rotation). Each by more than TREND_REL
+    of its size (a revolution for the stick time) and more than its tolerance. A run that
+    is steady, or moves away from stick, is not trending to stick."""
+    m = TREND_REVS
+    if mi[I_NREV] < 2 * m:
+        return True
+    tol = mf[F_SLIP_TOL]
+    s_new = _window_mean(mi, rv, RV_SLIP, 0, m, False)
+    s_old = _window_mean(mi, rv, RV_SLIP, m, m, False)
+    if s_old - s_new > max(TREND_REL * s_old, tol):
+        return True
+    period = rv[_row(mi, 0), RV_T] - rv[_row(mi, 1), RV_T]
+    t_new = _window_mean(mi, rv, RV_STICK_T, 0, m, False)
+    t_old = _window_mean(mi, rv, RV_STICK_T, m, m, False)
+    if t_new - t_old > TREND_REL * period:
+        return True
+    arm = mf[F_ARM]
+    if arm > 0.0:
+        p_new = _window_mean(mi, rv, RV_DRIFT_PHI, 0, m, True)
+        p_old = _window_mean(mi, rv, RV_DRIFT_PHI, m, m, True)
+        if p_old - p_new > max(TREND_REL * p_old, tol / arm):
+            return True
+    return False
