@@ -36,13 +36,16 @@ WIDEN_FACTOR = 2.0  # a widened bracket is this many times wider
 
 @dataclasses.dataclass(frozen=True)
 class RunRequest:
-    """One simulation the bisection needs: friction coefficient and retry level.
+    """One simulation the bisection needs: friction coefficient, retry level and
+    certification level.
 
-    The horizon of the run is the base horizon times horizon_factor ** level."""
+    The horizon of the run is the base horizon times horizon_factor ** level; a
+    certification level `strict` > 0 tightens the numerics further (frictiondisk.certify)."""
 
     mu: float
     level: int = 0
     mode: str | None = None  # numerics.mode of the run; None: the point's own
+    strict: int = 0  # certification level of the numerics (0: the point's own)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -66,6 +69,8 @@ class BisectionResult:
     runs: tuple[RunRecord, ...]
     contradictions: tuple[tuple[float, float], ...]  # run pairs against one jump (see below)
     rising: bool = True  # not stick at mu_lo, stick at mu_hi (False: the other way round)
+    certification: str = "off"  # frictiondisk.certify.CERTIFICATION_FLAGS
+    strict: int = 0  # certification level of the numerics behind mu_lo and mu_hi
 
     @property
     def mu_star(self) -> float:
@@ -100,6 +105,7 @@ class Bisection:
         max_retries: int,
         rising: bool = True,
         split: int = 2,
+        strict: int = 0,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
@@ -107,6 +113,7 @@ class Bisection:
         if split < 2:
             raise ValueError(f"split must be >= 2 (parts per round), got {split}")
         self.split = split
+        self.strict = strict  # certification level of every run this bisection asks for
         self.lo = lo
         self.hi = hi
         self.tol = tol
@@ -132,7 +139,9 @@ class Bisection:
             mus = [mu for mu in (self.lo, self.hi) if mu not in self._known]
         else:
             mus = [mu for mu in self._interior() if mu not in self._known]
-        requests = [RunRequest(mu, self._level.get(mu, 0)) for mu in mus]
+        requests = [
+            RunRequest(mu, self._level.get(mu, 0), strict=self.strict) for mu in mus
+        ]
         for request in requests:
             self._issued.setdefault(request, (self._round, request.level, request.mu))
         return requests
@@ -274,6 +283,7 @@ class Bisection:
             runs=tuple(sorted(self.runs, key=lambda run: self._issued[run.request])),
             contradictions=self._contradictions(),
             rising=self.rising,
+            strict=self.strict,
         )
 
     def _contradictions(self) -> tuple[tuple[float, float], ...]:

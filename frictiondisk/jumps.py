@@ -22,11 +22,11 @@ from typing import Any
 from frictiondisk.bisection import (
     STICK,
     UNDETERMINED,
-    Bisection,
     BisectionResult,
     RunRecord,
     RunRequest,
 )
+from frictiondisk.certify import OFF, Certify, CertifiedBisection, point_certification
 
 
 @dataclasses.dataclass(frozen=True)
@@ -66,6 +66,13 @@ class JumpSearchResult:
     def end_result(self, which: str) -> dict[str, Any] | None:
         return self.primary.end_result(which) if self.primary else None
 
+    @property
+    def certification(self) -> str:
+        """The weakest certification of the point's jumps (`failed` if it has none)."""
+        if self.status != "converged":
+            return "failed"
+        return point_certification(j.certification for j in self.jumps)
+
 
 class JumpSearch:
     """Prescan `mus`, then bisect every stick / not-stick change to `tol`."""
@@ -77,6 +84,7 @@ class JumpSearch:
         max_retries: int,
         scan_mode: str | None = None,
         split: int = 2,
+        certify: Certify = OFF,
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -85,11 +93,12 @@ class JumpSearch:
         self.max_retries = max_retries
         self.scan_mode = scan_mode
         self.split = split  # parts per bisection round (bisection.Bisection)
+        self.certify = certify  # every jump's bracket is certified (frictiondisk.certify)
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}
         self._settled: set[float] = set()  # determined, or undetermined after every retry
-        self.bisections: list[Bisection] = []
+        self.bisections: list[CertifiedBisection] = []
         self._bisection_runs: list[RunRecord] = []
         self._issued: set[RunRequest] = set()  # prescan requests asked for
         self._pending: list[RunRequest] | None = None  # pending() until the next change
@@ -156,8 +165,14 @@ class JumpSearch:
         for (mu_a, stick_a), (mu_b, stick_b) in zip(known, known[1:], strict=False):
             if stick_a == stick_b:
                 continue
-            bisection = Bisection(
-                (mu_a, mu_b), self.tol, (mu_a, mu_b), self.max_retries, stick_b, self.split
+            bisection = CertifiedBisection(
+                (mu_a, mu_b),
+                self.tol,
+                (mu_a, mu_b),
+                self.max_retries,
+                stick_b,
+                self.split,
+                self.certify,
             )
             # its end checks are the prescan runs: fed, not run again
             for mu in (mu_a, mu_b):
@@ -168,7 +183,10 @@ class JumpSearch:
     def result(self) -> JumpSearchResult:
         if not self.done:
             raise ValueError("jump search not finished")
-        jumps = tuple(b.result() for b in self.bisections)
+        found = tuple(b.result() for b in self.bisections)
+        # a jump that stricter numerics showed to be an artefact of the short horizon is dropped
+        jumps = tuple(j for j in found if j.certification != "vanished")
+        vanished = len(found) - len(jumps)
         last = self._last_scan()
         scan = tuple(last[mu] for mu in self.mus if mu in last)
         lost = [mu for mu in self.mus if mu not in last]
@@ -192,6 +210,8 @@ class JumpSearch:
                 f"no jump: every prescan value from mu = {self.mus[0]:.6g} to "
                 f"{self.mus[-1]:.6g} gave {which}"
             )
+        if not jumps and vanished and not problems:
+            problems.append(f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics")
         if problems:
             status, reason = "failed", "; ".join(problems)
         else:
@@ -200,6 +220,8 @@ class JumpSearch:
             )
             status = "converged"
             reason = f"{len(jumps)} jump(s) to tol {self.tol:.3g}: {kinds}"
+            if vanished:
+                reason += f"; {vanished} more vanished at stricter numerics"
         runs = tuple(sorted([*self._scan_runs, *self._bisection_runs], key=self._order))
         return JumpSearchResult(status, reason, jumps, scan, runs, primary)
 

@@ -22,10 +22,11 @@ import dataclasses
 import math
 from typing import Any
 
-from frictiondisk.bisection import Bisection, BisectionResult, RunRequest
+from frictiondisk.bisection import BisectionResult, RunRequest
 from frictiondisk.campaign.basin_plan import BasinPlanner
 from frictiondisk.campaign.requests import run_config
 from frictiondisk.campaign.tasks import run_batch, run_bisection, run_scene
+from frictiondisk.certify import CertifiedBisection
 from frictiondisk.jumps import JumpSearch, JumpSearchResult
 
 WARM_HALF_WIDTH_TOLS = 3.0  # half-width of a predicted bracket, in units of tol
@@ -65,7 +66,7 @@ class JumpPlanner:
         self.task = campaign.task
         self.points = campaign.points()
         self.shape = campaign.shape
-        self.bisections: dict[int, Bisection | JumpSearch] = {}
+        self.bisections: dict[int, CertifiedBisection | JumpSearch] = {}
         self.results: dict[int, BisectionResult | JumpSearchResult] = {}
         self.warm: dict[int, bool] = {}
         self.chained: set[int] = set()  # points whose search is out on a worker
@@ -79,7 +80,9 @@ class JumpPlanner:
         self._canonicals[(i, request)] = canonical
 
     def config_for(self, i: int, request: RunRequest):
-        return run_config(self.points[i].config, request, self.task.horizon_factor)
+        return run_config(
+            self.points[i].config, request, self.task.horizon_factor, self.task.certify
+        )
 
     @property
     def done(self) -> bool:
@@ -217,18 +220,24 @@ class JumpPlanner:
         if prescan is not None:
             self.warm[i] = False
             self.bisections[i] = JumpSearch(
-                prescan.mu, self.task.tol, self.task.max_retries, prescan.mode, self.task.split
+                prescan.mu,
+                self.task.tol,
+                self.task.max_retries,
+                prescan.mode,
+                self.task.split,
+                self.task.certify,
             )
             return
         bracket = self._predicted_bracket(i)
         self.warm[i] = bracket is not None
         bracket = bracket or tuple(self.task.bracket)
-        self.bisections[i] = Bisection(
+        self.bisections[i] = CertifiedBisection(
             bracket,
             self.task.tol,
             tuple(self.task.limits),
             self.task.max_retries,
             split=self.task.split,
+            certify=self.task.certify,
         )
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:

@@ -1,5 +1,5 @@
-"""The scene of one run that a search requests (mu, mode, retry level), from its point's
-scene. Shared by the planner (plan.py) and the worker (tasks.py), which import it from
+"""The scene of one run that a search requests (mu, mode, retry and certification
+level), from its point's scene. Shared by the planner (plan.py) and the worker (tasks.py), which import it from
 here rather than from each other.
 """
 
@@ -8,12 +8,14 @@ from __future__ import annotations
 from typing import Any
 
 from frictiondisk.bisection import RunRequest
+from frictiondisk.certify import OFF, Certify
 from frictiondisk.horizon import horizon_key, horizon_of
 
 
-def run_config(point_config, request: RunRequest, horizon_factor: float):
+def run_config(point_config, request: RunRequest, horizon_factor: float, certify: Certify = OFF):
     """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
-    set, horizon lengthened by the retry level."""
+    set, horizon lengthened by the retry level; at certification level `request.strict`
+    the horizon is multiplied by certify.horizon and rtol by certify.rtol once per level."""
     num = point_config.numerics
     mode = request.mode or num.mode
     key = f"numerics.{horizon_key(mode)}"
@@ -21,6 +23,8 @@ def run_config(point_config, request: RunRequest, horizon_factor: float):
     overrides: dict[str, Any] = {"params.mu": request.mu}
     if mode != num.mode:
         overrides["numerics.mode"] = mode
-    if request.level:
-        overrides[key] = horizon * horizon_factor**request.level
+    if request.level or request.strict:
+        overrides[key] = horizon * horizon_factor**request.level * certify.horizon**request.strict
+    if request.strict:
+        overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
     return point_config.with_overrides(overrides)

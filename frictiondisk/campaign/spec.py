@@ -58,6 +58,8 @@ from frictiondisk.config import (
     _show,
     scene_from_dict,
 )
+from frictiondisk.certify import OFF as CERTIFY_OFF
+from frictiondisk.certify import Certify
 from frictiondisk.yamlio import StrictDumper, load_yaml_text, read_text_file
 
 __all__ = [
@@ -86,7 +88,9 @@ FIND_JUMP_KEYS = (
     "along",
     "prescan",
     "split",
+    "certify",
 )
+CERTIFY_KEYS = ("horizon", "rtol", "levels")
 SCAN_KEYS = ("mu", "along", "mode")
 PRESCAN_KEYS = ("mu", "mode")
 TRAJECTORY_KEYS = ("dt_out", "show")
@@ -107,6 +111,7 @@ DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_ma
 DEFAULT_LANES = 2  # warm-start chains
 DEFAULT_SPLIT = 2  # parts per bisection round: 2 = plain bisection (bisection.Bisection)
 MAX_SPLIT = 64
+DEFAULT_CERTIFY = Certify()  # horizon x 4, rtol x 0.1 per level, up to level 2
 DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (docs/model.md section 6)
 DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)
 DEFAULT_BASIN_BATCH = 100  # samples per adaptive batch (target_se): the stop rule's step
@@ -161,6 +166,7 @@ class FindJump:
     along: dict[str, tuple[float, ...]]
     prescan: Prescan | None = None
     split: int = DEFAULT_SPLIT  # parts per bisection round (k - 1 runs per round, at once)
+    certify: Certify = DEFAULT_CERTIFY  # re-check of every jump at stricter numerics
 
     def canonical(self) -> dict[str, Any]:
         """JSON-able dict, keys sorted except `along`, whose order is the dims order.
@@ -180,6 +186,8 @@ class FindJump:
             out["prescan"] = self.prescan.canonical()
         if self.split != DEFAULT_SPLIT:
             out["split"] = self.split
+        if self.certify != DEFAULT_CERTIFY:
+            out["certify"] = self.certify.canonical()
         return {key: out[key] for key in sorted(out)}
 
 
@@ -510,7 +518,8 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
     )
     if base is not None and None not in (max_retries, horizon_factor):
         _check_retry_horizon(base, prescan, max_retries, horizon_factor, problems)
-    if None in (bracket, tol, limits, max_retries, horizon_factor, lanes, split, along):
+    certify = _certify(spec.get("certify", True), problems)
+    if None in (bracket, tol, limits, max_retries, horizon_factor, lanes, split, along, certify):
         return None
     return FindJump(
         parameter=parameter,
@@ -523,7 +532,36 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
         along=along,
         prescan=prescan,
         split=split,
+        certify=certify,
     )
+
+
+def _certify(data: Any, problems: list[str]) -> Certify | None:
+    """find_jump.certify: true (the defaults), false (off) or {horizon, rtol, levels}."""
+    if data is True:
+        return DEFAULT_CERTIFY
+    if data is False:
+        return CERTIFY_OFF
+    spec = _mapping(data, "find_jump.certify", CERTIFY_KEYS, problems)
+    if spec is None:
+        return None
+    horizon = _number(
+        spec.get("horizon", DEFAULT_CERTIFY.horizon), "find_jump.certify.horizon", problems, gt=1
+    )
+    rtol = _number(
+        spec.get("rtol", DEFAULT_CERTIFY.rtol), "find_jump.certify.rtol", problems, gt=0, le=1
+    )
+    levels = _number(
+        spec.get("levels", DEFAULT_CERTIFY.levels),
+        "find_jump.certify.levels",
+        problems,
+        integer=True,
+        ge=0,
+        le=4,
+    )
+    if None in (horizon, rtol, levels):
+        return None
+    return Certify(horizon=horizon, rtol=rtol, levels=levels)
 
 
 def _check_retry_horizon(

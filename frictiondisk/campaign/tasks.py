@@ -68,10 +68,12 @@ def run_bisection(
     Returns (bisection, [(RunRequest, result summary), ...] of the runs computed here)."""
     from frictiondisk.campaign.journal import Journal, run_key
     from frictiondisk.campaign.requests import run_config
+    from frictiondisk.certify import OFF
     from frictiondisk.config import scene_from_dict
     from frictiondisk.simulate import simulate
 
     point_config = scene_from_dict(point_canonical)
+    certify = getattr(bisection, "certify", OFF)  # the numerics of certification runs
     made = []
     t0 = time.perf_counter()
     while not bisection.done:
@@ -80,7 +82,7 @@ def run_bisection(
         for request in bisection.pending():
             if bisection.done:
                 break
-            config = run_config(point_config, request, horizon_factor)
+            config = run_config(point_config, request, horizon_factor, certify)
             result = Journal.peek(campaign_dir, run_key(config))
             if result is None:
                 result = simulate(config).summary()

@@ -466,12 +466,11 @@ def still_settling(mf, mi, rv, corotation):
 
 
 @kernel_jit
-def _window_mean(mi, rv, column, first, count, absolute):
+def _window_mean(mi, rv, column, first, count):
     """Mean of `column` over `count` revolutions from `first` back (0 = newest)."""
     acc = 0.0
     for back in range(first, first + count):
-        value = rv[_row(mi, back), column]
-        acc += abs(value) if absolute else value
+        acc += rv[_row(mi, back), column]
     return acc / count
 
 
@@ -479,28 +478,24 @@ def _window_mean(mi, rv, column, first, count, absolute):
 def trend_to_stick(mf, mi, rv):
     """Whether a run without a verdict is not yet shown stationary: fewer than
     2 TREND_REVS revolutions, or from the older to the newer window of TREND_REVS
-    revolutions a slow measure moved towards permanent stick: the slip per revolution fell,
-    the whole-body stick time per revolution grew, or (disk) the spin phase's drift per
-    revolution shrank (still spinning up towards co-rotation). Each by more than TREND_REL
-    of its size (a revolution for the stick time) and more than its tolerance. A run that
-    is steady, or moves away from stick, is not trending to stick."""
+    revolutions a slow measure moved towards permanent stick: the slip per revolution fell
+    (by more than TREND_REL of it and more than the slip tolerance), or the whole-body
+    stick time per revolution grew (by more than TREND_REL of a revolution). A disk
+    spinning up while it slides shows in its falling slip. The spin drift alone is no
+    evidence: a self-centred disk spins up towards omega_m for ever at a steady slip per
+    revolution and never sticks. A run that is steady, or moves away from stick, is not
+    trending to stick."""
     m = TREND_REVS
     if mi[I_NREV] < 2 * m:
         return True
     tol = mf[F_SLIP_TOL]
-    s_new = _window_mean(mi, rv, RV_SLIP, 0, m, False)
-    s_old = _window_mean(mi, rv, RV_SLIP, m, m, False)
+    s_new = _window_mean(mi, rv, RV_SLIP, 0, m)
+    s_old = _window_mean(mi, rv, RV_SLIP, m, m)
     if s_old - s_new > max(TREND_REL * s_old, tol):
         return True
     period = rv[_row(mi, 0), RV_T] - rv[_row(mi, 1), RV_T]
-    t_new = _window_mean(mi, rv, RV_STICK_T, 0, m, False)
-    t_old = _window_mean(mi, rv, RV_STICK_T, m, m, False)
+    t_new = _window_mean(mi, rv, RV_STICK_T, 0, m)
+    t_old = _window_mean(mi, rv, RV_STICK_T, m, m)
     if t_new - t_old > TREND_REL * period:
         return True
-    arm = mf[F_ARM]
-    if arm > 0.0:
-        p_new = _window_mean(mi, rv, RV_DRIFT_PHI, 0, m, True)
-        p_old = _window_mean(mi, rv, RV_DRIFT_PHI, m, m, True)
-        if p_old - p_new > max(TREND_REL * p_old, tol / arm):
-            return True
     return False
