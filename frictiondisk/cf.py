@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from frictiondisk.certify import CERTIFICATION_FLAGS
 from frictiondisk.version import NUMERICS_VERSION, __version__
 
 CONVENTIONS = "CF-1.10"
@@ -38,6 +39,11 @@ FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
     "is_reference": ((0, 1), "not_reference reference"),
     "in_ladder": ((0, 1), "not_in_ladder in_ladder"),
     "mode": ((0, 1), "slide stick"),  # trajectory.nc: contact mode
+    "certification": (tuple(range(len(CERTIFICATION_FLAGS))), " ".join(CERTIFICATION_FLAGS)),
+    "jump_certification": (
+        tuple(range(-1, len(CERTIFICATION_FLAGS))),
+        " ".join(("no_jump", *CERTIFICATION_FLAGS)),
+    ),
 }
 
 # text variable -> (long_name if the builder gave none, comment)

@@ -80,7 +80,23 @@ def _execute(
     click.echo(f"results: {summary.results}")
     label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
     click.echo(f"{label} {summary.runs}")
+    _echo_uncertain(summary.results)
     _echo_basin(summary.results)
+
+
+def _echo_uncertain(results_path: Path) -> None:
+    """A find_jump with uncertain points: one line naming them. Not an error (exit 0): the
+    best bracket of each is kept in results.nc, flagged `uncertain`."""
+    import xarray as xr
+
+    from frictiondisk.campaign.table import uncertain_summary
+
+    if results_path.name != "results.nc" or not results_path.is_file():
+        return
+    with xr.open_dataset(results_path) as results:
+        line = uncertain_summary(results)
+    if line:
+        click.echo(line)
 
 
 def _echo_basin(results_path: Path) -> None:
@@ -276,7 +292,8 @@ def _mu_star_lines(results_file: Path) -> list[str]:
     """The mu* table of a finished find_jump campaign (empty for other tasks)."""
     import xarray as xr
 
-    from frictiondisk.campaign.table import mu_star_table
+    from frictiondisk.campaign.table import mu_star_table, uncertain_summary
 
     with xr.open_dataset(results_file) as results:
-        return mu_star_table(results)
+        line = uncertain_summary(results)
+        return mu_star_table(results) + ([line] if line else [])

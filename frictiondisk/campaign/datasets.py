@@ -14,6 +14,7 @@ import xarray as xr
 
 from frictiondisk import cf
 from frictiondisk.campaign.journal import kernel_version
+from frictiondisk.certify import CERTIFICATION_FLAGS
 from frictiondisk.config import describe_key
 from frictiondisk.version import __version__
 from frictiondisk.yamlio import dump_yaml
@@ -118,8 +119,12 @@ def _jump_results(campaign, planner) -> xr.Dataset:
             "reason",
             "monotone",
             "warm_start",
+            "certification",
+            "verdict_horizon",
+            "verdict_rtol",
         )
     }
+    task = campaign.task
     for i in range(n):
         res = planner.results[i]
         lo, hi = res.end_result("lo") or {}, res.end_result("hi") or {}
@@ -135,6 +140,10 @@ def _jump_results(campaign, planner) -> xr.Dataset:
         cols["reason"].append(res.reason)
         cols["monotone"].append(np.int8(res.monotone))
         cols["warm_start"].append(np.int8(planner.warm.get(i, False)))
+        cols["certification"].append(CERTIFICATION_FLAGS.index(res.certification))
+        horizon, rtol = verdict_numerics(planner.points[i].config, task, _strict_of(res))
+        cols["verdict_horizon"].append(horizon)
+        cols["verdict_rtol"].append(rtol)
 
     def var(name, units, long_name, dtype=None):
         data = np.asarray(cols[name], dtype=dtype).reshape(shape)
@@ -166,6 +175,17 @@ def _jump_results(campaign, planner) -> xr.Dataset:
             "reason": var("reason", None, "why the point converged or failed", str),
             "monotone": var("monotone", None, "1 if no run contradicts a single jump", np.int8),
             "warm_start": var("warm_start", None, "1 if the bracket was predicted", np.int8),
+            "certification": (
+                dims,
+                np.asarray(cols["certification"], np.int8).reshape(shape),
+                {"long_name": "certification of mu* (the weakest of the point's jumps)"},
+            ),
+            "verdict_horizon": var(
+                "verdict_horizon", "s", "decision horizon of the runs behind mu_lo and mu_hi", float
+            ),
+            "verdict_rtol": var(
+                "verdict_rtol", "1", "rtol of the runs behind mu_lo and mu_hi", float
+            ),
         },
         coords=_coords(campaign),
         attrs={
@@ -187,6 +207,22 @@ def _jump_results(campaign, planner) -> xr.Dataset:
     return ds
 
 
+CERTIFICATION_FILL = -1  # a padded jump slot (a point with fewer jumps than the most)
+
+
+def _strict_of(res) -> int:
+    """Certification level of the numerics behind a point's (primary) bracket."""
+    primary = getattr(res, "primary", res)
+    return 0 if primary is None else primary.strict
+
+
+def verdict_numerics(point_config, task, strict: int) -> tuple[float, float]:
+    """(decision horizon [s], rtol) of a run at certification level `strict`."""
+    num = point_config.numerics
+    horizon = num.t_decide * task.certify.horizon**strict
+    return horizon, num.rtol * task.certify.rtol**strict
+
+
 def _all_jumps(campaign, planner, dims: tuple[str, ...]) -> dict[str, Any]:
     """Every jump of every point (dim `jump`, NaN-padded) and the prescan runs (dim
     `scan_mu`) of a find_jump with a prescan (frictiondisk.jumps)."""
@@ -198,6 +234,7 @@ def _all_jumps(campaign, planner, dims: tuple[str, ...]) -> dict[str, Any]:
     hi = np.full((len(results), n_jump), np.nan)
     rising = np.full((len(results), n_jump), -1, np.int8)
     status = np.full((len(results), n_jump), "", dtype=object)
+    certified = np.full((len(results), n_jump), CERTIFICATION_FILL, np.int8)
     outcome = np.full((len(results), len(scan_mu)), "", dtype=object)
     measures = {name: np.full((len(results), len(scan_mu)), np.nan) for name in ("size", "a")}
     for i, res in enumerate(results):
@@ -205,6 +242,7 @@ def _all_jumps(campaign, planner, dims: tuple[str, ...]) -> dict[str, Any]:
             lo[i, j], hi[i, j] = jump.mu_lo, jump.mu_hi
             rising[i, j] = int(jump.rising)
             status[i, j] = jump.status
+            certified[i, j] = CERTIFICATION_FLAGS.index(jump.certification)
         for run in res.scan:
             k = scan_mu.index(run.request.mu)
             outcome[i, k] = run.outcome
@@ -238,6 +276,11 @@ def _all_jumps(campaign, planner, dims: tuple[str, ...]) -> dict[str, Any]:
             jdims,
             shaped(status.astype(str), n_jump),
             {"long_name": "converged or failed"},
+        ),
+        "jump_certification": (
+            jdims,
+            shaped(certified, n_jump),
+            {"long_name": "certification of the jump (frictiondisk.certify)"},
         ),
         "scan_outcome": (
             sdims,

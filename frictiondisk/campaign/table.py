@@ -1,5 +1,6 @@
 """The answer of a find_jump campaign as text: one line per point with mu*, its bracket,
-the runs it took and its status (printed by `frictiondisk status`, hence by `make demo`)."""
+the runs it took, its status and certification (printed by `frictiondisk status`, hence
+by `make demo`), and the one-line summary of uncertain points."""
 
 from __future__ import annotations
 
@@ -21,7 +22,9 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
     dims = list(results["mu_star"].dims)
     heads = [f"{d}{_unit(results[d])}" for d in dims]
     rows = []
-    stacked = results[["mu_star", "mu_lo", "mu_hi", "n_runs", "status"]]
+    names = ["mu_star", "mu_lo", "mu_hi", "n_runs", "status"]
+    certified = "certification" in results
+    stacked = results[names + (["certification"] if certified else [])]
     if len(dims) > 1:
         stacked = stacked.stack(point=dims)
     elif dims:
@@ -41,8 +44,10 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
             [f"{c:g}" for c in coords]
             + [f"{mu:.6f}" if math.isfinite(mu) else "-", bracket, str(int(row["n_runs"]))]
             + [f"{row['status'].values.item()}{extra}"]
+            + ([_flag(results["certification"], row["certification"])] if certified else [])
         )
     heads += ["mu*", "bracket [mu_lo, mu_hi]", "runs", "status"]
+    heads += ["certification"] if certified else []
     widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(heads)]
     tol = results.attrs.get("tol")
     title = f"mu* per point (bracket width <= tol {float(tol):g}):" if tol else "mu* per point:"
@@ -51,3 +56,28 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
         for r in [heads, *rows]
     ]
     return [title, *(line.rstrip() for line in lines)]
+
+
+def _flag(var: xr.DataArray, value) -> str:
+    """The meaning of one CF flag value."""
+    meanings = str(var.attrs.get("flag_meanings", "")).split()
+    code = int(value)
+    return meanings[code] if 0 <= code < len(meanings) else str(code)
+
+
+def uncertain_summary(results: xr.Dataset) -> str | None:
+    """'k of n points uncertain: x = ..., ...' for a find_jump results.nc with uncertain
+    points (mu* not confirmed at the strictest certification level); None otherwise."""
+    if "certification" not in results:
+        return None
+    var = results["certification"]
+    flat = var.stack(point=var.dims) if var.dims else var.expand_dims("point")
+    uncertain = [i for i in range(flat.sizes["point"]) if _flag(var, flat[i]) == "uncertain"]
+    if not uncertain:
+        return None
+    where = []
+    for i in uncertain:
+        coords = flat["point"].values[i] if var.dims else ()
+        coords = coords if isinstance(coords, tuple) else (coords,)
+        where.append(", ".join(f"{d} = {c:g}" for d, c in zip(var.dims, coords, strict=True)))
+    return f"{len(uncertain)} of {flat.sizes['point']} points uncertain: " + "; ".join(where)
