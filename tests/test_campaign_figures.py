@@ -34,6 +34,7 @@ from frictiondisk.campaign.figures import (  # noqa: E402
 from frictiondisk.campaign.runner import run_campaign  # noqa: E402
 from frictiondisk.campaign.spec import campaign_from_text  # noqa: E402
 from frictiondisk.cli import main  # noqa: E402
+from frictiondisk.certify import CERTIFICATION_FLAGS  # noqa: E402
 from frictiondisk.config import scene_from_dict  # noqa: E402
 
 NUMERICS_YAML = (
@@ -91,7 +92,9 @@ def _attrs(name, task, **extra):
     }
 
 
-def jump_results(along, mu_lo, mu_hi, status=None, reason=None, monotone=None, name="synth"):
+def jump_results(
+    along, mu_lo, mu_hi, status=None, reason=None, monotone=None, name="synth", certification=None
+):
     """A find_jump results.nc over `along` ({scene key: values}, 1 or 2 keys)."""
     coords = dict(_coord(k, v) for k, v in along.items())
     dims = tuple(coords)
@@ -100,6 +103,11 @@ def jump_results(along, mu_lo, mu_hi, status=None, reason=None, monotone=None, n
     status = np.asarray(status if status is not None else np.full(shape, "converged"), str)
     reason = np.asarray(reason if reason is not None else np.full(shape, "bracket ok"), str)
     monotone = np.asarray(monotone if monotone is not None else np.ones(shape), np.int8)
+    certified = np.full(shape, CERTIFICATION_FLAGS.index("certified"), np.int8)
+    certification = np.asarray(
+        certified if certification is None else [CERTIFICATION_FLAGS.index(c) for c in certification],
+        np.int8,
+    ).reshape(shape)
     nan = np.full(shape, np.nan)
     var = {
         "mu_star": (0.5 * (mu_lo + mu_hi), "1"),
@@ -115,6 +123,9 @@ def jump_results(along, mu_lo, mu_hi, status=None, reason=None, monotone=None, n
         "reason": (reason, None),
         "monotone": (monotone, None),
         "warm_start": (np.zeros(shape, np.int8), None),
+        "certification": (certification, None),
+        "verdict_horizon": (np.full(shape, 30.0), "s"),
+        "verdict_rtol": (np.full(shape, 1e-6), "1"),
     }
     data_vars = {
         k: (dims, v, {"long_name": k, **({"units": u} if u else {})}) for k, (v, u) in var.items()

@@ -219,7 +219,7 @@ def run(
     mon.monitor_begin(
         mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT]
     )
-    mon.begin_revolution(mf, mi, t, y, 0.0, yrev)
+    mon.begin_revolution(mf, mi, t, y, 0.0, yrev, 0)
     # A slip per revolution below the position tolerance plus what the slide->stick
     # threshold eps lets slide unresolved over a revolution is none (kernel/monitor.py).
     mf[mon.F_SLIP_TOL] = atol + p[P_EPS] * hold
@@ -246,7 +246,8 @@ def run(
         verdict = mon.VERDICT_NONE
         if t >= t_rev - t_eps:
             mon.monitor_revolution(
-                mf, mi, rv, yrev, ring_all, t, y, out_f[en.E_SLIP], spin, rtol, atol
+                mf, mi, rv, yrev, ring_all, t, y, out_f[en.E_SLIP], spin, rtol, atol,
+                out_i[C_STEPS],
             )
             t_rev += hold
             verdict = mon.corotation_verdict(mf, mi, rv)

@@ -63,7 +63,8 @@ I_REV_NONE = 11  # 1 once no contact stuck during the current revolution
 I_REV_NTRANS = 12  # mode switches before the current revolution
 I_REV_EVER_ALL = 13  # 1 once every contact stuck at some instant of the current revolution
 I_VERDICT = 14  # the last corotation_verdict (VERDICT_*)
-N_MI = 15
+I_REV_STEPS = 15  # integrator steps before the current revolution
+N_MI = 16
 
 # Columns of the revolution ring rv (one row per completed revolution, newest at
 # (I_NREV - 1) % REV_RING)
@@ -269,8 +270,10 @@ def window_fractions(mf, mi, ring_all, ring_any, t_end, window):
 
 
 @kernel_jit
-def begin_revolution(mf, mi, t, y, slip, yrev):
-    """Start a revolution at time t: remember the state (yrev) and the slip integral [m]."""
+def begin_revolution(mf, mi, t, y, slip, yrev, steps):
+    """Start a revolution at time t after `steps` integrator steps: remember the state
+    (yrev) and the slip integral [m]."""
+    mi[I_REV_STEPS] = steps
     mf[F_T_REV] = t
     mf[F_SLIP_REV] = slip
     mi[I_REV_NOT_ALL] = 1 - mi[I_ALL]
@@ -281,13 +284,18 @@ def begin_revolution(mf, mi, t, y, slip, yrev):
 
 
 @kernel_jit
-def monitor_revolution(mf, mi, rv, yrev, ring_all, t, y, slip, spin, rtol, atol):
-    """Close the revolution ending at t (state y, slip integral [m]) and start the next.
+def monitor_revolution(mf, mi, rv, yrev, ring_all, t, y, slip, spin, rtol, atol, steps):
+    """Close the revolution ending at t (state y, slip integral [m], `steps` integrator
+    steps so far) and start the next.
 
     spin: the master's rotation over one revolution, omega_m T [rad]. The master frame has
     turned by a whole number of turns, so its drift is the plain difference of the states.
-    RV_STILL compares the drifts with the integrator's own tolerance.
+    RV_STILL compares the drifts with the integrator's own tolerance accumulated over the
+    revolution's steps: each step may err by atol + rtol |y|, so a stuck slave drifts by
+    up to that many times it (measured: a stuck pin at rtol 1e-8 drifts 1.5e-9 m per
+    revolution, more than one step's 1.5e-9 m, whatever the horizon).
     """
+    n_steps = max(1, steps - mi[I_REV_STEPS])
     nq = mi[I_NQ]
     k = mi[I_NREV] % REV_RING
     dx = y[0] - yrev[0]
@@ -301,14 +309,14 @@ def monitor_revolution(mf, mi, rv, yrev, ring_all, t, y, slip, spin, rtol, atol)
     rv[k, RV_ALL_STUCK] = 1.0 - mi[I_REV_NOT_ALL]
     rv[k, RV_ANY_STUCK] = 1.0 - mi[I_REV_NONE]
     rv[k, RV_EVER_ALL] = mi[I_REV_EVER_ALL]
-    # integration error alone moves a stuck slave by up to about rtol |r| per revolution
     arm = mf[F_ARM]
-    still_r = rv[k, RV_DRIFT_R] <= atol + rtol * math.sqrt(y[0] * y[0] + y[1] * y[1])
-    still_phi = abs(dphi) * arm <= atol + rtol * arm
+    radius = math.sqrt(y[0] * y[0] + y[1] * y[1])
+    still_r = rv[k, RV_DRIFT_R] <= n_steps * (atol + rtol * radius)
+    still_phi = abs(dphi) * arm <= n_steps * (atol + rtol * arm)
     rv[k, RV_STILL] = 1.0 if still_r and still_phi else 0.0
     rv[k, RV_STICK_T] = _overlap(ring_all, mi[I_RS_N], mf[F_T_ALL], mf[F_T_REV], t)
     mi[I_NREV] += 1
-    begin_revolution(mf, mi, t, y, slip, yrev)
+    begin_revolution(mf, mi, t, y, slip, yrev, steps)
 
 
 @kernel_jit
