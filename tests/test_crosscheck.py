@@ -40,7 +40,7 @@ def time_error(a, b):
     return np.max(np.abs(np.asarray(a) - np.asarray(b)) / (RTOL * np.abs(b)))
 
 
-N_SWITCHES = 6  # switches of the mu = 0.11 pin run in 20 s (the kernel finds exactly 6)
+N_SWITCHES = 6  # switches of the mu = 0.11 pin run in its first 20 s
 
 
 def numerics(method, **overrides):
@@ -57,15 +57,25 @@ def numerics(method, **overrides):
     }
 
 
+def over_the_same_span(make, record=False):
+    """Kernel and scipy-radau on the scene `make(method, **numerics overrides)`. The kernel
+    extends its horizon until its verdict has evidence (revolution measures scipy-radau
+    does not keep), so scipy-radau is given the span the kernel ran."""
+    kernel = simulate(make("rodas4"), record=record)
+    radau = simulate(make("scipy-radau", t_decide=kernel.t_end), record=record)
+    return kernel, radau
+
+
 def disk_pair(params, contact=None, record=False):
     """The same disk scene run by the kernel and by scipy-radau."""
-    runs = {}
-    for method in ("rodas4", "scipy-radau"):
-        spec = {"scene": "disk", "params": params, "numerics": numerics(method)}
+
+    def make(method, **overrides):
+        spec = {"scene": "disk", "params": params, "numerics": numerics(method, **overrides)}
         if contact:
             spec["contact"] = contact
-        runs[method] = simulate(scene_from_dict(spec), record=record)
-    return runs["rodas4"], runs["scipy-radau"]
+        return scene_from_dict(spec)
+
+    return over_the_same_span(make, record)
 
 
 def pin(mu, method, **overrides):
@@ -161,10 +171,11 @@ def test_initial_modes_follow_the_rule():
 )
 def pin_pair(request):
     mu, expected = request.param
-    decide = {m: simulate(pin(mu, m)) for m in ("rodas4", "scipy-radau")}
-    recorded = {
-        m: simulate(pin(mu, m, stop_on_stick=False), record=True) for m in ("rodas4", "scipy-radau")
-    }
+    decide = dict(
+        zip(("rodas4", "scipy-radau"), over_the_same_span(lambda m, **o: pin(mu, m, **o)))
+    )
+    recorded = over_the_same_span(lambda m, **o: pin(mu, m, stop_on_stick=False, **o), True)
+    recorded = dict(zip(("rodas4", "scipy-radau"), recorded))
     return expected, decide, recorded
 
 
@@ -185,14 +196,14 @@ def test_pin_outcome_and_first_sticking_agree(pin_pair):
 def test_pin_switching_instants_agree(pin_pair):
     expected, _, recorded = pin_pair
     kernel, radau = recorded["rodas4"], recorded["scipy-radau"]
-    assert kernel.t_end == radau.t_end == 20.0
+    assert radau.t_end == pytest.approx(kernel.t_end, abs=1e-9) and kernel.t_end >= 20.0
     assert kernel.outcome == radau.outcome == expected
     t_kernel = switch_times(kernel.trajectory)
     t_radau = switch_times(radau.trajectory)
     if expected == "stick":
         assert len(t_kernel) == len(t_radau) == 1  # slide -> stick, then permanent sticking
     else:
-        assert len(t_kernel) == len(t_radau) == N_SWITCHES
+        assert len(t_kernel) == len(t_radau) >= N_SWITCHES
     assert time_error(t_kernel, t_radau) <= 1.0
     # the modes alternate the same way on both sides
     m_kernel = kernel.trajectory.mode[1:][np.any(np.diff(kernel.trajectory.mode, axis=0), axis=1)]
@@ -218,10 +229,12 @@ def test_disk_at_rest_with_refused_entries_agrees():
     kernel, radau = disk_pair({"mu": 0.14, "phidot0": 0.0}, record=True)
     assert kernel.outcome == radau.outcome, (kernel.reason, radau.reason)
     assert kernel.n_refused == radau.n_refused > 0
-    assert kernel.n_transitions == radau.n_transitions
     assert length_error(kernel.R1, radau.R1) <= 1.0
+    # over the common span: at its horizon each side finishes an open sticking phase its own way
+    span = min(kernel.t_end, radau.t_end) - 1e-6
     t_kernel = np.unique(switch_times(kernel.trajectory))
     t_radau = np.unique(switch_times(radau.trajectory))
+    t_kernel, t_radau = t_kernel[t_kernel < span], t_radau[t_radau < span]
     assert len(t_kernel) == len(t_radau)
     # a re-entry is the zero of a rate (one derivative more than s): located less sharply
     np.testing.assert_allclose(t_kernel, t_radau, rtol=0.0, atol=TOL_REENTRY)

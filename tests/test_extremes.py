@@ -112,7 +112,8 @@ def test_one_and_ninety_six_contact_points():
 def test_long_horizon_finishes_within_budget():
     res = run({"scene": "pin", "params": {"mu": 0.12}, "numerics": {"t_decide": 1e4}})
     assert res.outcome == "stick_slip"
-    assert res.t_end == pytest.approx(1e4)
+    # extended past the horizon only while the cycle's beat looks like a trend to stick
+    assert 1e4 <= res.t_end <= 1e4 + 10 * 2 * math.pi / 1.1
     assert res.n_steps < BUDGET["max_steps"]
 
 

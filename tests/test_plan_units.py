@@ -71,7 +71,7 @@ def run_planner(text: str, sizing: Sizing, rng: random.Random):
         job, function, args = in_flight.pop(rng.randrange(len(in_flight)))
         journaled += planner.complete(job, execute(function, args))
     results = [planner.results[i] for i in range(len(planner.points))]
-    return results, sorted((i, r.mu, r.level) for i, r, _ in journaled)
+    return results, sorted((i, r.mu, r.level, r.strict) for i, r, _ in journaled)
 
 
 @pytest.mark.parametrize("template", [PRESCAN, WARM])

@@ -82,7 +82,7 @@ C_EVENTS = 2
 C_REFUSED = 3
 C_RECORDED = 4
 C_TRUNCATED = 5
-C_EXTENDED = 6  # 1 if the horizon was extended to finish a sticking phase
+C_EXTENDED = 6  # 1 while the horizon is extended to finish a sticking phase; 2 once it broke
 C_SETTLE_REVS = 7  # revolutions the horizon was extended by for a run still settling
 C_BUDGET_SPENT = 8  # 1 if a run still settling hit the horizon budget
 N_OUT_I = 9
@@ -268,8 +268,14 @@ def run(
             # An undecided run still settling, or not yet shown stationary (a slow measure
             # still moving towards stick), extends its horizon, revolution by revolution,
             # up to the budget: no not-stick verdict without evidence.
+            # contacts: a held phase is `stick`; an open one is finished first (below)
+            held = not corotation and (
+                mon.stuck_for(mf, mi, t) >= hold - t_eps
+                or (mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0)
+            )
             if not converge and (
-                mon.still_settling(mf, mi, rv, corotation) or mon.trend_to_stick(mf, mi, rv)
+                mon.still_settling(mf, mi, rv, corotation)
+                or (not held and mon.trend_to_stick(mf, mi, rv))
             ):
                 if t_stop + hold <= budget + t_eps:
                     out_i[C_SETTLE_REVS] += 1
@@ -290,7 +296,9 @@ def run(
                     continue
             return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
         if not corotation and out_i[C_EXTENDED] == 1 and mi[mon.I_ALL] == 0:
-            return (st.TMAX_REACHED if converge else st.HORIZON_REACHED), t
+            out_i[C_EXTENDED] = 2  # the open sticking phase broke: decide now, by the rules above
+            t_stop = t
+            continue
         if out_i[C_STEPS] >= iopt[O_MAX_STEPS]:
             return st.MAX_STEPS, t
         if out_i[C_EVENTS] >= iopt[O_MAX_EVENTS]:

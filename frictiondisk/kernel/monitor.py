@@ -474,12 +474,22 @@ def still_settling(mf, mi, rv, corotation):
 
 
 @kernel_jit
-def _window_mean(mi, rv, column, first, count):
-    """Mean of `column` over `count` revolutions from `first` back (0 = newest)."""
-    acc = 0.0
-    for back in range(first, first + count):
-        acc += rv[_row(mi, back), column]
-    return acc / count
+def _window_change(mi, rv, column, m):
+    """Mean of `column` over the newest m revolutions minus its mean over the m before, and
+    the standard error of that difference from the scatter within the windows."""
+    new = 0.0
+    old = 0.0
+    for back in range(m):
+        new += rv[_row(mi, back), column]
+        old += rv[_row(mi, back + m), column]
+    new /= m
+    old /= m
+    scatter = 0.0
+    for back in range(m):
+        scatter += (rv[_row(mi, back), column] - new) ** 2
+        scatter += (rv[_row(mi, back + m), column] - old) ** 2
+    variance = scatter / (2 * (m - 1))  # pooled, per revolution
+    return new - old, old, math.sqrt(2.0 * variance / m)
 
 
 @kernel_jit
@@ -488,22 +498,19 @@ def trend_to_stick(mf, mi, rv):
     2 TREND_REVS revolutions, or from the older to the newer window of TREND_REVS
     revolutions a slow measure moved towards permanent stick: the slip per revolution fell
     (by more than TREND_REL of it and more than the slip tolerance), or the whole-body
-    stick time per revolution grew (by more than TREND_REL of a revolution). A disk
-    spinning up while it slides shows in its falling slip. The spin drift alone is no
-    evidence: a self-centred disk spins up towards omega_m for ever at a steady slip per
-    revolution and never sticks. A run that is steady, or moves away from stick, is not
-    trending to stick."""
+    stick time per revolution grew (by more than TREND_REL of a revolution). A change
+    counts only beyond VERDICT_Z standard errors of the scatter within the windows: a
+    converged stick-slip cycle whose period is not the master's beats against the
+    revolutions, and that beat is no trend. A disk spinning up while it slides shows in
+    its falling slip. The spin drift alone is no evidence: a self-centred disk spins up
+    towards omega_m for ever at a steady slip per revolution and never sticks. A run that
+    is steady, or moves away from stick, is not trending to stick."""
     m = TREND_REVS
     if mi[I_NREV] < 2 * m:
         return True
-    tol = mf[F_SLIP_TOL]
-    s_new = _window_mean(mi, rv, RV_SLIP, 0, m)
-    s_old = _window_mean(mi, rv, RV_SLIP, m, m)
-    if s_old - s_new > max(TREND_REL * s_old, tol):
+    change, old, se = _window_change(mi, rv, RV_SLIP, m)
+    if -change > max(TREND_REL * old, mf[F_SLIP_TOL], VERDICT_Z * se):
         return True
     period = rv[_row(mi, 0), RV_T] - rv[_row(mi, 1), RV_T]
-    t_new = _window_mean(mi, rv, RV_STICK_T, 0, m)
-    t_old = _window_mean(mi, rv, RV_STICK_T, m, m)
-    if t_new - t_old > TREND_REL * period:
-        return True
-    return False
+    change, old, se = _window_change(mi, rv, RV_STICK_T, m)
+    return change > max(TREND_REL * period, VERDICT_Z * se)
