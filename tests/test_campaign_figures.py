@@ -147,6 +147,7 @@ def jump_runs(results, per_point):
         "point": ("run", np.asarray([r[0] for r in rows], np.int64), {}),
         "mu": ("run", np.asarray([r[1] for r in rows], float), {"units": "1"}),
         "level": ("run", np.zeros(n, np.int64), {}),
+        "strict": ("run", np.zeros(n, np.int64), {}),
         "mode": ("run", np.full(n, "decide"), {}),
         "outcome": ("run", np.asarray([r[2] for r in rows], str), {}),
         "reason": ("run", np.full(n, "why"), {}),

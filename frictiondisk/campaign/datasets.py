@@ -381,6 +381,14 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             np.asarray([r[1].level for r in rows], np.int64),
             {"long_name": "retry level (horizon x horizon_factor**level)"},
         ),
+        "strict": (
+            "run",
+            np.asarray([r[1].strict for r in rows], np.int64),
+            {
+                "long_name": "certification level (horizon x certify.horizon**strict, "
+                "rtol x certify.rtol**strict)"
+            },
+        ),
         "mode": (
             "run",
             np.asarray([r[1].mode or planner.points[r[0]].config.numerics.mode for r in rows], str),
