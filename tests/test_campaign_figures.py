@@ -34,6 +34,7 @@ from frictiondisk.campaign.figures import (  # noqa: E402
 from frictiondisk.campaign.runner import run_campaign  # noqa: E402
 from frictiondisk.campaign.spec import campaign_from_text  # noqa: E402
 from frictiondisk.cli import main  # noqa: E402
+from frictiondisk.campaign.table import mu_star_table, uncertain_summary  # noqa: E402
 from frictiondisk.certify import CERTIFICATION_FLAGS  # noqa: E402
 from frictiondisk.config import scene_from_dict  # noqa: E402
 
@@ -130,6 +131,7 @@ def jump_results(
     data_vars = {
         k: (dims, v, {"long_name": k, **({"units": u} if u else {})}) for k, (v, u) in var.items()
     }
+    data_vars["certification"][2]["flag_meanings"] = " ".join(CERTIFICATION_FLAGS)
     return xr.Dataset(
         data_vars,
         coords=coords,
@@ -228,6 +230,26 @@ def line():
     return jump_results(
         {"params.x_ms": X_MS}, LO, HI, STATUS, REASON, monotone=[1, 0, 1, 1, 1], name="lineA"
     )
+
+
+def test_uncertain_points_are_hollow_named_in_the_legend_and_summed_up():
+    flags = ["certified", "uncertain", "recertified", "certified", "uncertain"]
+    data = jump_results(
+        {"params.x_ms": X_MS}, LO, HI, ["converged"] * 5, REASON, certification=flags
+    )
+    fig = plot_jump_line(data)
+    (ax,) = main_axes(fig)[:1]
+    (hollow,) = by_gid(ax, "uncertain")
+    np.testing.assert_allclose(hollow.get_xdata(), [0.075, 0.15])  # 0.125 has no bracket
+    assert hollow.get_markerfacecolor() == "white"
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any(t.startswith("uncertain") for t in legend)
+    assert uncertain_summary(data) == "2 of 5 points uncertain: x_ms = 0.075; x_ms = 0.15"
+    assert mu_star_table(data)[0].startswith("mu* per point")
+    assert [row.split()[-1] for row in mu_star_table(data)[2:]] == flags
+    certified = jump_results({"params.x_ms": X_MS}, LO, HI, ["converged"] * 5, REASON)
+    assert uncertain_summary(certified) is None
+    assert not by_gid(main_axes(plot_jump_line(certified))[0], "uncertain")
 
 
 def test_jump_line_bars_span_the_brackets_and_failures_are_listed(line):

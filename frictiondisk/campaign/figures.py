@@ -343,6 +343,17 @@ def _draw_further_jumps(ax: Axes, extra: dict[str, np.ndarray]) -> list[Any]:
     return handles
 
 
+def _flagged(results: xr.Dataset, meaning: str) -> np.ndarray:
+    """Where the `certification` flag of results.nc has `meaning` (all False without it)."""
+    if "certification" not in results:
+        return np.zeros(results["mu_star"].shape, bool)
+    var = results["certification"]
+    meanings = str(var.attrs.get("flag_meanings", "")).split()
+    if meaning not in meanings:
+        return np.zeros(var.shape, bool)
+    return np.asarray(var.values) == meanings.index(meaning)
+
+
 def plot_jump_line(
     results: xr.Dataset, runs: xr.Dataset | None = None, *, show_runs: bool = False
 ) -> Figure:
@@ -352,7 +363,8 @@ def plot_jump_line(
     [mu_lo, mu_hi] (asymmetric yerr). A failed point with a partial bracket is drawn in red
     with that bracket; one without a bracket as a red 'x' at the bottom of the axes; all
     failed points are numbered and listed below the plot with their reasons. Points whose
-    runs contradict a single jump (monotone == 0) are ringed. The region above the line is
+    runs contradict a single jump (monotone == 0) are ringed; `uncertain` ones (certification
+    flag) are drawn hollow and named in the legend. The region above the line is
     labelled "pure sticking", below "outer limit cycle". `show_runs` overlays every run of
     `runs` (runs.nc) as a dot at (coordinate, mu), coloured by stick / not stick.
     """
@@ -448,6 +460,22 @@ def plot_jump_line(
             label=f"\u03bc* with its bracket [\u03bc_lo, \u03bc_hi]{tol_text}",
         )
         handles.append(container)
+
+    uncertain = ok & _flagged(results, "uncertain")
+    if uncertain.any():  # converged, but not confirmed at the strictest certification level
+        hollow = ax.plot(
+            x[uncertain],
+            mu_star[uncertain],
+            linestyle="none",
+            marker="o",
+            markersize=8,
+            markerfacecolor="white",
+            markeredgecolor=LINE_COLOR,
+            zorder=5,
+            gid="uncertain",
+            label="uncertain: μ* not confirmed by stricter numerics (hollow)",
+        )
+        handles += hollow
 
     handles += _draw_further_jumps(ax, extra)
 

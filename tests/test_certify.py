@@ -1,0 +1,102 @@
+"""Certification of located jumps (frictiondisk.certify): the ladder on synthetic oracles
+whose jump moves with the numerics level, as a short horizon moves it in the kernel."""
+
+from __future__ import annotations
+
+import pytest
+
+from frictiondisk.certify import OFF, Certify, CertifiedBisection, point_certification
+from frictiondisk.jumps import JumpSearch
+
+TOL = 1e-4
+
+
+def drive(search, outcome_of):
+    """Feed `search` until done; outcome_of(mu, strict) gives each run's outcome."""
+    while not search.done:
+        for request in list(search.pending()):
+            search.feed(request, {"outcome": outcome_of(request.mu, request.strict)})
+    return search.result()
+
+
+def threshold(*mu_star_per_level):
+    """stick iff mu >= the jump of the run's level (the last one for stricter levels)."""
+
+    def outcome(mu, strict):
+        level = min(strict, len(mu_star_per_level) - 1)
+        return "stick" if mu >= mu_star_per_level[level] else "stick_slip"
+
+    return outcome
+
+
+def bisection(certify=Certify()):
+    return CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=certify)
+
+
+def test_a_jump_that_holds_at_stricter_numerics_is_certified():
+    result = drive(bisection(), threshold(0.13))
+    assert result.certification == "certified"
+    assert result.mu_lo < 0.13 <= result.mu_hi and result.width <= TOL * (1 + 1e-9)
+    strict = [run for run in result.runs if run.request.strict == 1]
+    assert sorted(run.request.mu for run in strict) == [result.mu_lo, result.mu_hi]
+    assert result.strict == 0
+
+
+def test_a_jump_that_moves_is_searched_again_at_the_stricter_level():
+    for true_jump in (0.1337, 0.1262):  # the hi end flips, or the lo end flips
+        result = drive(bisection(), threshold(0.13, true_jump))
+        assert result.certification == "recertified", result.reason
+        assert result.strict == 1
+        assert result.mu_lo < true_jump <= result.mu_hi and result.width <= TOL * (1 + 1e-9)
+        # and it was confirmed one level further
+        assert any(run.request.strict == 2 for run in result.runs)
+
+
+def test_a_jump_that_keeps_moving_is_uncertain_with_its_best_bracket():
+    result = drive(bisection(), threshold(0.13, 0.1337, 0.1345))
+    assert result.certification == "uncertain"
+    assert result.status == "converged"
+    assert result.mu_lo < 0.1337 <= result.mu_hi  # the bracket of the strictest search
+
+
+def test_an_undetermined_strict_run_makes_the_jump_uncertain():
+    def outcome(mu, strict):
+        return "undetermined" if strict else threshold(0.13)(mu, 0)
+
+    result = drive(bisection(), outcome)
+    assert result.certification == "uncertain"
+    assert any(run.request.level == 2 for run in result.runs)  # retried first
+
+
+def test_certification_off_makes_no_strict_run():
+    result = drive(bisection(OFF), threshold(0.13))
+    assert result.certification == "off"
+    assert all(run.request.strict == 0 for run in result.runs)
+
+
+def test_jumps_that_exist_only_at_the_short_horizon_vanish_from_a_prescan():
+    # default numerics: stick on [0.13, 0.16) and [0.19, 1); strict: stick from 0.13 only
+    def outcome(mu, strict):
+        stick = mu >= 0.13 if strict else (0.13 <= mu < 0.16 or mu >= 0.19)
+        return "stick" if stick else "slide"
+
+    search = JumpSearch(tuple(0.01 * k for k in range(5, 30)), TOL, 2, "decide", 2, Certify())
+    result = drive(search, outcome)
+    assert result.status == "converged", result.reason
+    assert len(result.jumps) == 1 and result.jumps[0].rising
+    assert result.mu_lo < 0.13 <= result.mu_hi
+    assert "2 more vanished" in result.reason
+    assert result.certification == "certified"
+
+
+@pytest.mark.parametrize(
+    "flags, expected",
+    [
+        (["certified", "recertified"], "recertified"),
+        (["certified", "uncertain", "vanished"], "uncertain"),
+        (["vanished"], "failed"),
+        (["off"], "off"),
+    ],
+)
+def test_a_point_is_as_certain_as_its_weakest_jump(flags, expected):
+    assert point_certification(flags) == expected
