@@ -224,6 +224,8 @@ class CertifiedBisection:
             if id(record.result) not in seen:  # a reused strict run counts once
                 seen.add(id(record.result))
                 runs.append(record)
+        # in the order requested, not the order results arrived: independent of timing
+        runs.sort(key=lambda run: self.schedule_key(run.request))
         reason = final.reason
         if self._verdict not in ("off", "failed"):
             reason = f"{reason}; {self._verdict} ({self._describe()})"

@@ -16,7 +16,7 @@ def test_simulate_and_run_an_annulus_of_192_contacts(tmp_path):
     scene = tmp_path / "scene.yaml"
     scene.write_text(
         "scene: disk\nparams: {beta_b: 0.005, phidot0: 1.1, mu: 0.2}\n"
-        f"{ANNULUS}\nnumerics: {{t_decide: 2.0, stick_rule: contacts}}\n"
+        f"{ANNULUS}\nnumerics: {{t_decide: 2.0, horizon_budget: 20}}\n"
     )
     out = CliRunner().invoke(main, ["simulate", str(scene), "--json"])
     assert out.exit_code == 0, out.output
@@ -27,7 +27,7 @@ def test_simulate_and_run_an_annulus_of_192_contacts(tmp_path):
     campaign = tmp_path / "clutch.yaml"
     campaign.write_text(
         "name: clutch_test\nscene: disk\nparams: {phidot0: 1.1, beta_b: 0.005}\n"
-        f"{ANNULUS}\nnumerics: {{t_decide: 2.0, stick_rule: contacts}}\n"
+        f"{ANNULUS}\nnumerics: {{t_decide: 2.0, horizon_budget: 20}}\n"
         "find_jump:\n  bracket: [0.05, 0.6]\n  tol: 0.05\n  along:\n    params.x_ms: [0.1]\n"
     )
     out_dir = tmp_path / "out"
