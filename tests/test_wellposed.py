@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import sys
 from pathlib import Path
 
 import pytest
@@ -16,6 +17,7 @@ STUDY = Path(__file__).resolve().parents[1] / "benchmarks" / "study_wellposed.py
 def study():
     spec = importlib.util.spec_from_file_location("study_wellposed", STUDY)
     module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # dataclasses look their module up there
     spec.loader.exec_module(module)
     return module
 
