@@ -149,9 +149,7 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
     for setting in ("default", "uncertified"):
         differ = [r for r in rows if disagrees(r[setting], r["reference"])]
         quiet = [r for r in rows if silent(r[setting], r["reference"])]
-        lines.append(
-            f"  {setting:<12} differ from reference: {len(differ)}; silent: {len(quiet)}"
-        )
+        lines.append(f"  {setting:<12} differ from reference: {len(differ)}; silent: {len(quiet)}")
         for r in differ:
             f, ref = r[setting], r["reference"]
             lines.append(
@@ -161,12 +159,16 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
     flags: dict[str, int] = {}
     for r in rows:
         flags[r["default"].certification] = flags.get(r["default"].certification, 0) + 1
-    lines.append("  certification of the default: " + ", ".join(f"{k} {v}" for k, v in flags.items()))
+    lines.append(
+        "  certification of the default: " + ", ".join(f"{k} {v}" for k, v in flags.items())
+    )
     runs = {s: sum(r[s].runs for r in rows) for s in SETTINGS}
     walls = {s: sum(r[s].wall_s for r in rows) for s in SETTINGS}
     lines.append(
-        "  runs: " + ", ".join(f"{s} {runs[s]}" for s in SETTINGS)
-        + "; kernel wall time [s]: " + ", ".join(f"{s} {walls[s]:.1f}" for s in SETTINGS)
+        "  runs: "
+        + ", ".join(f"{s} {runs[s]}" for s in SETTINGS)
+        + "; kernel wall time [s]: "
+        + ", ".join(f"{s} {walls[s]:.1f}" for s in SETTINGS)
     )
     extra = walls["default"] / walls["uncertified"] - 1.0 if walls["uncertified"] > 0 else math.nan
     lines.append(f"  certification costs {100 * extra:+.0f} % kernel wall time over uncertified")

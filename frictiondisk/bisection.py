@@ -139,9 +139,7 @@ class Bisection:
             mus = [mu for mu in (self.lo, self.hi) if mu not in self._known]
         else:
             mus = [mu for mu in self._interior() if mu not in self._known]
-        requests = [
-            RunRequest(mu, self._level.get(mu, 0), strict=self.strict) for mu in mus
-        ]
+        requests = [RunRequest(mu, self._level.get(mu, 0), strict=self.strict) for mu in mus]
         for request in requests:
             self._issued.setdefault(request, (self._round, request.level, request.mu))
         return requests

@@ -239,8 +239,8 @@ class CertifiedBisection:
     def _describe(self) -> str:
         level = self.search.strict + (1 if self._verdict != "vanished" else 0)
         return (
-            f"ends re-run at horizon x {self.certify.horizon ** level:g}, "
-            f"rtol x {self.certify.rtol ** level:g}"
+            f"ends re-run at horizon x {self.certify.horizon**level:g}, "
+            f"rtol x {self.certify.rtol**level:g}"
         )
 
     def end_result(self, which: str) -> dict[str, Any] | None:

@@ -26,7 +26,7 @@ from frictiondisk.bisection import (
     RunRecord,
     RunRequest,
 )
-from frictiondisk.certify import OFF, Certify, CertifiedBisection, point_certification
+from frictiondisk.certify import OFF, CertifiedBisection, Certify, point_certification
 
 
 @dataclasses.dataclass(frozen=True)
@@ -211,7 +211,9 @@ class JumpSearch:
                 f"{self.mus[-1]:.6g} gave {which}"
             )
         if not jumps and vanished and not problems:
-            problems.append(f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics")
+            problems.append(
+                f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"
+            )
         if problems:
             status, reason = "failed", "; ".join(problems)
         else:

@@ -33,9 +33,9 @@ from frictiondisk.campaign.figures import (  # noqa: E402
 )
 from frictiondisk.campaign.runner import run_campaign  # noqa: E402
 from frictiondisk.campaign.spec import campaign_from_text  # noqa: E402
-from frictiondisk.cli import main  # noqa: E402
 from frictiondisk.campaign.table import mu_star_table, uncertain_summary  # noqa: E402
 from frictiondisk.certify import CERTIFICATION_FLAGS  # noqa: E402
+from frictiondisk.cli import main  # noqa: E402
 from frictiondisk.config import scene_from_dict  # noqa: E402
 
 NUMERICS_YAML = (
@@ -106,7 +106,9 @@ def jump_results(
     monotone = np.asarray(monotone if monotone is not None else np.ones(shape), np.int8)
     certified = np.full(shape, CERTIFICATION_FLAGS.index("certified"), np.int8)
     certification = np.asarray(
-        certified if certification is None else [CERTIFICATION_FLAGS.index(c) for c in certification],
+        certified
+        if certification is None
+        else [CERTIFICATION_FLAGS.index(c) for c in certification],
         np.int8,
     ).reshape(shape)
     nan = np.full(shape, np.nan)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from frictiondisk.certify import OFF, Certify, CertifiedBisection, point_certification
+from frictiondisk.certify import OFF, CertifiedBisection, Certify, point_certification
 from frictiondisk.jumps import JumpSearch
 
 TOL = 1e-4
@@ -29,7 +29,10 @@ def threshold(*mu_star_per_level):
     return outcome
 
 
-def bisection(certify=Certify()):
+DEFAULT = Certify()
+
+
+def bisection(certify=DEFAULT):
     return CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=certify)
 
 

@@ -172,10 +172,14 @@ def test_initial_modes_follow_the_rule():
 def pin_pair(request):
     mu, expected = request.param
     decide = dict(
-        zip(("rodas4", "scipy-radau"), over_the_same_span(lambda m, **o: pin(mu, m, **o)))
+        zip(
+            ("rodas4", "scipy-radau"),
+            over_the_same_span(lambda m, **o: pin(mu, m, **o)),
+            strict=False,
+        )
     )
     recorded = over_the_same_span(lambda m, **o: pin(mu, m, stop_on_stick=False, **o), True)
-    recorded = dict(zip(("rodas4", "scipy-radau"), recorded))
+    recorded = dict(zip(("rodas4", "scipy-radau"), recorded, strict=False))
     return expected, decide, recorded
 
 

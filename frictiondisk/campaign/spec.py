@@ -45,6 +45,9 @@ import yaml
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
+from frictiondisk.certify import OFF as CERTIFY_OFF
+from frictiondisk.certify import Certify
+
 # Private helpers of config are shared on purpose, so that campaign messages read exactly like
 # scene messages: _show/_kind render values, _requirement says what a scene field accepts.
 from frictiondisk.config import (
@@ -58,8 +61,6 @@ from frictiondisk.config import (
     _show,
     scene_from_dict,
 )
-from frictiondisk.certify import OFF as CERTIFY_OFF
-from frictiondisk.certify import Certify
 from frictiondisk.yamlio import StrictDumper, load_yaml_text, read_text_file
 
 __all__ = [

@@ -246,7 +246,17 @@ def run(
         verdict = mon.VERDICT_NONE
         if t >= t_rev - t_eps:
             mon.monitor_revolution(
-                mf, mi, rv, yrev, ring_all, t, y, out_f[en.E_SLIP], spin, rtol, atol,
+                mf,
+                mi,
+                rv,
+                yrev,
+                ring_all,
+                t,
+                y,
+                out_f[en.E_SLIP],
+                spin,
+                rtol,
+                atol,
                 out_i[C_STEPS],
             )
             t_rev += hold
