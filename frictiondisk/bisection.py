@@ -129,6 +129,9 @@ class Bisection:
         # fixed by the schedule, never by the order results arrive in
         self._issued: dict[RunRequest, tuple[int, int, float]] = {}
         self._round = 0  # bumped whenever the bracket or the phase changes
+        # an interior mu still undetermined after every retry: the critical slowing down at
+        # the jump itself. The bisection then straddles it (see _interior).
+        self.undecided: list[float] = []
 
     # ---- what to run ------------------------------------------------------------------
     def pending(self) -> list[RunRequest]:
@@ -152,9 +155,19 @@ class Bisection:
         """(round, level, mu) of a request this bisection asked for (None otherwise)."""
         return self._issued.get(request)
 
+    def _straddled(self) -> float | None:
+        """The undecided mu inside the bracket, if any (plain bisection only)."""
+        inside = [mu for mu in self.undecided if self.lo < mu < self.hi]
+        return inside[-1] if inside and self.split == 2 else None
+
     def _interior(self) -> list[float]:
-        """The interior points of this round, increasing: lo + j (hi - lo) / parts."""
+        """The interior points of this round, increasing: lo + j (hi - lo) / parts; around
+        an undecided mu u, the two points u -/+ (hi - lo) / 4, so that the bracket closes
+        in on u from both sides (at most the same width as a plain step)."""
         width = self.hi - self.lo
+        u = self._straddled()
+        if u is not None:
+            return [max(self.lo, u - width / 4), min(self.hi, u + width / 4)]
         parts = self.split
         # the last round: the fewest parts that reach tol (same test as _maybe_converged)
         while parts > 2 and width / (parts - 1) <= self.tol * (1 + 1e-9):
@@ -169,6 +182,13 @@ class Bisection:
         self.runs.append(RunRecord(request, result))
         outcome = result["outcome"]
         if outcome == UNDETERMINED:
+            straddle = (
+                self.phase == "bisect" and self.split == 2 and request.mu not in self.undecided
+            )
+            if request.level >= self.max_retries and straddle:
+                self.undecided.append(request.mu)
+                self._round += 1  # the round around it
+                return
             if request.level >= self.max_retries:
                 self._failure = (
                     f"undetermined at mu = {request.mu:.10g} after {request.level} retries "
@@ -235,6 +255,16 @@ class Bisection:
         if any(mu not in self._known for mu in interior):
             return
         ends = [self.lo, *interior, self.hi]
+        if len(interior) == 2 and interior[0] < interior[1] and self._straddled() is not None:
+            u_lo, u_hi = interior  # around an undecided mu: a kind change on either side of it
+            lo_kind = self._known[self.lo]
+            if self._known[u_lo] != lo_kind:
+                self._next_round(self.lo, u_lo)
+            elif self._known[u_hi] == lo_kind:
+                self._next_round(u_hi, self.hi)
+            else:
+                self._next_round(u_lo, u_hi)  # the jump is at the undecided mu
+            return
         # the bracket ends are known and differ; a change is found by walking up from lo
         lo_kind = self._known[self.lo]
         for a, b in zip(ends, ends[1:], strict=False):
@@ -271,7 +301,7 @@ class Bisection:
         return BisectionResult(
             status="converged" if converged else "failed",
             reason=(
-                f"bracket of width {self.hi - self.lo:.3g} <= tol {self.tol:.3g}"
+                f"bracket of width {self.hi - self.lo:.3g} <= tol {self.tol:.3g}{self._undecided_note()}"
                 if converged
                 else self._failure
             ),
@@ -283,6 +313,13 @@ class Bisection:
             rising=self.rising,
             strict=self.strict,
         )
+
+    def _undecided_note(self) -> str:
+        inside = [mu for mu in self.undecided if self.lo < mu < self.hi]
+        if not inside:
+            return ""
+        mus = ", ".join(f"{mu:.10g}" for mu in inside)
+        return f" around mu = {mus}, undetermined after every retry (the jump's slow approach)"
 
     def _contradictions(self) -> tuple[tuple[float, float], ...]:
         """Pairs of runs that contradict a single jump of this bracket's direction:

@@ -190,7 +190,14 @@ class JumpSearch:
         last = self._last_scan()
         scan = tuple(last[mu] for mu in self.mus if mu in last)
         lost = [mu for mu in self.mus if mu not in last]
-        undetermined = [r.request.mu for r in scan if r.outcome == UNDETERMINED]
+        # an undetermined prescan value inside a converged jump's bracket is that jump's
+        # slow approach (bisection.Bisection.undecided), not a gap in the scan
+        undetermined = [
+            r.request.mu
+            for r in scan
+            if r.outcome == UNDETERMINED
+            and not any(j.status == "converged" and j.mu_lo < r.request.mu < j.mu_hi for j in jumps)
+        ]
         failed = [j for j in jumps if j.status != "converged"]
         rising = [j for j in jumps if j.rising]
         primary = (rising or list(jumps) or [None])[0]

@@ -103,3 +103,31 @@ def test_jumps_that_exist_only_at_the_short_horizon_vanish_from_a_prescan():
 )
 def test_a_point_is_as_certain_as_its_weakest_jump(flags, expected):
     assert point_certification(flags) == expected
+
+
+def test_an_undecided_mu_at_the_jump_is_straddled_to_tol():
+    """Critical slowing down: the run at the jump itself never decides. The bisection closes
+    in on it from both sides instead of failing."""
+    jump = 0.175  # the first midpoint of [0.05, 0.3]
+
+    def outcome(mu, strict):
+        if abs(mu - jump) < 1e-12:
+            return "undetermined"
+        return "stick" if mu > jump else "stick_slip"
+
+    result = drive(bisection(), outcome)
+    assert result.status == "converged", result.reason
+    assert result.mu_lo < jump < result.mu_hi and result.width <= TOL * (1 + 1e-9)
+    assert "undetermined after every retry" in result.reason
+    assert result.certification == "certified"
+
+
+def test_two_undecided_mu_in_a_row_fail_with_the_reason():
+    def outcome(mu, strict):
+        if 0.17 < mu < 0.23:
+            return "undetermined"
+        return "stick" if mu > 0.2 else "stick_slip"
+
+    result = drive(bisection(), outcome)
+    assert result.status == "failed"
+    assert "undetermined" in result.reason
