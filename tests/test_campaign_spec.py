@@ -759,3 +759,36 @@ def test_all_problems_are_reported_together():
     with pytest.raises(ConfigError) as info:
         campaign_from_dict(data)
     assert str(info.value) == "\n".join(found)
+
+
+def test_certify_defaults_on_and_is_switched_off_or_tuned():
+    from frictiondisk.certify import Certify
+
+    base = find_jump()
+    assert campaign_from_dict(base).task.certify == Certify(horizon=4.0, rtol=0.1, levels=2)
+    off = {**base, "find_jump": {**base["find_jump"], "certify": False}}
+    assert not campaign_from_dict(off).task.certify.enabled
+    tuned = {**base, "find_jump": {**base["find_jump"], "certify": {"horizon": 8, "levels": 1}}}
+    assert campaign_from_dict(tuned).task.certify == Certify(horizon=8.0, rtol=0.1, levels=1)
+    # the default keeps the campaign's hash: only a changed ladder enters the canonical form
+    assert "certify" not in campaign_from_dict(base).task.canonical()
+    assert campaign_from_dict(tuned).task.canonical()["certify"]["horizon"] == 8
+
+
+@pytest.mark.parametrize(
+    "certify, field",
+    [
+        ({"horizon": 1.0}, "find_jump.certify.horizon"),
+        ({"rtol": 0.0}, "find_jump.certify.rtol"),
+        ({"levels": 9}, "find_jump.certify.levels"),
+        ({"horizn": 4}, "find_jump.certify.horizn"),
+        ("yes", "find_jump.certify"),
+    ],
+)
+def test_a_bad_certify_names_its_field(certify, field):
+    data = {
+        "name": "c",
+        "scene": "pin",
+        "find_jump": {"along": {"params.x_ms": [0.1]}, "certify": certify},
+    }
+    assert any(p.startswith(field) for p in problems(data)), problems(data)
