@@ -216,7 +216,10 @@ def _method(base: SceneConfig, quick: bool) -> Knob:
                 overrides={"numerics.method": "rodas4-fixed", "numerics.dt": dt},
             )
         )
-    for rtol in _values("radau", RADAU_RTOLS, quick):
+    # scipy-radau implements the contacts rule only: for a disk under the co-rotation rule
+    # its mu* would answer another question, so the series is left out (docs/accuracy.md)
+    radau_fits = base.scene == "pin" or base.numerics.stick_rule == "contacts"
+    for rtol in _values("radau", RADAU_RTOLS, quick) if radau_fits else ():
         settings.append(
             Setting(
                 knob="method",
