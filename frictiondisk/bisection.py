@@ -182,9 +182,8 @@ class Bisection:
         self.runs.append(RunRecord(request, result))
         outcome = result["outcome"]
         if outcome == UNDETERMINED:
-            straddle = (
-                self.phase == "bisect" and self.split == 2 and request.mu not in self.undecided
-            )
+            # one undecided mu per bracket: a second one is an interval of slow runs
+            straddle = self.phase == "bisect" and self.split == 2 and self._straddled() is None
             if request.level >= self.max_retries and straddle:
                 self.undecided.append(request.mu)
                 self._round += 1  # the round around it
