@@ -225,7 +225,9 @@ class JumpSearch:
             status, reason = "failed", "; ".join(problems)
         else:
             kinds = ", ".join(
-                f"{'rising' if j.rising else 'falling'} at {j.mu_star:.6g}" for j in jumps
+                f"{'rising' if j.rising else 'falling'} at {j.mu_star:.6g}"
+                + ("" if j.certification == "off" else f" ({j.certification})")
+                for j in jumps
             )
             status = "converged"
             reason = f"{len(jumps)} jump(s) to tol {self.tol:.3g}: {kinds}"
