@@ -155,9 +155,13 @@ class Bisection:
         """(round, level, mu) of a request this bisection asked for (None otherwise)."""
         return self._issued.get(request)
 
+    def _undecided_inside(self) -> list[float]:
+        """The undecided mu that lie inside the current bracket."""
+        return [mu for mu in self.undecided if self.lo < mu < self.hi]
+
     def _straddled(self) -> float | None:
         """The undecided mu inside the bracket, if any (plain bisection only)."""
-        inside = [mu for mu in self.undecided if self.lo < mu < self.hi]
+        inside = self._undecided_inside()
         return inside[-1] if inside and self.split == 2 else None
 
     def _interior(self) -> list[float]:
@@ -314,7 +318,7 @@ class Bisection:
         )
 
     def _undecided_note(self) -> str:
-        inside = [mu for mu in self.undecided if self.lo < mu < self.hi]
+        inside = self._undecided_inside()
         if not inside:
             return ""
         mus = ", ".join(f"{mu:.10g}" for mu in inside)

@@ -91,17 +91,11 @@ class CertifiedBisection:
         self._issued: dict[RunRequest, tuple] = {}
         self._checking = False
         self._verdict: str | None = None  # set when done
-        self._final: BisectionResult | None = None
-        self._aborted: str | None = None
 
     # ---- what to run ------------------------------------------------------------------
     @property
     def done(self) -> bool:
         return self._verdict is not None
-
-    @property
-    def phase(self) -> str:
-        return "certify" if self._checking else self.search.phase
 
     def pending(self) -> list[RunRequest]:
         if self.done:
@@ -147,7 +141,6 @@ class CertifiedBisection:
 
     def abort(self, reason: str) -> None:
         if not self.done:
-            self._aborted = reason
             self.search.abort(reason)
             self._finish("failed")
 
@@ -242,6 +235,3 @@ class CertifiedBisection:
             f"ends re-run at horizon x {self.certify.horizon**level:g}, "
             f"rtol x {self.certify.rtol**level:g}"
         )
-
-    def end_result(self, which: str) -> dict[str, Any] | None:
-        return self.result().end_result(which)

@@ -65,6 +65,14 @@ DIMENSIONLESS = {"point", "level", "strict", "n_runs", "setting", "contact", "n_
 MIXED_UNITS = {"value": "value_units"}
 
 
+def flag_meanings(var: xr.DataArray) -> dict[int, str]:
+    """flag_values -> flag_meanings of a CF flag variable ({} if it has none); flag_values
+    default to 0, 1, ... as in the builders."""
+    names = str(var.attrs.get("flag_meanings", "")).split()
+    values = var.attrs.get("flag_values", range(len(names)))
+    return {int(v): name for v, name in zip(values, names, strict=False)}
+
+
 def _source() -> str:
     from frictiondisk.campaign.journal import kernel_version
 

@@ -13,9 +13,12 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk import cf
+from frictiondisk.bisection import RunRequest
 from frictiondisk.campaign.journal import kernel_version
+from frictiondisk.campaign.requests import run_config
 from frictiondisk.certify import CERTIFICATION_FLAGS
 from frictiondisk.config import describe_key
+from frictiondisk.horizon import horizon_of
 from frictiondisk.version import __version__
 from frictiondisk.yamlio import dump_yaml
 
@@ -217,10 +220,11 @@ def _strict_of(res) -> int:
 
 
 def verdict_numerics(point_config, task, strict: int) -> tuple[float, float]:
-    """(decision horizon [s], rtol) of a run at certification level `strict`."""
-    num = point_config.numerics
-    horizon = num.t_decide * task.certify.horizon**strict
-    return horizon, num.rtol * task.certify.rtol**strict
+    """(decision horizon [s], rtol) of a run at certification level `strict`, as
+    requests.run_config builds it (the one place that scales them)."""
+    request = RunRequest(point_config.params.mu, strict=strict)
+    config = run_config(point_config, request, task.horizon_factor, task.certify)
+    return horizon_of(config), config.numerics.rtol
 
 
 def _all_jumps(campaign, planner, dims: tuple[str, ...]) -> dict[str, Any]:

@@ -68,6 +68,7 @@ from frictiondisk.campaign.figure_style import (  # noqa: F401  (re-exported)
     new_figure,
     scene_title,
 )
+from frictiondisk.cf import flag_meanings
 from frictiondisk.plotting import SLIDE_COLOR, STICK_COLOR
 
 __all__ = [
@@ -348,10 +349,8 @@ def _flagged(results: xr.Dataset, meaning: str) -> np.ndarray:
     if "certification" not in results:
         return np.zeros(results["mu_star"].shape, bool)
     var = results["certification"]
-    meanings = str(var.attrs.get("flag_meanings", "")).split()
-    if meaning not in meanings:
-        return np.zeros(var.shape, bool)
-    return np.asarray(var.values) == meanings.index(meaning)
+    codes = [code for code, name in flag_meanings(var).items() if name == meaning]
+    return np.isin(np.asarray(var.values), codes)
 
 
 def plot_jump_line(

@@ -9,6 +9,8 @@ import math
 import numpy as np
 import xarray as xr
 
+from frictiondisk.cf import flag_meanings
+
 
 def _unit(coord: xr.DataArray) -> str:
     unit = str(coord.attrs.get("units", "")).strip()
@@ -60,9 +62,8 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
 
 def _flag(var: xr.DataArray, value) -> str:
     """The meaning of one CF flag value."""
-    meanings = str(var.attrs.get("flag_meanings", "")).split()
     code = int(value)
-    return meanings[code] if 0 <= code < len(meanings) else str(code)
+    return flag_meanings(var).get(code, str(code))
 
 
 def uncertain_summary(results: xr.Dataset) -> str | None:

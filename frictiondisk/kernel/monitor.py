@@ -93,8 +93,8 @@ VERDICT_REVS = 5
 VERDICT_Z = 2.0
 # Stationarity (trend_to_stick): two windows of TREND_REVS revolutions each are compared.
 # Three revolutions average the stick-slip cycle's beat against the master revolution; a
-# slow measure that moves towards stick by more than TREND_REL of its size (slip, spin
-# drift) or of a revolution (stick time) from one window to the next is a trend.
+# slow measure that moves towards stick by more than TREND_REL of its size (slip) or of a
+# revolution (stick time) from one window to the next is a trend.
 TREND_REVS = 3
 TREND_REL = 0.02
 # Spacing (revolutions) below which Aitken's limit is not trusted: measured on the braked
