@@ -16,6 +16,16 @@ never guess):
 * every run is kept; runs that contradict monotonicity (a stick below a not-stick) are
   listed in the result instead of being hidden.
 
+Interpolation (`root_finder="itp"`, the default for split 2): every run also reports its
+friction reserve (frictiondisk/reserve.py), a signed signal that crosses zero near mu*.
+Each round's point is its secant root (regula falsi between the bracket ends, or a unit
+slope from one end), nudged past the estimate so that it lands beyond it, and then
+projected into ITP's window (Oliveira & Takahashi 2020): whichever way the verdict goes, the
+bracket stays within what bisection would have left one round later (`ITP_SLACK` = 1 round
+of slack), so a signal that misleads costs at most one run more than bisection. With no
+usable signal (never stuck, signs that contradict the verdicts) the round is a plain
+bisection. Verdicts alone move the bracket.
+
 Multisection (`split` = k >= 2): each round asks for the k - 1 interior points that cut
 [mu_lo, mu_hi] into k equal parts, all at once (they may run in parallel), and moves only
 when all of them are decided: the new bracket is the lowest part whose ends differ in the
@@ -27,11 +37,14 @@ The last round uses the fewest parts that reach tol (at most k), so no run is wa
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any
 
 STICK = "stick"
 UNDETERMINED = "undetermined"
 WIDEN_FACTOR = 2.0  # a widened bracket is this many times wider
+ROOT_FINDERS = ("itp", "bisect")
+ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -106,12 +119,16 @@ class Bisection:
         rising: bool = True,
         split: int = 2,
         strict: int = 0,
+        root_finder: str = "itp",
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
             raise ValueError(f"bad bracket {bracket} for limits {limits} and tol {tol}")
         if split < 2:
             raise ValueError(f"split must be >= 2 (parts per round), got {split}")
+        if root_finder not in ROOT_FINDERS:
+            raise ValueError(f"root_finder must be one of {ROOT_FINDERS}, got {root_finder!r}")
+        self.root_finder = root_finder
         self.split = split
         self.strict = strict  # certification level of every run this bisection asks for
         self.lo = lo
@@ -132,6 +149,12 @@ class Bisection:
         # an interior mu still undetermined after every retry: the critical slowing down at
         # the jump itself. The bisection then straddles it (see _interior).
         self.undecided: list[float] = []
+        self._signal: dict[float, float] = {}  # mu -> friction reserve (decided runs, finite)
+        # (schedule key, mu) of the decided runs: "the last two" never depend on timing
+        self._decided: list[tuple[tuple[int, int, float], float]] = []
+        self._probe: tuple[int, float] | None = None  # (round, mu) of this round's probe
+        self._itp: tuple[int, int] | None = None  # (first bisect round, its round budget)
+        self._estimate: float | None = None  # the last round's root estimate
 
     # ---- what to run ------------------------------------------------------------------
     def pending(self) -> list[RunRequest]:
@@ -172,6 +195,8 @@ class Bisection:
         u = self._straddled()
         if u is not None:
             return [max(self.lo, u - width / 4), min(self.hi, u + width / 4)]
+        if self.split == 2 and self.root_finder == "itp":
+            return [self._itp_probe()]
         parts = self.split
         # the last round: the fewest parts that reach tol (same test as _maybe_converged)
         while parts > 2 and width / (parts - 1) <= self.tol * (1 + 1e-9):
@@ -201,6 +226,10 @@ class Bisection:
                 self._level[request.mu] = request.level + 1
             return
         self._known[request.mu] = STICK if outcome == STICK else "not stick"
+        self._decided.append((self._issued[request], request.mu))
+        reserve = result.get("reserve")
+        if reserve is not None and math.isfinite(reserve):
+            self._signal[request.mu] = float(reserve)
         if self.phase == "check":
             self._after_check()
         else:
@@ -241,7 +270,8 @@ class Bisection:
                     f"{self._outcome_at(self.hi)}"
                 )
             else:
-                self._next_round(self.hi, min(self.limits[1], self.hi + WIDEN_FACTOR * width))
+                far = min(self.limits[1], self.hi + WIDEN_FACTOR * width)
+                self._next_round(self.hi, self._guided_end(self.hi, far))
         else:  # both ends stick: the jump lies below
             if self.lo <= self.limits[0]:
                 self._failure = (
@@ -249,7 +279,8 @@ class Bisection:
                     f"mu_hi = {self.hi:.10g} gave stick"
                 )
             else:
-                self._next_round(max(self.limits[0], self.lo - WIDEN_FACTOR * width), self.lo)
+                far = max(self.limits[0], self.lo - WIDEN_FACTOR * width)
+                self._next_round(self._guided_end(self.lo, far), self.lo)
 
     def _after_round(self) -> None:
         """Once every interior point is decided: the lowest part whose ends differ in the
@@ -281,8 +312,103 @@ class Bisection:
         if phase is not None:
             self.phase = phase
         self._round += 1
+        if self.phase == "bisect" and self._itp is None:
+            rounds = math.ceil(math.log2((self.hi - self.lo) / self.tol) - 1e-9)
+            self._itp = (self._round, max(0, rounds) + ITP_SLACK)
         if self.phase == "bisect":
             self._maybe_converged()
+
+    # ---- the interpolating probe (root_finder "itp") ---------------------------------
+    def _itp_probe(self) -> float:
+        """This round's point: the signal's root estimate, nudged past it, inside ITP's
+        window. Computed once per round (pending() asks again after every result)."""
+        if self._probe is None or self._probe[0] != self._round:
+            self._probe = (self._round, self._choose_probe())
+        return self._probe[1]
+
+    def _choose_probe(self) -> float:
+        lo, hi, tol = self.lo, self.hi, self.tol
+        mid = 0.5 * (lo + hi)
+        first, budget = self._itp
+        # after this round the bracket must be no wider than bisection's would be at the
+        # end of the budget: width <= tol 2**(rounds left), whichever way the verdict goes
+        window = tol * 2.0 ** (budget - (self._round - first) - 1)
+        if 2.0 * window <= hi - lo:  # no room left: bisection keeps the promise
+            self._estimate = None
+            return mid
+        estimate = self._root_estimate()
+        if estimate is None:
+            self._estimate = None
+            return mid
+        near, far = (lo, hi) if estimate - lo < hi - estimate else (hi, lo)
+        toward_far = 1.0 if far > near else -1.0
+        if abs(estimate - near) < tol:
+            # one run closes the bracket if the root lies where the signal says
+            probe = near + toward_far * tol * (1.0 - 1e-6)
+        else:
+            # half a tol beyond the estimate: a good estimate then leaves the near end's
+            # side behind, and the next round can close the bracket in one run
+            step = min(0.5 * tol, 0.5 * abs(far - estimate))
+            probe = estimate + toward_far * step
+        self._estimate = estimate
+        probe = min(max(probe, hi - window), lo + window)
+        if not lo < probe < hi or probe in self._known:
+            return mid
+        return probe
+
+    def _root_estimate(self) -> float | None:
+        """Where the friction reserve crosses zero inside (lo, hi), or None: the secant
+        through the bracket ends when both carry a reserve whose sign agrees with their
+        verdict (reserve > 0: stick), else a unit slope from the end that does (the
+        reserve is mu minus a demand that moves slowly with mu)."""
+        lo, hi = self.lo, self.hi
+        agrees = {mu: self._agrees(mu) for mu in (lo, hi)}
+        estimate = None
+        recent = [mu for _, mu in sorted(self._decided)[-2:] if self._agrees(mu)]
+        if len(recent) == 2 and self._signal[recent[0]] != self._signal[recent[1]]:
+            # the secant through the last two runs: no stagnation at a far end
+            (a, b), (s_a, s_b) = recent, (self._signal[mu] for mu in recent)
+            estimate = b - s_b * (b - a) / (s_b - s_a)
+            if not lo < estimate < hi:
+                estimate = None
+        if estimate is not None:
+            pass
+        elif agrees[lo] and agrees[hi]:
+            s_lo, s_hi = self._signal[lo], self._signal[hi]
+            estimate = lo - s_lo * (hi - lo) / (s_hi - s_lo)
+        else:
+            for end in (hi, lo):
+                if agrees[end]:
+                    estimate = end - self._signal[end]
+                    break
+        if estimate is None or not lo < estimate < hi:
+            return None
+        return estimate
+
+    def _guided_end(self, end: float, far: float) -> float:
+        """The far end of a widened bracket that reaches from `end` to at most `far`: just
+        past the reserve's root where both ends' reserves agree with their (equal) verdicts
+        and extrapolate to a root between end and far, else `far` (geometric widening)."""
+        if self.root_finder != "itp" or self.split != 2:
+            return far
+        other = self.hi if end == self.lo else self.lo
+        if (
+            not (self._agrees(end) and self._agrees(other))
+            or self._signal[end] == self._signal[other]
+        ):
+            return far
+        s_end, s_other = self._signal[end], self._signal[other]
+        root = end - s_end * (end - other) / (s_end - s_other)
+        direction = 1.0 if far > end else -1.0
+        reach = (root - end) * direction  # how far beyond `end` the root lies
+        if not 0.0 < reach < abs(far - end):
+            return far
+        step = max(reach + 0.5 * self.tol, self.tol * (1.0 - 1e-6))
+        return end + direction * min(step, abs(far - end))
+
+    def _agrees(self, mu: float) -> bool:
+        """mu carries a reserve whose sign agrees with its verdict (> 0: stick)."""
+        return mu in self._signal and (self._signal[mu] > 0) == (self._known[mu] == STICK)
 
     def _outcome_at(self, mu: float) -> str:
         for run in reversed(self.runs):

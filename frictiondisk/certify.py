@@ -76,6 +76,7 @@ class CertifiedBisection:
         rising: bool = True,
         split: int = 2,
         certify: Certify = OFF,
+        root_finder: str = "itp",
     ):
         self.tol = tol
         self.limits = limits
@@ -83,7 +84,10 @@ class CertifiedBisection:
         self.rising = rising
         self.split = split
         self.certify = certify
-        self.search = Bisection(bracket, tol, limits, max_retries, rising, split)
+        self.root_finder = root_finder
+        self.search = Bisection(
+            bracket, tol, limits, max_retries, rising, split, root_finder=root_finder
+        )
         self.searches: list[Bisection] = [self.search]
         self._checks: dict[float, RunRecord] = {}  # mu -> decided strict run of this check
         self._check_level: dict[float, int] = {}  # mu -> retry level to ask for next
@@ -191,7 +195,14 @@ class CertifiedBisection:
             self._finish("vanished")
             return
         search = Bisection(
-            bracket, self.tol, old.limits, self.max_retries, self.rising, self.split, strict
+            bracket,
+            self.tol,
+            old.limits,
+            self.max_retries,
+            self.rising,
+            self.split,
+            strict,
+            self.root_finder,
         )
         self.search = search
         self.searches.append(search)

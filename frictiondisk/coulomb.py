@@ -30,6 +30,7 @@ from scipy.integrate import solve_ivp
 
 from .classify import revolution
 from .horizon import horizon_of
+from .reserve import friction_reserve
 from .result import SimulationResult
 
 V_STICK = 1e-10  # [m/s] sliding speed taken as zero (the stop takes ~1e-9 s from here)
@@ -194,4 +195,5 @@ def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> Simul
         wall_s=time.perf_counter() - wall0,
         method="coulomb",
         trajectory=None,
+        reserve=friction_reserve(config, first[2]),
     )

@@ -28,6 +28,13 @@ from frictiondisk.bisection import (
 )
 from frictiondisk.certify import OFF, CertifiedBisection, Certify, point_certification
 
+RUN_ROLES = ("search", "prescan", "certification")
+
+
+def run_role(request: RunRequest) -> str:
+    """The role of a run of a bisection: `certification` at stricter numerics, else `search`."""
+    return "certification" if request.strict > 0 else "search"
+
 
 @dataclasses.dataclass(frozen=True)
 class JumpSearchResult:
@@ -41,6 +48,7 @@ class JumpSearchResult:
     scan: tuple[RunRecord, ...]  # the prescan runs, one per mu (its last retry level)
     runs: tuple[RunRecord, ...]  # every run made: prescan, then each bisection's own
     primary: BisectionResult | None
+    prescan_runs: tuple[RunRecord, ...] = ()  # every prescan run, retries included
 
     @property
     def mu_lo(self) -> float:
@@ -66,6 +74,12 @@ class JumpSearchResult:
     def end_result(self, which: str) -> dict[str, Any] | None:
         return self.primary.end_result(which) if self.primary else None
 
+    def role(self, request: RunRequest) -> str:
+        """`prescan`, `certification` (stricter numerics) or `search` (bisection)."""
+        if any(run.request == request for run in self.prescan_runs):
+            return "prescan"
+        return run_role(request)
+
     @property
     def certification(self) -> str:
         """The weakest certification of the point's jumps (`failed` if it has none)."""
@@ -85,6 +99,7 @@ class JumpSearch:
         scan_mode: str | None = None,
         split: int = 2,
         certify: Certify = OFF,
+        root_finder: str = "itp",
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -94,6 +109,7 @@ class JumpSearch:
         self.scan_mode = scan_mode
         self.split = split  # parts per bisection round (bisection.Bisection)
         self.certify = certify  # every jump's bracket is certified (frictiondisk.certify)
+        self.root_finder = root_finder  # how each jump's bisection picks its runs
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}
@@ -173,6 +189,7 @@ class JumpSearch:
                 stick_b,
                 self.split,
                 self.certify,
+                self.root_finder,
             )
             # its end checks are the prescan runs: fed, not run again
             for mu in (mu_a, mu_b):
@@ -234,7 +251,15 @@ class JumpSearch:
             if vanished:
                 reason += f"; {vanished} more vanished at stricter numerics"
         runs = tuple(sorted([*self._scan_runs, *self._bisection_runs], key=self._order))
-        return JumpSearchResult(status, reason, jumps, scan, runs, primary)
+        return JumpSearchResult(
+            status,
+            reason,
+            jumps,
+            scan,
+            runs,
+            primary,
+            tuple(sorted(self._scan_runs, key=self._order)),
+        )
 
     def _last_scan(self) -> dict[float, RunRecord]:
         """mu -> its last prescan run (the one at the highest retry level)."""

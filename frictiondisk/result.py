@@ -102,6 +102,8 @@ class SimulationResult:
     slip_decay: float = math.nan  # mean log ratio of successive slips per revolution [1/rev]
     slip_limit: float = math.nan  # extrapolated limit of slip_per_rev (Aitken) [m]
     slip_total: float = math.nan  # net plastic slip over the whole run [m]
+    # mu - demand(R1) / F_n: > 0 where the first sticking circle holds (frictiondisk/reserve.py)
+    reserve: float = math.nan  # [1]
 
     def summary(self) -> dict[str, Any]:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""

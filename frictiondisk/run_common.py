@@ -12,6 +12,7 @@ import numpy as np
 
 from .classify import Revolutions, RunFacts, classify, revolution
 from .kernel import monitor as mon
+from .reserve import friction_reserve
 from .result import SimulationResult
 
 
@@ -87,10 +88,11 @@ def build_result(
         # still creep outwards, and their radius says nothing about the final cycle
         size = float(mf[mon.F_SIZE])
         a = float(mf[mon.F_A])
+    R1 = float(mf[mon.F_R1])
     return SimulationResult(
         outcome=outcome,
         reason=reason,
-        R1=float(mf[mon.F_R1]),
+        R1=R1,
         t_R1=float(mf[mon.F_T_R1]),
         size=size,
         a=a,
@@ -106,6 +108,7 @@ def build_result(
         trajectory=trajectory,
         revolutions=None if revolution_ring is None else revolution_log(revolution_ring[0], mi),
         slip_total=math.nan if revolution_ring is None else float(revolution_ring[1]),
+        reserve=friction_reserve(config, R1),
         **_revolution_measures(revs),
         **(energy or {}),
     )

@@ -89,14 +89,15 @@ def _echo_uncertain(results_path: Path) -> None:
     best bracket of each is kept in results.nc, flagged `uncertain`."""
     import xarray as xr
 
-    from frictiondisk.campaign.table import uncertain_summary
+    from frictiondisk.campaign.table import runs_summary, uncertain_summary
 
     if results_path.name != "results.nc" or not results_path.is_file():
         return
     with xr.open_dataset(results_path) as results:
-        line = uncertain_summary(results)
-    if line:
-        click.echo(line)
+        lines = [runs_summary(results), uncertain_summary(results)]
+    for line in lines:
+        if line:
+            click.echo(line)
 
 
 def _echo_basin(results_path: Path) -> None:
@@ -292,8 +293,8 @@ def _mu_star_lines(results_file: Path) -> list[str]:
     """The mu* table of a finished find_jump campaign (empty for other tasks)."""
     import xarray as xr
 
-    from frictiondisk.campaign.table import mu_star_table, uncertain_summary
+    from frictiondisk.campaign.table import mu_star_table, runs_summary, uncertain_summary
 
     with xr.open_dataset(results_file) as results:
-        line = uncertain_summary(results)
-        return mu_star_table(results) + ([line] if line else [])
+        lines = [runs_summary(results), uncertain_summary(results)]
+        return mu_star_table(results) + [line for line in lines if line]

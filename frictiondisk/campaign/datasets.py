@@ -19,6 +19,7 @@ from frictiondisk.campaign.requests import run_config
 from frictiondisk.certify import CERTIFICATION_FLAGS
 from frictiondisk.config import describe_key
 from frictiondisk.horizon import horizon_of
+from frictiondisk.jumps import RUN_ROLES, run_role
 from frictiondisk.version import __version__
 from frictiondisk.yamlio import dump_yaml
 
@@ -45,6 +46,8 @@ RUN_MEASURES = {  # summary field -> (units, long name)
     ),
     "slip_decay": ("1", "mean log ratio of successive slips per revolution"),
     "slip_limit": ("m", "extrapolated limit of the slip per revolution"),
+    # the search's continuous signal (frictiondisk/reserve.py); NaN if never stuck
+    "reserve": ("1", "friction reserve mu - demand(R1) / F_n of the first sticking circle"),
 }
 
 
@@ -125,6 +128,7 @@ def _jump_results(campaign, planner) -> xr.Dataset:
             "certification",
             "verdict_horizon",
             "verdict_rtol",
+            *(f"runs_{role}" for role in RUN_ROLES),
         )
     }
     task = campaign.task
@@ -139,6 +143,9 @@ def _jump_results(campaign, planner) -> xr.Dataset:
         cols["size_hi"].append(_num(hi.get("size")))
         cols["R1_hi"].append(_num(hi.get("R1")))
         cols["n_runs"].append(len(res.runs))
+        roles = [_role_of(res, run.request) for run in res.runs]
+        for role in RUN_ROLES:
+            cols[f"runs_{role}"].append(roles.count(role))
         cols["status"].append(res.status)
         cols["reason"].append(res.reason)
         cols["monotone"].append(np.int8(res.monotone))
@@ -174,6 +181,10 @@ def _jump_results(campaign, planner) -> xr.Dataset:
             "size_hi": var("size_hi", "m", "size at mu_hi (the sticking circle)", float),
             "R1_hi": var("R1_hi", "m", "first sticking radius at mu_hi", float),
             "n_runs": var("n_runs", "1", "runs made for this point", np.int64),
+            **{
+                f"runs_{role}": var(f"runs_{role}", "1", f"{role} runs of this point", np.int64)
+                for role in RUN_ROLES
+            },
             "status": var("status", None, "converged or failed", str),
             "reason": var("reason", None, "why the point converged or failed", str),
             "monotone": var("monotone", None, "1 if no run contradicts a single jump", np.int8),
@@ -211,6 +222,11 @@ def _jump_results(campaign, planner) -> xr.Dataset:
 
 
 CERTIFICATION_FILL = -1  # a padded jump slot (a point with fewer jumps than the most)
+
+
+def _role_of(res, request) -> str:
+    """search, prescan or certification (jumps.RUN_ROLES) of one run of a point's result."""
+    return res.role(request) if hasattr(res, "role") else run_role(request)
 
 
 def _strict_of(res) -> int:
@@ -391,6 +407,21 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             {
                 "long_name": "certification level (horizon x certify.horizon**strict, "
                 "rtol x certify.rtol**strict)"
+            },
+        ),
+        "role": (
+            "run",
+            np.asarray(
+                [
+                    _role_of(planner.results[r[0]], r[1])
+                    if campaign.task.kind == "find_jump"
+                    else "scan"
+                    for r in rows
+                ],
+                str,
+            ),
+            {
+                "long_name": "why the run was made: search, prescan or certification (find_jump); scan"
             },
         ),
         "mode": (

@@ -460,6 +460,10 @@ class Journal:
         if key[:2] not in self._shards:
             path.parent.mkdir(exist_ok=True)
             self._shards.add(key[:2])
+        if os.path.lexists(path):
+            # a run recomputed by a worker, which only peeks: a bad entry in its place is
+            # moved aside and reported here, never silently overwritten
+            self.get(key)
         # no fsync: a torn entry fails its sha256 on read and is computed again
         atomic_write_bytes(path, data, durable=False, make_parents=False)
         self._log(key)

@@ -7,13 +7,15 @@ runs them on Dask). It does no I/O and knows nothing of Dask, and the results do
 depend on worker count or timing: every decision depends only on outcomes, never on the
 order they arrive in.
 
-Warm start (find_jump), along the last varied dimension ("a row"): a point starts once
-every point at least `lanes` places before it in its row is done, so up to `lanes`
-points of a row are in flight at once. Its bracket is predicted by linear extrapolation
-through the two nearest of those finished points; with fewer than two it starts cold
-(a constant prediction from one point costs more widening than it saves). Which points
-a prediction uses is fixed by the campaign, never by timing, so 1 and 2 workers give
-identical results.
+Warm start (find_jump), along the last varied dimension ("a row"), coarse to fine: the
+row's two ends start cold, then its midpoint, then the midpoints of the two halves, and so
+on (`refinement`). A point starts once the two points that bound its interval are done
+and fewer than `lanes` points of its row are in flight. Its bracket is predicted by
+interpolation: linear between those two, quadratic with the end of the interval they
+were cut from, half-width tol / 2, or 2 |quadratic - linear| where that is larger, so
+that a point of a smooth line costs two runs before certification. A side that does not
+hold widens (bisection.Bisection). Which points a prediction uses is fixed by the
+campaign, never by timing, so 1 and 2 workers give identical results.
 """
 
 from __future__ import annotations
@@ -27,9 +29,9 @@ from frictiondisk.campaign.basin_plan import BasinPlanner
 from frictiondisk.campaign.requests import run_config
 from frictiondisk.campaign.tasks import run_batch, run_bisection, run_scene
 from frictiondisk.certify import CertifiedBisection
-from frictiondisk.jumps import JumpSearch, JumpSearchResult
+from frictiondisk.jumps import JumpSearch, JumpSearchResult, run_role
 
-WARM_HALF_WIDTH_TOLS = 3.0  # half-width of a predicted bracket, in units of tol
+WARM_ERROR_FACTOR = 2.0  # half-width of a quadratic prediction: this x |quadratic - linear|
 
 
 def cold_run_count(bracket: tuple[float, float], tol: float) -> int:
@@ -74,6 +76,10 @@ class JumpPlanner:
         self._jobs: dict[int, tuple[str, Any]] = {}  # job -> ("chain", i) | ("runs", units)
         self._next_job = 0
         self._canonicals: dict[tuple[int, RunRequest], dict] = {}  # the driver computed these
+        row_order, self._tree = refinement(self.shape[-1])
+        width = self.shape[-1]
+        rows = len(self.points) // width
+        self._start_order = [row * width + pos for pos in row_order for row in range(rows)]
 
     def remember_canonical(self, i: int, request: RunRequest, canonical: dict) -> None:
         """Keep a run's canonical scene the driver already built (saves ~1 ms a run)."""
@@ -90,7 +96,7 @@ class JumpPlanner:
 
     def requests(self) -> list[tuple[int, RunRequest]]:
         """Runs the started points need now and nobody is computing."""
-        for i in range(len(self.points)):
+        for i in self._start_order:
             if i not in self.bisections and self._ready(i):
                 self._start(i)
         return [
@@ -200,20 +206,24 @@ class JumpPlanner:
             bis.abort(reason)
             self.results[i] = bis.result()
 
-    # ---- warm-start window ------------------------------------------------------------
+    # ---- warm-start order -------------------------------------------------------------
     def _row_pos(self, i: int) -> tuple[int, int]:
         return divmod(i, self.shape[-1])
-
-    def _finished_before(self, i: int) -> list[int]:
-        """Points at least `lanes` places before i in its row, nearest first."""
-        row, pos = self._row_pos(i)
-        first = row * self.shape[-1]
-        return [first + p for p in range(pos - self.task.lanes, -1, -1)]
 
     def _ready(self, i: int) -> bool:
         if self.task.prescan is not None:
             return True
-        return all(j in self.results for j in self._finished_before(i))
+        row, pos = self._row_pos(i)
+        first = row * self.shape[-1]
+        bounds = self._tree[pos]
+        if bounds is not None and any(first + j not in self.results for j in bounds[:2]):
+            return False
+        in_flight = sum(
+            1
+            for j in range(first, first + self.shape[-1])
+            if j in self.bisections and j not in self.results
+        )
+        return in_flight < self.task.lanes
 
     def _start(self, i: int) -> None:
         prescan = self.task.prescan
@@ -226,6 +236,7 @@ class JumpPlanner:
                 prescan.mode,
                 self.task.split,
                 self.task.certify,
+                self.task.root_finder,
             )
             return
         bracket = self._predicted_bracket(i)
@@ -238,31 +249,76 @@ class JumpPlanner:
             self.task.max_retries,
             split=self.task.split,
             certify=self.task.certify,
+            root_finder=self.task.root_finder,
         )
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:
-        found = [j for j in self._finished_before(i) if self.results[j].status == "converged"]
-        if len(found) < 2:
+        row, pos = self._row_pos(i)
+        bounds = self._tree[pos]
+        if bounds is None:
+            return None
+        first = row * self.shape[-1]
+        used = [first + j for j in bounds if j is not None]
+        if any(self.results[j].status != "converged" for j in used[:2]):
             return None
         dim = self.campaign.dims[-1]
         x = self.points[i].coords[dim]
-        (x1, mu1), (x2, mu2) = (
-            (self.points[j].coords[dim], self.results[j].mu_star) for j in found[:2]
-        )
-        mu_hat = mu1 + (mu1 - mu2) * (x - x1) / (x1 - x2)
-        half = WARM_HALF_WIDTH_TOLS * self.task.tol
+        known = [
+            (self.points[j].coords[dim], self.results[j].mu_star)
+            for j in used
+            if self.results[j].status == "converged"
+        ]
+        linear = _extrapolate(known[:2], x)
+        mu_hat, half = linear, 0.5 * self.task.tol
+        if len(known) == 3:
+            mu_hat = _extrapolate(known, x)
+            half = max(half, WARM_ERROR_FACTOR * abs(mu_hat - linear))
         lo = max(self.task.limits[0], mu_hat - half)
         hi = min(self.task.limits[1], mu_hat + half)
         return (lo, hi) if lo < hi else None
 
     def runs_saved(self) -> int:
-        """Runs a cold bisection from the campaign bracket would have made, minus the runs
-        the warm-started points made (points that failed are not counted)."""
+        """Search runs a cold bisection from the campaign bracket would have made, minus
+        the search runs the warm-started points made (certification runs are the same
+        either way; points that failed are not counted). Never negative: a warm point
+        that needed more than a cold one saved nothing."""
         saved = 0
         for i, res in self.results.items():
             if self.warm.get(i) and res.status == "converged":
-                saved += cold_run_count(tuple(self.task.bracket), self.task.tol) - len(res.runs)
+                search = sum(1 for run in res.runs if run_role(run.request) == "search")
+                cold = cold_run_count(tuple(self.task.bracket), self.task.tol)
+                saved += max(0, cold - search)
         return saved
+
+
+def _extrapolate(known: list[tuple[float, float]], x: float) -> float:
+    """The Lagrange polynomial through `known` (x_k, mu_k) pairs, evaluated at x."""
+    total = 0.0
+    for k, (x_k, mu_k) in enumerate(known):
+        weight = 1.0
+        for m, (x_m, _) in enumerate(known):
+            if m != k:
+                weight *= (x - x_m) / (x_k - x_m)
+        total += weight * mu_k
+    return total
+
+
+def refinement(n: int) -> tuple[list[int], list[tuple[int, int, int | None] | None]]:
+    """The coarse-to-fine order of a row of n points and, for each position, the two
+    positions that bound its interval and the far end of the interval that was cut
+    (None: an end of the row, or the first cut), or None for the row's ends."""
+    order = [0] if n == 1 else [0, n - 1]
+    tree: list[tuple[int, int, int | None] | None] = [None] * n
+    queue = [(0, n - 1, None)]
+    while queue:
+        a, b, outer = queue.pop(0)
+        if b - a < 2:
+            continue
+        mid = (a + b) // 2
+        order.append(mid)
+        tree[mid] = (a, b, outer)
+        queue += [(a, mid, b), (mid, b, a)]
+    return order, tree
 
 
 class ScanPlanner:

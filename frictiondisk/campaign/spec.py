@@ -45,6 +45,7 @@ import yaml
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
+from frictiondisk.bisection import ROOT_FINDERS
 from frictiondisk.certify import OFF as CERTIFY_OFF
 from frictiondisk.certify import Certify
 
@@ -90,6 +91,7 @@ FIND_JUMP_KEYS = (
     "prescan",
     "split",
     "certify",
+    "root_finder",
 )
 CERTIFY_KEYS = ("horizon", "rtol", "levels")
 SCAN_KEYS = ("mu", "along", "mode")
@@ -113,6 +115,7 @@ DEFAULT_LANES = 2  # warm-start chains
 DEFAULT_SPLIT = 2  # parts per bisection round: 2 = plain bisection (bisection.Bisection)
 MAX_SPLIT = 64
 DEFAULT_CERTIFY = Certify()  # horizon x 4, rtol x 0.1 per level, up to level 2
+DEFAULT_ROOT_FINDER = "itp"  # interpolate on the friction reserve (bisection.Bisection)
 DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (docs/model.md section 6)
 DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)
 DEFAULT_BASIN_BATCH = 100  # samples per adaptive batch (target_se): the stop rule's step
@@ -168,6 +171,7 @@ class FindJump:
     prescan: Prescan | None = None
     split: int = DEFAULT_SPLIT  # parts per bisection round (k - 1 runs per round, at once)
     certify: Certify = DEFAULT_CERTIFY  # re-check of every jump at stricter numerics
+    root_finder: str = DEFAULT_ROOT_FINDER  # "itp" (interpolating) or "bisect"
 
     def canonical(self) -> dict[str, Any]:
         """JSON-able dict, keys sorted except `along`, whose order is the dims order.
@@ -189,6 +193,8 @@ class FindJump:
             out["split"] = self.split
         if self.certify != DEFAULT_CERTIFY:
             out["certify"] = self.certify.canonical()
+        if self.root_finder != DEFAULT_ROOT_FINDER:
+            out["root_finder"] = self.root_finder
         return {key: out[key] for key in sorted(out)}
 
 
@@ -520,7 +526,15 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
     if base is not None and None not in (max_retries, horizon_factor):
         _check_retry_horizon(base, prescan, max_retries, horizon_factor, problems)
     certify = _certify(spec.get("certify", True), problems)
-    if None in (bracket, tol, limits, max_retries, horizon_factor, lanes, split, along, certify):
+    root_finder = spec.get("root_finder", DEFAULT_ROOT_FINDER)
+    if root_finder not in ROOT_FINDERS:
+        allowed = " or ".join(repr(item) for item in ROOT_FINDERS)
+        problems.append(
+            f"find_jump.root_finder: {_show(root_finder)} is not allowed: must be {allowed}"
+        )
+        root_finder = None
+    needed = (bracket, tol, limits, max_retries, horizon_factor, lanes, split, along, certify)
+    if None in (*needed, root_finder):
         return None
     return FindJump(
         parameter=parameter,
@@ -534,6 +548,7 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
         prescan=prescan,
         split=split,
         certify=certify,
+        root_finder=root_finder,
     )
 
 

@@ -82,3 +82,16 @@ def uncertain_summary(results: xr.Dataset) -> str | None:
         coords = coords if isinstance(coords, tuple) else (coords,)
         where.append(", ".join(f"{d} = {c:g}" for d, c in zip(var.dims, coords, strict=True)))
     return f"{len(uncertain)} of {flat.sizes['point']} points uncertain: " + "; ".join(where)
+
+
+def runs_summary(results: xr.Dataset) -> str | None:
+    """'runs per point: 5.8 (search 3.4, prescan 0, certification 2.4)' for a find_jump
+    results.nc; None for other tasks."""
+    if "runs_search" not in results or "n_runs" not in results:
+        return None
+    points = max(1, int(results["n_runs"].size))
+    parts = ", ".join(
+        f"{role} {float(results[f'runs_{role}'].sum()) / points:.3g}"
+        for role in ("search", "prescan", "certification")
+    )
+    return f"runs per point: {float(results['n_runs'].sum()) / points:.3g} ({parts})"
