@@ -60,6 +60,7 @@ MEASURES = {  # datasets.RUN_MEASURES: name -> units
     "spin_drift_per_rev": "rad",
     "slip_decay": "1",
     "slip_limit": "m",
+    "reserve": "1",
 }
 JUMP_ONLY_ATTRS = ("tol", "runs_saved_by_warm_start")  # results.nc of find_jump, not runs.nc
 KEYS = {  # scene key -> (dimension, units, long_name) as datasets._key_attrs writes them
@@ -122,6 +123,9 @@ def jump_results(
         "size_hi": (nan + 0.1, "m"),
         "R1_hi": (nan + 0.1, "m"),
         "n_runs": (np.full(shape, 9, np.int64), "1"),
+        "runs_search": (np.full(shape, 7, np.int64), "1"),
+        "runs_prescan": (np.zeros(shape, np.int64), "1"),
+        "runs_certification": (np.full(shape, 2, np.int64), "1"),
         "status": (status, None),
         "reason": (reason, None),
         "monotone": (monotone, None),
@@ -153,6 +157,7 @@ def jump_runs(results, per_point):
         "level": ("run", np.zeros(n, np.int64), {}),
         "strict": ("run", np.zeros(n, np.int64), {}),
         "mode": ("run", np.full(n, "decide"), {}),
+        "role": ("run", np.full(n, "search"), {}),
         "outcome": ("run", np.asarray([r[2] for r in rows], str), {}),
         "reason": ("run", np.full(n, "why"), {}),
         "key": ("run", np.full(n, "0" * 64), {}),

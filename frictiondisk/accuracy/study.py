@@ -9,7 +9,9 @@ a small thread pool: the kernel releases the GIL).
 
 Cost of one setting, summed over the runs its bisection made:
 * n_steps  accepted integrator steps (rodas4 kernel steps; for scipy-radau and coulomb,
-           scipy Radau steps, which cost far more each);
+           scipy Radau steps, which cost far more each), and t_simulated the simulated time
+           they cover (steps per simulated second compare settings whose searches probed
+           different mu);
 * wall_s   the runs' own wall times (integration only, not config validation);
 * n_events stick/slide transitions (all contacts), n_runs the runs themselves.
 """
@@ -58,6 +60,7 @@ VARIABLES = {  # name -> (units or None, long name)
     "error_bound": ("1", "uncertainty of error: half_width plus the reference's half width"),
     "wall_s": ("s", "wall time of the bisection's runs, summed"),
     "n_steps": ("1", "accepted integrator steps of the bisection's runs, summed"),
+    "t_simulated": ("s", "simulated time of the bisection's runs, summed"),
     "n_rejected": ("1", "rejected integrator steps, summed"),
     "n_events": ("1", "stick/slide transitions of the bisection's runs, summed"),
     "n_runs": ("1", "runs the bisection made"),
@@ -80,6 +83,7 @@ class Outcome:
     monotone: bool
     wall_s: float
     n_steps: int
+    t_simulated: float  # s
     n_rejected: int
     n_events: int
     n_runs: int
@@ -98,7 +102,9 @@ def bisect_setting(config: SceneConfig, task, tol: float) -> Outcome:
     """Locate mu* for one scene with the find_jump `task`'s bracket and rules at `tol`."""
     from frictiondisk.campaign.tasks import run_bisection
 
-    bisection = Bisection(tuple(task.bracket), tol, tuple(task.limits), task.max_retries)
+    bisection = Bisection(
+        tuple(task.bracket), tol, tuple(task.limits), task.max_retries, root_finder=task.root_finder
+    )
     bisection, _ = run_bisection(bisection, config.canonical(), task.horizon_factor, _NO_JOURNAL)
     result = bisection.result()
     runs = [run.result for run in result.runs]
@@ -110,6 +116,7 @@ def bisect_setting(config: SceneConfig, task, tol: float) -> Outcome:
         monotone=result.monotone,
         wall_s=float(sum(run["wall_s"] for run in runs)),
         n_steps=sum(run["n_steps"] for run in runs),
+        t_simulated=float(sum(run["t_end"] for run in runs)),
         n_rejected=sum(run["n_rejected"] for run in runs),
         n_events=sum(run["n_transitions"] for run in runs),
         n_runs=len(runs),
@@ -240,6 +247,7 @@ def build_dataset(
             "error_bound": out.half_width + ref.half_width if both else nan,
             "wall_s": out.wall_s,
             "n_steps": out.n_steps,
+            "t_simulated": out.t_simulated,
             "n_rejected": out.n_rejected,
             "n_events": out.n_events,
             "n_runs": out.n_runs,
