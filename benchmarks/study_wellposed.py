@@ -80,6 +80,7 @@ def locate(scene: dict, setting: str) -> Found:
     from frictiondisk.certify import OFF, Certify
     from frictiondisk.config import scene_from_dict
     from frictiondisk.jumps import JumpSearch
+    from frictiondisk.prescan import default_stride
 
     config = scene_from_dict(scene)
     if setting == "reference":
@@ -91,7 +92,8 @@ def locate(scene: dict, setting: str) -> Found:
             }
         )
     certify = Certify() if setting == "default" else OFF
-    search = JumpSearch(PRESCAN, TOL, 2, "decide", 2, certify)
+    stride = default_stride(len(PRESCAN), "decide", config.numerics.stick_rule)
+    search = JumpSearch(PRESCAN, TOL, 2, "decide", 2, certify, stride=stride)
     search, _ = run_bisection(search, config.canonical(), 2.0, os.devnull)
     result = search.result()
     runs = [run.result for run in result.runs]

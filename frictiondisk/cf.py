@@ -51,7 +51,10 @@ TEXT: dict[str, tuple[str, str]] = {
     "outcome": ("outcome of the run", f"one of: {OUTCOMES} (docs/model.md section 6)"),
     "outcome_lo": ("outcome at mu_lo", f"one of: {OUTCOMES}"),
     "outcome_hi": ("outcome at mu_hi", f"one of: {OUTCOMES}"),
-    "scan_outcome": ("outcome of the prescan run", f"one of: {OUTCOMES}"),
+    "scan_outcome": (
+        "outcome of the prescan run",
+        f"one of: {OUTCOMES}; empty: a value the adaptive prescan did not need to run",
+    ),
     "reason": ("why this outcome", "free text; for undetermined: what went wrong"),
     "status": ("status of the point", "converged or failed"),
     "jump_status": ("status of the jump", "converged or failed; empty: no jump"),

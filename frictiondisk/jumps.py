@@ -6,6 +6,8 @@ runs a prescan over given values of mu, then bisects every pair of neighbouring 
 values whose outcomes differ in stick / not stick: a *rising* jump (not stick below,
 stick above) or a *falling* one (stick below, not stick above). Jumps narrower than the
 prescan spacing are not seen; the spacing is the campaign's resolution and is reported.
+With `stride` > 1 the prescan is adaptive (frictiondisk.prescan): every stride-th value
+first, more only where the verdicts and friction reserves do not explain an interval.
 
 Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
 nothing of simulation, I/O or Dask. Its `pending()` lists every run that can go now: the
@@ -27,6 +29,7 @@ from frictiondisk.bisection import (
     RunRequest,
 )
 from frictiondisk.certify import OFF, CertifiedBisection, Certify, point_certification
+from frictiondisk.prescan import AdaptiveGrid
 
 RUN_ROLES = ("search", "prescan", "certification")
 
@@ -89,7 +92,8 @@ class JumpSearchResult:
 
 
 class JumpSearch:
-    """Prescan `mus`, then bisect every stick / not-stick change to `tol`."""
+    """Prescan `mus` (all of them, or adaptively from every `stride`-th), then bisect
+    every stick / not-stick change to `tol`."""
 
     def __init__(
         self,
@@ -100,6 +104,7 @@ class JumpSearch:
         split: int = 2,
         certify: Certify = OFF,
         root_finder: str = "itp",
+        stride: int = 1,
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -113,7 +118,8 @@ class JumpSearch:
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}
-        self._settled: set[float] = set()  # determined, or undetermined after every retry
+        self._grid = AdaptiveGrid(self.mus, stride)  # which prescan values to run
+        self._index = {mu: k for k, mu in enumerate(self.mus)}
         self.bisections: list[CertifiedBisection] = []
         self._bisection_runs: list[RunRecord] = []
         self._issued: set[RunRequest] = set()  # prescan requests asked for
@@ -122,7 +128,7 @@ class JumpSearch:
     # ---- what to run ------------------------------------------------------------------
     @property
     def scanning(self) -> bool:
-        return len(self._settled) < len(self.mus)
+        return self._failure is None and bool(self._grid.waiting)
 
     @property
     def done(self) -> bool:
@@ -134,9 +140,8 @@ class JumpSearch:
         if self._pending is None:
             if self.scanning:
                 self._pending = [
-                    RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
-                    for mu in self.mus
-                    if mu not in self._settled
+                    RunRequest(self.mus[k], self._level.get(self.mus[k], 0), self.scan_mode)
+                    for k in sorted(self._grid.waiting)
                 ]
                 self._issued.update(self._pending)
             else:
@@ -151,10 +156,11 @@ class JumpSearch:
         if self.scanning:
             self._scan_runs.append(RunRecord(request, result))
             if result["outcome"] != UNDETERMINED or request.level >= self.max_retries:
-                self._settled.add(request.mu)
+                # settled: determined, or undetermined after every retry
+                self._grid.settle(self._index[request.mu], result)
             else:
                 self._level[request.mu] = request.level + 1
-            if not self.scanning:
+            if not self.scanning and not self._grid.refine():
                 self._start_bisections()
             return
         self._bisection_runs.append(RunRecord(request, result))
@@ -166,7 +172,6 @@ class JumpSearch:
         """End as failed without more runs (e.g. its worker kept dying)."""
         self._failure = reason
         self._pending = None
-        self._settled.update(self.mus)
         for bisection in self.bisections:
             bisection.abort(reason)
 
@@ -206,7 +211,7 @@ class JumpSearch:
         vanished = len(found) - len(jumps)
         last = self._last_scan()
         scan = tuple(last[mu] for mu in self.mus if mu in last)
-        lost = [mu for mu in self.mus if mu not in last]
+        lost = [k for k in self._grid.wanted if self.mus[k] not in last]
         # an undetermined prescan value inside a converged jump's bracket is that jump's
         # slow approach (bisection.Bisection.undecided), not a gap in the scan
         undetermined = [
@@ -248,6 +253,8 @@ class JumpSearch:
             )
             status = "converged"
             reason = f"{len(jumps)} jump(s) to tol {self.tol:.3g}: {kinds}"
+            if len(scan) < len(self.mus):
+                reason += f"; adaptive prescan ran {len(scan)} of {len(self.mus)} values"
             if vanished:
                 reason += f"; {vanished} more vanished at stricter numerics"
         runs = tuple(sorted([*self._scan_runs, *self._bisection_runs], key=self._order))

@@ -237,6 +237,7 @@ class JumpPlanner:
                 self.task.split,
                 self.task.certify,
                 self.task.root_finder,
+                prescan.stride_for(self.points[i].config.numerics.stick_rule),
             )
             return
         bracket = self._predicted_bracket(i)

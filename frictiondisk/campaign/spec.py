@@ -62,6 +62,7 @@ from frictiondisk.config import (
     _show,
     scene_from_dict,
 )
+from frictiondisk.prescan import default_stride
 from frictiondisk.yamlio import StrictDumper, load_yaml_text, read_text_file
 
 __all__ = [
@@ -95,7 +96,7 @@ FIND_JUMP_KEYS = (
 )
 CERTIFY_KEYS = ("horizon", "rtol", "levels")
 SCAN_KEYS = ("mu", "along", "mode")
-PRESCAN_KEYS = ("mu", "mode")
+PRESCAN_KEYS = ("mu", "mode", "stride")
 TRAJECTORY_KEYS = ("dt_out", "show")
 TRAJECTORY_SHOW = ("whole", "cycle")
 LINSPACE_KEYS = ("start", "stop", "num")
@@ -136,13 +137,25 @@ _COMPARE = {"gt": operator.gt, "ge": operator.ge, "lt": operator.lt, "le": opera
 @dataclass(frozen=True)
 class Prescan:
     """Values of mu run at every point before bisecting, in numerics.mode `mode`; every
-    change between neighbours is then bisected (frictiondisk.jumps.JumpSearch)."""
+    change between neighbours is then bisected (frictiondisk.jumps.JumpSearch). `stride`:
+    run every stride-th value first and refine where needed (frictiondisk.prescan); None
+    picks `prescan.default_stride` (1, dense, for converge mode and stick_rule contacts)."""
 
     mu: tuple[float, ...]
     mode: str
+    stride: int | None = None
 
     def canonical(self) -> dict[str, Any]:
-        return {"mode": self.mode, "mu": list(self.mu)}
+        out: dict[str, Any] = {"mode": self.mode, "mu": list(self.mu)}
+        if self.stride is not None:
+            out["stride"] = self.stride
+        return out
+
+    def stride_for(self, stick_rule: str) -> int:
+        """The stride a point with this stick rule runs with."""
+        if self.stride is not None:
+            return self.stride
+        return default_stride(len(self.mu), self.mode, stick_rule)
 
 
 @dataclass(frozen=True)
@@ -621,9 +634,17 @@ def _prescan(data: Any, base: SceneConfig | None, problems: list[str]) -> Presca
         must = _requirement(_MODE_FIELD)
         problems.append(f"find_jump.prescan.mode: {_show(mode)} is not allowed: must be {must}")
         mode = None
+    stride = None
+    if "stride" in spec:
+        top = max(1, len(mu) - 1) if mu else 64
+        stride = _number(
+            spec["stride"], "find_jump.prescan.stride", problems, integer=True, ge=1, le=top
+        )
+        if stride is None:
+            return None
     if None in (mu, mode):
         return None
-    return Prescan(mu=tuple(sorted(mu)), mode=mode)
+    return Prescan(mu=tuple(sorted(mu)), mode=mode, stride=stride)
 
 
 def _scan(data: Any, base: SceneConfig | None, problems: list[str]) -> Scan | None:

@@ -1,0 +1,131 @@
+"""Runs per mu*: the search with its friction-reserve root finder, adaptive prescan and
+certification against plain bisection over a dense prescan without certification.
+
+Three campaigns, each at tol 1e-4 and 1e-8, 2 workers:
+
+* the demo pin line (campaigns/demo_line.yaml, 5 points);
+* a co-rotating disk line, x_ms 0.06 ... 0.14 (5 points), bracket [0.05, 0.5];
+* a prescan campaign (campaigns/fig10_disk_x0.yaml, 11 points, 36 prescan values).
+
+`after` is the campaign as written (find_jump defaults: root_finder itp, certification
+on, adaptive prescan). `before` is the same campaign with `root_finder: bisect`,
+`certify: false` and `prescan.stride: 1` (dense): the search of the issue's baseline,
+measured in the same run. Runs per point = all runs of the campaign / its points, split
+into search, prescan and certification (runs.nc `role`). mu* of every point is compared
+between the two (they must agree to tol where both are certified or uncertified alike).
+
+    python benchmarks/bench_runs.py                # all cases (about 2 minutes warm)
+    python benchmarks/bench_runs.py --tol 1e-4     # one tolerance
+    python benchmarks/bench_runs.py --only demo    # one campaign
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+import yaml
+
+from frictiondisk.campaign.runner import run_campaign
+from frictiondisk.campaign.spec import campaign_from_text
+from frictiondisk.campaign.tasks import warm_up
+
+ROOT = Path(__file__).resolve().parent.parent
+DISK_LINE = {
+    "name": "bench_disk_corotating",
+    "scene": "disk",
+    "params": {"phidot0": 1.1, "x0": 0.0},
+    "find_jump": {
+        "bracket": [0.05, 0.5],
+        "along": {"params.x_ms": {"start": 0.06, "stop": 0.14, "num": 5}},
+    },
+}
+CASES = {
+    "demo": lambda: yaml.safe_load((ROOT / "campaigns/demo_line.yaml").read_text()),
+    "disk": lambda: copy.deepcopy(DISK_LINE),
+    "prescan": lambda: yaml.safe_load((ROOT / "campaigns/fig10_disk_x0.yaml").read_text()),
+}
+TARGETS = {1e-4: "<= 6 (lines)", 1e-8: "<= 10"}
+
+
+def variant(spec: dict, tol: float, before: bool) -> dict:
+    """The campaign dict at `tol`, as the baseline (`before`) or as written."""
+    spec = copy.deepcopy(spec)
+    task = spec["find_jump"]
+    task["tol"] = tol
+    if before:
+        task["root_finder"] = "bisect"
+        task["certify"] = False
+        if "prescan" in task:
+            task["prescan"]["stride"] = 1
+    return spec
+
+
+def measure(spec: dict) -> dict:
+    """Run a fresh campaign; its runs per point by role, wall time and mu* per point."""
+    with tempfile.TemporaryDirectory() as tmp:
+        campaign = campaign_from_text(yaml.safe_dump(spec), "<bench>")
+        t0 = time.perf_counter()
+        run_campaign(campaign, Path(tmp), workers=2, progress=False)
+        wall = time.perf_counter() - t0
+        with xr.open_dataset(Path(tmp) / "runs.nc") as runs:
+            roles = runs["role"].values.astype(str)
+        with xr.open_dataset(Path(tmp) / "results.nc") as results:
+            mu_star = results["mu_star"].values.ravel().copy()
+            certification = results["certification"].values.ravel().copy()
+    points = mu_star.size
+    return {
+        "wall": wall,
+        "points": points,
+        "per_point": len(roles) / points,
+        "roles": {
+            r: float((roles == r).sum()) / points for r in ("search", "prescan", "certification")
+        },
+        "mu_star": mu_star,
+        "certification": certification,
+    }
+
+
+def row(label: str, m: dict) -> str:
+    roles = m["roles"]
+    return (
+        f"  {label:<7} {m['per_point']:6.1f} runs/point (search {roles['search']:.1f}, "
+        f"prescan {roles['prescan']:.1f}, certification {roles['certification']:.1f})  "
+        f"wall {m['wall']:6.1f} s"
+    )
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--tol", type=float, action="append", help="1e-4 and 1e-8 by default")
+    parser.add_argument("--only", choices=sorted(CASES), action="append")
+    args = parser.parse_args(argv)
+    warm_up()
+    import distributed  # noqa: F401  (import time is not campaign time)
+
+    for name in args.only or list(CASES):
+        for tol in args.tol or (1e-4, 1e-8):
+            spec = CASES[name]()
+            before = measure(variant(spec, tol, before=True))
+            after = measure(variant(spec, tol, before=False))
+            gap = np.nanmax(np.abs(before["mu_star"] - after["mu_star"]))
+            print(f"== {name} ({spec['name']}, {after['points']} points), tol {tol:g} ==")
+            print(row("before", before))
+            print(row("after", after))
+            target = TARGETS[tol] if name != "prescan" else "<= 1/3 of before"
+            print(
+                f"  ratio   {after['per_point'] / before['per_point']:6.2f} runs, "
+                f"{after['wall'] / before['wall']:5.2f} wall   (target runs/point {target}); "
+                f"max |mu* after - before| = {gap:.2g} ({gap / tol:.2f} tol)",
+                flush=True,
+            )
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
