@@ -5,7 +5,8 @@
 #   make test    create .venv if needed, install from the lock file, run the test suite
 #   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows)
 #   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
-#                run alongside; bench_layouts: cost per step against N, arrow vs dense LU)
+#                run alongside; bench_layouts: cost per step against N, arrow vs dense LU),
+#                runs per mu* (bench_runs: the search against plain bisection)
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw figures/<name>.png and .pdf (the README gallery)
@@ -80,6 +81,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_kernel.py
 	$(BIN)/python benchmarks/bench_campaign.py
 	$(BIN)/python benchmarks/bench_layouts.py
+	$(BIN)/python benchmarks/bench_runs.py
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)

@@ -19,12 +19,12 @@ never guess):
 Interpolation (`root_finder="itp"`, the default for split 2): every run also reports its
 friction reserve (frictiondisk/reserve.py), a signed signal that crosses zero near mu*.
 Each round's point is its secant root (regula falsi between the bracket ends, or a unit
-slope from one end), nudged past the estimate so that it lands beyond it, and then
-projected into ITP's window (Oliveira & Takahashi 2020): whichever way the verdict goes, the
-bracket stays within what bisection would have left one round later (`ITP_SLACK` = 1 round
-of slack), so a signal that misleads costs at most one run more than bisection. With no
-usable signal (never stuck, signs that contradict the verdicts) the round is a plain
-bisection. Verdicts alone move the bracket.
+slope from one end; past an end whose reserve has the wrong sign, a geometric step
+beyond it), nudged past the estimate so that it lands beyond it, and then projected into
+ITP's window (Oliveira & Takahashi 2020): whichever way the verdict goes, the bracket stays
+within what bisection would have left `ITP_SLACK` (3) rounds later, so a signal that
+misleads costs at most 3 runs more than bisection. With no usable signal (never stuck)
+the round is a plain bisection. Verdicts alone move the bracket.
 
 Multisection (`split` = k >= 2): each round asks for the k - 1 interior points that cut
 [mu_lo, mu_hi] into k equal parts, all at once (they may run in parallel), and moves only
@@ -332,7 +332,8 @@ class Bisection:
         first, budget = self._itp
         # after this round the bracket must be no wider than bisection's would be at the
         # end of the budget: width <= tol 2**(rounds left), whichever way the verdict goes
-        window = tol * 2.0 ** (budget - (self._round - first) - 1)
+        # (a hair under, so that rounding at the last round cannot leave it above tol)
+        window = tol * 2.0 ** (budget - (self._round - first) - 1) * (1.0 - 1e-6)
         if 2.0 * window <= hi - lo:  # no room left: bisection keeps the promise
             self._estimate = None
             return mid
@@ -382,8 +383,32 @@ class Bisection:
                     estimate = end - self._signal[end]
                     break
         if estimate is None or not lo < estimate < hi:
+            estimate = self._past_a_contradiction()
+        if estimate is None or not lo < estimate < hi:
             return None
         return estimate
+
+    def _past_a_contradiction(self) -> float | None:
+        """Where the jump may lie when a bracket end's reserve has the wrong sign by d (a
+        stick at reserve -d, or a not-stick at +d): the reserve is biased there (contact
+        compliance, a brake torque), so the jump lies beyond that end, where the reserve
+        is further from zero. Aim where it is 3 d + tol from zero (unit slope): a bias b
+        then costs about log3(b / d) rounds before a probe crosses, not a bisection of the
+        bracket. Once the other end's reserve has the same sign and is further out, the
+        bias lies between the two: aim at their geometric mean (interpolated)."""
+        for end, other in ((self.hi, self.lo), (self.lo, self.hi)):
+            if end not in self._signal or self._agrees(end):
+                continue
+            s_end = self._signal[end]
+            d = abs(s_end)
+            toward = 1.0 if other > end else -1.0
+            s_other = self._signal.get(other)
+            if s_other is not None and s_other * s_end > 0 and abs(s_other) > d:
+                target = math.sqrt(abs(s_other) * d)
+                if target < 3.0 * d + self.tol:
+                    return end + (other - end) * (target - d) / (abs(s_other) - d)
+            return end + toward * (2.0 * d + self.tol)
+        return None
 
     def _guided_end(self, end: float, far: float) -> float:
         """The far end of a widened bracket that reaches from `end` to at most `far`: just

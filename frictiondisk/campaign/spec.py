@@ -166,9 +166,10 @@ class FindJump:
     when hi - lo <= `tol`. The bracket may be widened within `limits`. An undetermined run is
     retried up to `max_retries` times, each with numerics.t_decide (or t_max) multiplied by
     `horizon_factor`. `lanes`: how many points of a row (the last dim) are in flight at
-    once; a point starts when every point `lanes` or more places before it is done and
-    extrapolates its bracket from the two nearest (campaign/plan.py). `along` maps 1 or 2 dotted scene keys, in file order, to
-    their values.
+    once; the row runs coarse to fine and each inner point predicts its bracket from the
+    two that bound it (campaign/plan.py). `root_finder`: "itp" aims at the friction
+    reserve's zero, "bisect" halves (frictiondisk.bisection). `along` maps 1 or 2 dotted
+    scene keys, in file order, to their values.
     """
 
     kind: ClassVar[str] = "find_jump"
