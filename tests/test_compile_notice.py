@@ -32,7 +32,7 @@ def test_the_line_goes_to_the_given_stream(monkeypatch):
     monkeypatch.setattr(compile_notice, "needs_compiling", lambda: True)
     announce_compile(out)
     assert out.getvalue() == MESSAGE + "\n"
-    assert "first run only" in MESSAGE
+    assert f"about {compile_notice.COMPILE_S} s" in MESSAGE  # one estimate for every command
     monkeypatch.setattr(compile_notice, "needs_compiling", lambda: False)
     quiet = io.StringIO()
     announce_compile(quiet)

@@ -22,7 +22,6 @@ import concurrent.futures
 import dataclasses
 import math
 import os
-import sys
 import time
 from collections.abc import Sequence
 from typing import Any
@@ -34,6 +33,7 @@ from frictiondisk import cf
 from frictiondisk.accuracy.ladder import ATOL_PER_RTOL, Knob, Setting, build_ladder
 from frictiondisk.bisection import UNDETERMINED, Bisection
 from frictiondisk.config import SceneConfig, describe_key
+from frictiondisk.progress import progress_bar
 from frictiondisk.version import __version__
 
 # A directory no journal can live in: Journal.peek finds nothing there, so every run of
@@ -172,8 +172,6 @@ def run_study(
     tol: bisection tolerance of every setting (much below the campaign's, or the bracket
     hides the errors). Returns the Dataset written to accuracy.nc.
     """
-    from tqdm import tqdm
-
     from frictiondisk.accuracy.ladder import default_knobs
     from frictiondisk.campaign.tasks import warm_up
 
@@ -188,9 +186,7 @@ def run_study(
     labels: dict[str, str] = {}
     for row in rows:
         labels.setdefault(row.config_hash, row.setting.label)
-    bar = tqdm(
-        total=len(scenes), desc="accuracy", unit="bisection", file=sys.stderr, disable=not progress
-    )
+    bar = progress_bar(len(scenes), "accuracy", "bisection", disable=not progress)
     wall0 = time.perf_counter()
     with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
         futures = {
@@ -200,9 +196,11 @@ def run_study(
         for future in concurrent.futures.as_completed(futures):
             key = futures[future]
             outcomes[key] = future.result()
-            bar.set_postfix_str(labels[key][:40])
-            bar.update()
-    bar.close()
+            if bar is not None:
+                bar.set_postfix_str(labels[key][:40])
+                bar.update()
+    if bar is not None:
+        bar.close()
     wall = time.perf_counter() - wall0
     ds = build_dataset(rows, outcomes, scenes)
     ds.attrs.update(

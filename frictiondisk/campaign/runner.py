@@ -530,15 +530,10 @@ class _Driver:
     def _open_bar(self) -> None:
         if not self.progress:
             return
-        from tqdm import tqdm
+        from frictiondisk.progress import progress_bar
 
-        self._bar = tqdm(
-            total=len(self.planner.points),
-            initial=self._points_done(),
-            unit="point",
-            desc=self.campaign.name,
-            file=sys.stderr,
-            dynamic_ncols=True,
+        self._bar = progress_bar(
+            len(self.planner.points), self.campaign.name, "point", initial=self._points_done()
         )
 
     def interrupted(self) -> None:
