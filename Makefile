@@ -9,7 +9,8 @@
 #                runs per mu* (bench_runs: the search against plain bisection)
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
-#                and draw figures/<name>.png and .pdf (the README gallery)
+#                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
+#   make gallery make figures, then copy the PNGs into figures/ (the README gallery: commit them)
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
 #                and draw figures/basin_*.png (README "Basin stability")
 #   make lint    ruff check + ruff format --check
@@ -34,7 +35,7 @@ DEMO_CAMPAIGN_DIR := out/demo_line
 DEMO_LINE_PNG := $(DEMO_CAMPAIGN_DIR)/mu_star.png
 LOCK := requirements/lock.txt
 
-.PHONY: all install lock demo test bench figures basin-figures lint clean distclean
+.PHONY: all install lock demo test bench figures gallery basin-figures lint clean distclean
 
 all: test
 
@@ -85,7 +86,10 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)
-	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures figures
+	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures out/figures
+
+gallery: figures
+	cp out/figures/fig*.png figures/
 
 basin-figures: $(STAMP)
 	$(BIN)/python benchmarks/basin_study.py --out out/basin --figures figures

@@ -1,10 +1,11 @@
 """`make figures`: run every figure campaign (campaigns/fig*.yaml) and draw its figure.
 
-    python -m frictiondisk.gallery [--campaigns campaigns] [--out out/figures] [--figures figures]
+    python -m frictiondisk.gallery [--campaigns campaigns] [--out out/figures] [--figures out/figures]
 
 Each campaign runs into OUT/<name> (resuming whatever is already there, like
 `frictiondisk run`), and its figure is written as FIGURES/<name>.png and .pdf from the
-netCDF files alone (like `frictiondisk plot`; size-versus-mu figures get their bisection
+netCDF files alone (by default under the ignored out/, so the tracked tree stays clean;
+`make gallery` copies the PNGs into the README's figures/) (like `frictiondisk plot`; size-versus-mu figures get their bisection
 runs). The wall time of each figure is printed, and the total.
 """
 
@@ -45,7 +46,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--campaigns", type=Path, default=Path("campaigns"))
     parser.add_argument("--out", type=Path, default=Path("out/figures"))
-    parser.add_argument("--figures", type=Path, default=Path("figures"))
+    parser.add_argument("--figures", type=Path, default=Path("out/figures"))
     args = parser.parse_args(argv)
     files = sorted(args.campaigns.glob("fig*.yaml"))
     if not files:
