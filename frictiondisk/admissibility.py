@@ -90,6 +90,20 @@ class LoadCase:
     x_ms: float = 0.1
     beta_b: float = 0.0
 
+    @classmethod
+    def of(cls, params, radius: float, beta_b: float) -> LoadCase:
+        """The load case of a scene's `params` (config.Params) on a circle of `radius`
+        [m], with brake damping `beta_b` [N m s/rad] (0 for a pin)."""
+        return cls(
+            R=float(radius),
+            omega_m=params.omega_m,
+            c_s=params.c_s,
+            beta_s=params.beta_s,
+            m_s=params.m_s,
+            x_ms=params.x_ms,
+            beta_b=float(beta_b),
+        )
+
     @property
     def g(self) -> float:
         """g [N/m] (see `g_factor`)."""

@@ -26,15 +26,7 @@ def demand(config, radius: float) -> float:
     """Static friction force [N] that rigid co-rotation on a circle of `radius` [m] needs
     (the Melan shakedown demand; c_s |x_ms| + g R without brake torque)."""
     par = config.params
-    case = ad.LoadCase(
-        R=radius,
-        omega_m=par.omega_m,
-        c_s=par.c_s,
-        beta_s=par.beta_s,
-        m_s=par.m_s,
-        x_ms=par.x_ms,
-        beta_b=par.beta_b if config.scene == "disk" else 0.0,
-    )
+    case = ad.LoadCase.of(par, radius, par.beta_b if config.scene == "disk" else 0.0)
     if case.torque == 0.0:
         # a pure force: every layout shares it in proportion to its capacity
         return case.preload + case.g * radius

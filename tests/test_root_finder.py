@@ -38,6 +38,13 @@ def search(answer, tol, root_finder="itp", bracket=BRACKET):
     return bis.result()
 
 
+def both(answer, mu_star, tol):
+    """The itp and the bisect search of one oracle; both must bracket mu* to tol."""
+    res, plain = search(answer, tol), search(answer, tol, "bisect")
+    assert holds(res, mu_star, tol) and holds(plain, mu_star, tol)
+    return res, plain
+
+
 def holds(result, mu_star, tol):
     return (
         result.status == "converged"
@@ -48,9 +55,7 @@ def holds(result, mu_star, tol):
 
 def test_an_exact_reserve_closes_the_bracket_in_a_few_runs():
     mu_star, tol = 0.1267234, 1e-8
-    res = search(oracle(mu_star, lambda mu: mu - mu_star), tol)
-    plain = search(oracle(mu_star, lambda mu: mu - mu_star), tol, "bisect")
-    assert holds(res, mu_star, tol) and holds(plain, mu_star, tol)
+    res, plain = both(oracle(mu_star, lambda mu: mu - mu_star), mu_star, tol)
     assert len(plain.runs) == 2 + math.ceil(math.log2(0.25 / tol))
     assert len(res.runs) <= 5  # 2 end checks, an estimate, and its closure
 
@@ -59,9 +64,7 @@ def test_a_curved_reserve_still_beats_bisection():
     mu_star, tol = 0.1267234, 1e-6
     # monotone on the bracket (slope 1 + 4 (mu - mu*) > 0), curved: slope 0.7 ... 1.7
     reserve = lambda mu: (mu - mu_star) * (1.0 + 2.0 * (mu - mu_star))  # noqa: E731
-    res = search(oracle(mu_star, reserve), tol)
-    plain = search(oracle(mu_star, reserve), tol, "bisect")
-    assert holds(res, mu_star, tol)
+    res, plain = both(oracle(mu_star, reserve), mu_star, tol)
     assert len(res.runs) <= len(plain.runs) / 2
 
 
@@ -70,10 +73,7 @@ def test_a_biased_reserve_is_overtaken_by_geometric_steps(bias_in_tol):
     # contact compliance shifts the reserve's zero off the jump by tens of tol at tol 1e-8
     mu_star, tol = 0.1267234, 1e-8
     bias = bias_in_tol * tol
-    answer = oracle(mu_star, lambda mu: mu - mu_star + bias)
-    res = search(answer, tol)
-    plain = search(answer, tol, "bisect")
-    assert holds(res, mu_star, tol)
+    res, plain = both(oracle(mu_star, lambda mu: mu - mu_star + bias), mu_star, tol)
     assert len(res.runs) < len(plain.runs) - 8
 
 
@@ -81,17 +81,13 @@ def test_a_biased_reserve_is_overtaken_by_geometric_steps(bias_in_tol):
 def test_a_reserve_that_lies_costs_at_most_the_slack(seed):
     rng = random.Random(seed)
     mu_star, tol = rng.uniform(0.06, 0.29), 10.0 ** rng.uniform(-9, -4)
-    answer = oracle(mu_star, lambda mu: rng.uniform(-0.2, 0.2))
-    res = search(answer, tol)
-    plain = search(answer, tol, "bisect")
-    assert holds(res, mu_star, tol)
+    res, plain = both(oracle(mu_star, lambda mu: rng.uniform(-0.2, 0.2)), mu_star, tol)
     assert len(res.runs) <= len(plain.runs) + ITP_SLACK
 
 
 def test_without_a_reserve_it_is_bisection():
     mu_star, tol = 0.1267234, 1e-6
-    res = search(oracle(mu_star, lambda mu: None), tol)
-    plain = search(oracle(mu_star, lambda mu: None), tol, "bisect")
+    res, plain = both(oracle(mu_star, lambda mu: None), mu_star, tol)
     assert [r.request.mu for r in res.runs] == [r.request.mu for r in plain.runs]
 
 
@@ -104,20 +100,14 @@ def test_without_a_reserve_it_is_bisection():
 )
 def test_any_linear_reserve_is_never_worse_than_bisection_plus_slack(mu_star, log_tol, slope, bias):
     tol = 10.0**log_tol
-    answer = oracle(mu_star, lambda mu: slope * (mu - mu_star) + bias)
-    res = search(answer, tol)
-    plain = search(answer, tol, "bisect")
-    assert holds(res, mu_star, tol)
+    res, plain = both(oracle(mu_star, lambda mu: slope * (mu - mu_star) + bias), mu_star, tol)
     assert len(res.runs) <= len(plain.runs) + ITP_SLACK
 
 
 def test_a_widening_the_reserve_predicts_goes_just_past_its_root():
     # both ends slip; the reserve puts the jump at 0.4, beyond hi = 0.3
     mu_star, tol = 0.4, 1e-4
-    answer = oracle(mu_star, lambda mu: mu - mu_star)
-    res = search(answer, tol)
-    plain = search(answer, tol, "bisect")
-    assert holds(res, mu_star, tol)
+    res, plain = both(oracle(mu_star, lambda mu: mu - mu_star), mu_star, tol)
     assert len(res.runs) <= 5
     assert len(plain.runs) > 10
 

@@ -47,15 +47,7 @@ def bounds_for(results: xr.Dataset) -> dict[str, np.ndarray]:
             out["collapse"].append(math.nan)
             out["shakedown"].append(math.nan)
             continue
-        case = ad.LoadCase(
-            R=float(r),
-            omega_m=par.omega_m,
-            c_s=par.c_s,
-            beta_s=par.beta_s,
-            m_s=par.m_s,
-            x_ms=par.x_ms,
-            beta_b=float(beta_b),
-        )
+        case = ad.LoadCase.of(par, r, beta_b)
         out["collapse"].append(ad.collapse_demand(case, points) / par.F_n)
         out["shakedown"].append(ad.shakedown_demand(case, points) / par.F_n)
     return {key: np.asarray(values, dtype=float) for key, values in out.items()}
