@@ -39,7 +39,10 @@ FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
     "is_reference": ((0, 1), "not_reference reference"),
     "in_ladder": ((0, 1), "not_in_ladder in_ladder"),
     "mode": ((0, 1), "slide stick"),  # trajectory.nc: contact mode
-    "certification": (tuple(range(len(CERTIFICATION_FLAGS))), " ".join(CERTIFICATION_FLAGS)),
+    "certification": (
+        tuple(range(-1, len(CERTIFICATION_FLAGS))),
+        " ".join(("pending", *CERTIFICATION_FLAGS)),
+    ),
     "jump_certification": (
         tuple(range(-1, len(CERTIFICATION_FLAGS))),
         " ".join(("no_jump", *CERTIFICATION_FLAGS)),

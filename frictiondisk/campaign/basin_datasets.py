@@ -121,7 +121,11 @@ def _strings(planner, name: str, shape) -> np.ndarray:
 def _map_results(campaign, planner, outcomes: tuple[str, ...]) -> xr.Dataset:
     shape = campaign.shape
     dims = tuple(dim_names(campaign)[k] for k in campaign.dims)
-    runs = [planner.results[i].results[0] for i in range(len(planner.points))]
+    # a point still pending (partial results) has no run yet: its cell stays empty
+    runs = [
+        (planner.results[i].results or ({"outcome": "", "reason": planner.results[i].reason},))[0]
+        for i in range(len(planner.points))
+    ]
     cells = np.asarray([r["outcome"] for r in runs], dtype=str)
     data_vars: dict[str, Any] = {
         "outcome_map": (
@@ -195,6 +199,9 @@ def summary_lines(results: xr.Dataset) -> list[str]:
     for k in range(stacked.sizes["point"]):
         row = stacked.isel(point=k)
         where = ", ".join(f"{d} = {float(row[d]):.6g}" for d in dims) or "basin"
+        if int(row.n_samples) == 0:  # partial results: this point has not finished
+            lines.append(f"{where}: {row.status.values.item()}")
+            continue
         stick = row.sel(outcome=STICK)
         lines.append(
             f"{where}: stick {float(stick.fraction):.4f} "

@@ -3,12 +3,16 @@
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
 path that cannot be written (named, with the cause), a symbolic link in DIR, an
 unreachable scheduler or a campaign over its size limits; 3 DIR is in use by another run,
-130 interrupted (Ctrl-C; resume continues).
+130 interrupted (Ctrl-C), 143 terminated (SIGTERM). A stop journals the runs in flight
+that finish within 30 s and writes results.nc with the finished points, marked partial;
+resume continues.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
+import signal
 import time
 from pathlib import Path
 
@@ -17,7 +21,26 @@ import click
 from frictiondisk.cli_options import fail
 
 EXIT_LOCKED = 3
-EXIT_INTERRUPTED = 130
+
+
+@contextlib.contextmanager
+def _sigterm_stops_like_ctrl_c():
+    """SIGTERM (a batch scheduler, `kill`, a closed terminal) raises runner.Terminated in
+    the main thread, so a campaign stops as on Ctrl-C: runs journaled, partial results."""
+    from frictiondisk.campaign.runner import Terminated
+
+    def stop(signum, frame):
+        raise Terminated()
+
+    try:
+        previous = signal.signal(signal.SIGTERM, stop)
+    except ValueError:  # not the main thread (an embedding application): leave it alone
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def _execute(
@@ -44,15 +67,16 @@ def _execute(
     if problems:
         fail(f"{out_dir}: cannot start (nothing was created)", problems)
     try:
-        summary = run_campaign(
-            campaign, out_dir, workers, scheduler, processes, worker_wait=worker_wait
-        )
+        with _sigterm_stops_like_ctrl_c():
+            summary = run_campaign(
+                campaign, out_dir, workers, scheduler, processes, worker_wait=worker_wait
+            )
     except CampaignChanged as exc:
         fail(f"{out_dir}: the campaign differs from the one this directory holds", exc.differences)
     except CampaignLocked as exc:
         fail(str(exc), [], EXIT_LOCKED)
     except CampaignInterrupted as exc:
-        fail(str(exc), [], EXIT_INTERRUPTED)
+        fail(str(exc), [], exc.exit_code)
     except ConfigError as exc:
         fail(f"{out_dir}/campaign.yaml", list(exc.problems))
     except SchedulerFailed as exc:
@@ -244,7 +268,9 @@ def status(out_dir: Path) -> None:
     if state == "complete":
         lines.append(f"results:   {out_dir / RESULTS_FILE}")
         lines += _mu_star_lines(out_dir / RESULTS_FILE)
-    elif state == "damaged":
+    elif results_ok:
+        lines += _partial_lines(out_dir / RESULTS_FILE)
+    if state == "damaged":
         lines.append(f"results.nc is missing or damaged; rebuild it: frictiondisk resume {out_dir}")
     elif state in ("interrupted", "not started"):
         lines.append(f"continue with: frictiondisk resume {out_dir}")
@@ -287,6 +313,24 @@ def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
         lines.append(f"journal:   {len(moved)} entries were moved aside to journal/corrupt/:")
         lines += [f"  {line}" for line in moved[-shown:]]
     return lines
+
+
+def _partial_lines(results_file: Path) -> list[str]:
+    """What a stopped or running campaign has found so far (its partial results.nc)."""
+    import xarray as xr
+
+    from frictiondisk.campaign.basin_datasets import summary_lines
+
+    with xr.open_dataset(results_file) as results:
+        if not results.attrs.get("partial"):
+            return []
+        head = (
+            f"results:   {results_file} (partial: {results.attrs.get('points_done')} of "
+            f"{results.attrs.get('points_total')} points finished)"
+        )
+        if results.attrs.get("task") == "basin":
+            return [head, *summary_lines(results.load())]
+    return [head, *_mu_star_lines(results_file)]
 
 
 def _mu_star_lines(results_file: Path) -> list[str]:

@@ -15,6 +15,7 @@ import xarray as xr
 from frictiondisk import cf
 from frictiondisk.bisection import RunRequest
 from frictiondisk.campaign.journal import kernel_version
+from frictiondisk.campaign.partial import PENDING
 from frictiondisk.campaign.requests import run_config
 from frictiondisk.certify import CERTIFICATION_FLAGS
 from frictiondisk.config import describe_key
@@ -150,7 +151,11 @@ def _jump_results(campaign, planner) -> xr.Dataset:
         cols["reason"].append(res.reason)
         cols["monotone"].append(np.int8(res.monotone))
         cols["warm_start"].append(np.int8(planner.warm.get(i, False)))
-        cols["certification"].append(CERTIFICATION_FLAGS.index(res.certification))
+        cols["certification"].append(
+            CERTIFICATION_PENDING
+            if res.status == PENDING
+            else CERTIFICATION_FLAGS.index(res.certification)
+        )
         horizon, rtol = verdict_numerics(planner.points[i].config, task, _strict_of(res))
         cols["verdict_horizon"].append(horizon)
         cols["verdict_rtol"].append(rtol)
@@ -222,6 +227,7 @@ def _jump_results(campaign, planner) -> xr.Dataset:
 
 
 CERTIFICATION_FILL = -1  # a padded jump slot (a point with fewer jumps than the most)
+CERTIFICATION_PENDING = -1  # a point not finished yet (partial results)
 
 
 def _role_of(res, request) -> str:

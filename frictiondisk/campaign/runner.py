@@ -26,6 +26,7 @@ from typing import Any
 
 from frictiondisk.campaign import basin_datasets, datasets
 from frictiondisk.campaign.journal import CampaignLock, Journal, run_key
+from frictiondisk.campaign.partial import with_pending
 from frictiondisk.campaign.plan import Sizing, planner_for
 from frictiondisk.campaign.spec import Campaign, campaign_from_dict, load_campaign
 from frictiondisk.campaign.tasks import Sealed, noop, run_sealed, warm_up
@@ -39,6 +40,7 @@ STATUS_FILE = "status.json"
 RESULTS_FILE = "results.nc"
 RUNS_FILE = "runs.nc"
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
+PARTIAL_EVERY = 30.0  # [s] between partial results.nc rewrites of a running campaign
 BAR_EVERY = 0.2  # [s] between progress-bar repaints
 MAX_WORKER_FAILURES = 3  # resubmissions of a run whose worker died
 SCHEDULER_TIMEOUT = 10.0  # [s] for the client to connect to --scheduler
@@ -81,7 +83,16 @@ class SchedulerFailed(Exception):
 
 
 class CampaignInterrupted(Exception):
-    """Stopped by the user (Ctrl-C); the journal holds every finished run."""
+    """Stopped by Ctrl-C or SIGTERM; the journal holds every finished run and results.nc
+    the finished points (marked partial). `exit_code`: 130 (Ctrl-C) or 143 (SIGTERM)."""
+
+    def __init__(self, message: str, exit_code: int = 130):
+        super().__init__(message)
+        self.exit_code = exit_code
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so that it stops a campaign like Ctrl-C."""
 
 
 @dataclasses.dataclass
@@ -205,11 +216,19 @@ def run_campaign(
             with contextlib.suppress(OSError):  # a full disk may refuse this too
                 driver.interrupted()
             raise
-        except KeyboardInterrupt:
+        except KeyboardInterrupt as stop:
             driver.interrupted()
+            what = "terminated (SIGTERM)" if isinstance(stop, Terminated) else "interrupted"
+            written = driver.write_partial()
             raise CampaignInterrupted(
-                f"interrupted; {driver.runs_done()} finished runs are in the journal. "
-                f"Continue with: frictiondisk resume {out_dir}"
+                f"{what}; {driver.runs_done()} finished runs are in the journal"
+                + (
+                    f", the {written} finished points in {RESULTS_FILE} (partial)"
+                    if written
+                    else ""
+                )
+                + f". Continue with: frictiondisk resume {out_dir}",
+                143 if isinstance(stop, Terminated) else 130,
             ) from None
         finally:
             driver.journal.close()
@@ -305,6 +324,7 @@ class _Driver:
         self.failures: dict[int, int] = {}  # job (point) -> failed attempts
         self.t0 = time.perf_counter()
         self._last_status = 0.0
+        self._last_partial = time.perf_counter()  # the first partial file after PARTIAL_EVERY
         self._last_bar = 0.0
         self._bar = None
         self.scheduled = False  # True with --scheduler: watch for live workers
@@ -477,8 +497,8 @@ class _Driver:
             return
         self._draining = True
         print(
-            f"\ninterrupted: journaling the runs of {len(self.in_flight)} tasks in flight "
-            "(Ctrl-C again to drop them)",
+            f"\nstopping: journaling the runs of {len(self.in_flight)} tasks in flight, for at "
+            f"most {DRAIN_TIMEOUT_S:.0f} s (Ctrl-C again to drop them)",
             file=sys.stderr,
         )
         deadline = time.monotonic() + DRAIN_TIMEOUT_S
@@ -557,6 +577,31 @@ class _Driver:
         if now - self._last_status >= STATUS_EVERY:
             self._write_status(state="running")
             self._last_status = now
+        if now - self._last_partial >= PARTIAL_EVERY:
+            self._last_partial = now
+            self.write_partial()
+
+    def _datasets(self):
+        """The module that builds this campaign's results.nc and runs.nc."""
+        return basin_datasets if self.campaign.kind == "basin" else datasets
+
+    def write_partial(self) -> int:
+        """Write results.nc from the finished points, the rest pending, marked `partial`
+        (frictiondisk.campaign.partial); returns the points it holds (0: nothing written,
+        as for a trajectory or when no point is finished). Never raises for a full disk:
+        the journal keeps everything, and the final write says what went wrong."""
+        done = self._points_done()
+        if done == 0 or self.planner.done or self.campaign.kind == "trajectory":
+            return 0
+        pending = with_pending(self.campaign.kind, self.planner)
+        ds = self._datasets().results_dataset(self.campaign, pending)
+        ds.attrs.update(partial=1, points_done=done, points_total=len(self.planner.points))
+        try:
+            atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
+        except OSError as exc:
+            print(f"partial results not written: {exc}", file=sys.stderr)
+            return 0
+        return done
 
     def _write_status(self, state: str) -> None:
         done = self._points_done()
@@ -583,7 +628,7 @@ class _Driver:
 
     # ---- the end ------------------------------------------------------------------------
     def _finish(self) -> RunSummary:
-        build = basin_datasets if self.campaign.kind == "basin" else datasets
+        build = self._datasets()
         results_ds = build.results_dataset(self.campaign, self.planner)
         runs_ds = build.runs_dataset(self.campaign, self.planner, self._key)
         results = atomic_write_netcdf(results_ds, self.out_dir / RESULTS_FILE)

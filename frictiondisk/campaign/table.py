@@ -86,10 +86,12 @@ def uncertain_summary(results: xr.Dataset) -> str | None:
 
 def runs_summary(results: xr.Dataset) -> str | None:
     """'runs per point: 5.8 (search 3.4, prescan 0, certification 2.4)' for a find_jump
-    results.nc; None for other tasks."""
+    results.nc (per finished point); None for other tasks."""
     if "runs_search" not in results or "n_runs" not in results:
         return None
-    points = max(1, int(results["n_runs"].size))
+    # a pending point of a partial results.nc has made no runs that count yet
+    finished = int((results["status"] != "pending").sum()) if "status" in results else 0
+    points = max(1, finished or int(results["n_runs"].size))
     parts = ", ".join(
         f"{role} {float(results[f'runs_{role}'].sum()) / points:.3g}"
         for role in ("search", "prescan", "certification")

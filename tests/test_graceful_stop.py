@@ -1,0 +1,89 @@
+"""A campaign stopped by a real SIGTERM or SIGINT: a documented exit code, the finished
+points in a partial results.nc that `status` prints, and a resume that ends exactly where
+an uninterrupted run does."""
+
+import json
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+import xarray as xr
+from click.testing import CliRunner
+
+from frictiondisk.cli import main
+
+CAMPAIGN = """\
+name: stop_line
+scene: pin
+find_jump:
+  bracket: [0.05, 0.3]
+  tol: 1.0e-8
+  lanes: 1
+  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 24}}
+"""
+
+
+def _points_done(out):
+    try:
+        return json.loads((out / "status.json").read_text()).get("points_done", 0)
+    except (OSError, ValueError):
+        return 0
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory):
+    root = tmp_path_factory.mktemp("stop")
+    spec = root / "c.yaml"
+    spec.write_text(CAMPAIGN)
+    result = CliRunner().invoke(main, ["run", str(spec), "-o", str(root / "whole")])
+    assert result.exit_code == 0, result.output
+    return spec, root / "whole"
+
+
+@pytest.mark.parametrize(
+    ("sig", "code", "word"),
+    [(signal.SIGTERM, 143, "terminated"), (signal.SIGINT, 130, "interrupted")],
+)
+def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
+    reference, tmp_path, sig, code, word
+):
+    spec, whole = reference
+    out = tmp_path / "stopped"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    t0 = time.time()
+    while time.time() - t0 < 120 and proc.poll() is None and _points_done(out) < 2:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the campaign finished before the signal"
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == code, err
+    assert word in err and "frictiondisk resume" in err
+
+    with xr.open_dataset(out / "results.nc") as part, xr.open_dataset(whole / "results.nc") as ref:
+        assert part.attrs["partial"] == 1
+        done = part["status"].values != "pending"
+        assert part.attrs["points_done"] == done.sum() >= 2
+        assert (~done).any()  # stopped before the end
+        # every finished point is the point an uninterrupted run finds
+        np.testing.assert_array_equal(part["mu_star"].values[done], ref["mu_star"].values[done])
+        assert np.isnan(part["mu_star"].values[~done]).all()
+        assert set(part["certification"].values[~done]) == {-1}  # flag "pending"
+
+    status = CliRunner().invoke(main, ["status", str(out)])
+    assert status.exit_code == 0, status.output
+    assert "(partial: " in status.output and "pending" in status.output
+    assert "mu* per point" in status.output
+
+    resumed = CliRunner().invoke(main, ["resume", str(out)])
+    assert resumed.exit_code == 0, resumed.output
+    with xr.open_dataset(out / "results.nc") as a, xr.open_dataset(whole / "results.nc") as b:
+        assert "partial" not in a.attrs
+        xr.testing.assert_identical(a.load(), b.load())
