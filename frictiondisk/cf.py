@@ -66,7 +66,17 @@ TEXT: dict[str, tuple[str, str]] = {
 }
 
 # integer counters and indices that the builders leave without units
-DIMENSIONLESS = {"point", "level", "strict", "n_runs", "setting", "contact", "n_jumps"}
+DIMENSIONLESS = {
+    "point",
+    "level",
+    "strict",
+    "n_runs",
+    "setting",
+    "contact",
+    "n_jumps",
+    "sample",
+    "n_samples",
+}
 # numeric variables whose unit differs from row to row, named by a text variable beside them
 MIXED_UNITS = {"value": "value_units"}
 

@@ -142,15 +142,15 @@ def atomic_write_netcdf(
     Returns the path written.
     """
 
+    # CF: coordinate variables hold no missing values, so they carry no _FillValue
+    # (xarray would give every float coordinate a NaN one)
+    full = {name: {"_FillValue": None} for name in ds.coords}
+    for name, spec in (encoding or {}).items():
+        full[name] = {**full.get(name, {}), **spec}
+
     def write(tmp: Path) -> None:
         try:
-            ds.to_netcdf(
-                tmp,
-                mode="w",
-                format="NETCDF4",
-                engine="netcdf4",
-                encoding=dict(encoding) if encoding is not None else None,
-            )
+            ds.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4", encoding=full)
         except (OSError, RuntimeError) as err:  # "NetCDF: HDF error" on a full disk
             raise netcdf_write_error(path, err) from err
 

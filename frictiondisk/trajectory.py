@@ -80,9 +80,11 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
 
     Returns
     -------
-    xarray.Dataset with coordinates `time` [s] and `contact` (index of the contact point),
+    xarray.Dataset with coordinates `time` [s] (strictly increasing), `contact` (index of
+    the contact point) and `event_time` [s] (dim `event`: the stick/slide switches),
     variables x, y, vx, vy (time), phi, phidot (time; only for scenes with rotation),
-    Zx, Zy (time, contact) and mode (time, contact; int8, 1 = stick, 0 = slide).
+    Zx, Zy (time, contact), mode (time, contact; int8, 1 = stick, 0 = slide; after a
+    switch at its time) and mode_before_event (event, contact).
     Attributes: `scene_yaml` (the full configuration), `config_hash`, `frictiondisk_version`
     and every scalar of `result.summary()` (None stored as NaN, booleans as 0/1), the
     resolved physical parameters (`param_*`) and the CF attributes (frictiondisk.cf).
@@ -100,6 +102,12 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
     if mode.ndim != 2 or mode.shape[0] != n_time:
         raise ValueError(f"trajectory mode has shape {mode.shape}, expected ({n_time}, N)")
     n_contact = mode.shape[1]
+    # At a mode switch the recorder keeps the sample just before and just after it, at the
+    # same time; the state is continuous there and only the mode differs. The time axis
+    # keeps the sample after the switch (strictly increasing: `sel(time=..., method=...)`
+    # works), and the mode before it goes to the `event` dimension.
+    before = np.flatnonzero(np.diff(t) <= 0)
+    keep = np.setdiff1d(np.arange(n_time), before)
 
     data_vars: dict[str, xr.Variable] = {}
     for name, (units, long_name) in _BODY_VARIABLES.items():
@@ -107,27 +115,37 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
         if values is None:  # phi and phidot exist only for the disk
             continue
         data_vars[name] = xr.Variable(
-            ("time",), np.asarray(values, dtype=float), {"units": units, "long_name": long_name}
+            ("time",),
+            np.asarray(values, dtype=float)[keep],
+            {"units": units, "long_name": long_name},
         )
     for name, (units, long_name) in _CONTACT_VARIABLES.items():
         data_vars[name] = xr.Variable(
             ("time", "contact"),
-            np.asarray(getattr(traj, name), dtype=float),
+            np.asarray(getattr(traj, name), dtype=float)[keep],
             {"units": units, "long_name": long_name},
         )
+    flags = {
+        "units": "1",
+        "flag_values": np.array([MODE_SLIDE, MODE_STICK], dtype=np.int8),
+        "flag_meanings": "slide stick",
+    }
     data_vars["mode"] = xr.Variable(
-        ("time", "contact"),
-        mode.astype(np.int8),
-        {
-            "units": "1",
-            "long_name": "contact mode",
-            "flag_values": np.array([MODE_SLIDE, MODE_STICK], dtype=np.int8),
-            "flag_meanings": "slide stick",
-        },
+        ("time", "contact"), mode.astype(np.int8)[keep], {"long_name": "contact mode", **flags}
+    )
+    data_vars["mode_before_event"] = xr.Variable(
+        ("event", "contact"),
+        mode.astype(np.int8)[before],
+        {"long_name": "contact mode just before the switch at event_time", **flags},
     )
 
     coords = {
-        "time": ("time", t, {"units": "s", "long_name": "simulated time", "axis": "T"}),
+        "time": ("time", t[keep], {"units": "s", "long_name": "simulated time", "axis": "T"}),
+        "event_time": (
+            "event",
+            t[before],
+            {"units": "s", "long_name": "time of a stick/slide switch (one per switch)"},
+        ),
         "contact": (
             "contact",
             np.arange(n_contact, dtype=np.int32),

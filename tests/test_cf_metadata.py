@@ -33,6 +33,16 @@ scene: pin
 numerics: {t_decide: 20.0}
 scan: {mu: [0.05, 0.2], mode: decide}
 """
+BASIN = """\
+name: cf_basin
+scene: pin
+params: {x_ms: 0.1, mu: 0.125}
+numerics: {t_decide: 10.0}
+basin:
+  sample: {params.x0: {uniform: [-0.05, 0.05]}}
+  samples: 6
+  seed: 7
+"""
 ORBIT = """\
 name: cf_orbit
 scene: pin
@@ -46,7 +56,7 @@ trajectory: {dt_out: 0.5, show: whole}
 def files(tmp_path_factory):
     root = tmp_path_factory.mktemp("cf")
     out = {}
-    for name, text in (("line", LINE), ("scan", SCAN), ("orbit", ORBIT)):
+    for name, text in (("line", LINE), ("scan", SCAN), ("orbit", ORBIT), ("basin", BASIN)):
         run_campaign(campaign_from_text(text, "<test>"), root / name, 1, None, False)
         for nc in (root / name).glob("*.nc"):
             out[f"{name}/{nc.name}"] = nc
@@ -63,6 +73,8 @@ def files(tmp_path_factory):
 
 FILES = [  # every netCDF file the workflow writes, sorted
     "accuracy/accuracy.nc",
+    "basin/results.nc",
+    "basin/runs.nc",
     "line/results.nc",
     "line/runs.nc",
     "orbit/results.nc",
@@ -102,6 +114,22 @@ def test_cf_attributes(files, name):
                 assert "value_units" in ds
             else:
                 assert isinstance(attrs.get("units"), str), f"{name}: {var_name} has no units"
+            units = attrs.get("units")
+            if units and units != "1":  # a plot label "long_name [units]" must not say it twice
+                assert f"[{units}]" not in attrs["long_name"], f"{name}: {var_name} doubles units"
+
+
+@pytest.mark.parametrize("name", FILES)
+def test_coordinates_have_no_fill_value_and_time_increases(files, name):
+    import netCDF4
+
+    with netCDF4.Dataset(files[name]) as nc:
+        for dim in nc.dimensions:
+            if dim in nc.variables:
+                assert "_FillValue" not in nc[dim].ncattrs(), f"{name}: coordinate {dim}"
+        for var in nc.variables.values():
+            if getattr(var, "axis", None) == "T" or var.name == "time":
+                assert np.all(np.diff(var[:]) > 0), f"{name}: {var.name} not increasing"
 
 
 def test_flags_and_text_variables_are_described(files):

@@ -87,7 +87,7 @@ def test_netcdf_round_trip_pin(tmp_path: Path) -> None:
 
     with xr.open_dataset(path) as ds:
         ds.load()
-    assert dict(ds.sizes) == {"time": N_SAMPLES, "contact": 1}
+    assert dict(ds.sizes) == {"time": N_SAMPLES, "contact": 1, "event": 0}
     for name in ("x", "y", "vx", "vy", "Zx", "Zy", "mode"):
         assert name in ds.data_vars, name
         assert ds[name].attrs["units"], name
@@ -120,6 +120,44 @@ def test_netcdf_round_trip_pin(tmp_path: Path) -> None:
     assert ds.attrs["cycle_converged"] == 1  # bool -> int
 
 
+def test_switches_go_to_their_own_dimension_and_time_strictly_increases(tmp_path: Path) -> None:
+    import dataclasses
+
+    import netCDF4
+
+    from frictiondisk.trajectory import write_trajectory
+
+    result = _result("pin", 1)
+    traj = result.trajectory
+    # the recorder's form of a switch: the sample before it repeated at the same time, with
+    # the mode before the switch; here at the two edges of the sticking arc
+    edges = [STICK_SLICE.start, STICK_SLICE.stop]
+    at = np.sort(np.concatenate([np.arange(N_SAMPLES), edges]))
+    mode = traj.mode[at].copy()
+    for k, i in enumerate(edges):
+        mode[i + k] = traj.mode[i - 1]  # the copy placed first keeps the mode before
+    switched = dataclasses.replace(
+        traj,
+        **{name: getattr(traj, name)[at] for name in ("t", "x", "y", "vx", "vy", "Zx", "Zy")},
+        mode=mode,
+    )
+    path = write_trajectory(
+        tmp_path / "t.nc", dataclasses.replace(result, trajectory=switched), _config("pin")
+    )
+    with xr.open_dataset(path) as ds:
+        ds.load()
+    assert np.all(np.diff(ds["time"].values) > 0)
+    np.testing.assert_array_equal(ds["time"].values, traj.t)
+    np.testing.assert_array_equal(ds["mode"].values, traj.mode)  # the mode after each switch
+    np.testing.assert_array_equal(ds["event_time"].values, traj.t[edges])
+    np.testing.assert_array_equal(ds["mode_before_event"].values[:, 0], [0, 1])
+    assert float(ds.sel(time=traj.t[edges[0]] + 1e-9, method="nearest")["time"]) == pytest.approx(
+        traj.t[edges[0]]
+    )
+    with netCDF4.Dataset(path) as nc:  # CF: no _FillValue on coordinate variables
+        assert all("_FillValue" not in nc[name].ncattrs() for name in ("time", "event_time"))
+
+
 def test_netcdf_disk_has_rotation(tmp_path: Path) -> None:
     from frictiondisk.trajectory import write_trajectory
 
@@ -129,7 +167,7 @@ def test_netcdf_disk_has_rotation(tmp_path: Path) -> None:
 
     with xr.open_dataset(path) as ds:
         ds.load()
-    assert dict(ds.sizes) == {"time": N_SAMPLES, "contact": 12}
+    assert dict(ds.sizes) == {"time": N_SAMPLES, "contact": 12, "event": 0}
     assert ds["phi"].attrs["units"] == "rad"
     assert ds["phidot"].attrs["units"] == "rad s-1"
     np.testing.assert_array_equal(ds["phi"].values, result.trajectory.phi)

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from frictiondisk import cf
 from frictiondisk.campaign import basin_stats
 from frictiondisk.campaign.basin_plan import STICK, SampleRequest, not_stick_outcomes
 from frictiondisk.campaign.datasets import (
@@ -62,9 +63,18 @@ def _basin_attrs(campaign, outcomes: tuple[str, ...]) -> dict[str, Any]:
 
 
 def results_dataset(campaign, planner) -> xr.Dataset:
+    """results.nc of a basin campaign (CF-1.10): fractions per point, or the outcome map."""
     outcomes = outcome_list(planner)
-    if campaign.task.is_map:
-        return _map_results(campaign, planner, outcomes)
+    build = _map_results if campaign.task.is_map else _fraction_results
+    what = "the outcome of each initial state" if campaign.task.is_map else "outcome fractions"
+    return cf.complete(
+        build(campaign, planner, outcomes),
+        title=f"frictiondisk basin campaign {campaign.name}: {what}",
+        what=f"frictiondisk run: campaign {campaign.name}, task basin, rebuilt from its journal",
+    )
+
+
+def _fraction_results(campaign, planner, outcomes: tuple[str, ...]) -> xr.Dataset:
     shape = campaign.shape
     dims = tuple(dim_names(campaign)[k] for k in campaign.dims)
     n_points = len(planner.points)
@@ -153,7 +163,16 @@ def _map_results(campaign, planner, outcomes: tuple[str, ...]) -> xr.Dataset:
 
 
 def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
-    """Every run: point, sample index, initial state, outcome, measures, key, wall time."""
+    """Every run: point, sample index, initial state, outcome, measures, key, wall time
+    (CF-1.10)."""
+    return cf.complete(
+        _runs(campaign, planner, key_of),
+        title=f"frictiondisk basin campaign {campaign.name}: every sampled run",
+        what=f"frictiondisk run: campaign {campaign.name}, task basin, rebuilt from its journal",
+    )
+
+
+def _runs(campaign, planner, key_of) -> xr.Dataset:
     rows = [
         (i, j, result)
         for i in range(len(planner.points))

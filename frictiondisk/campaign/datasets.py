@@ -63,6 +63,8 @@ def dim_names(campaign) -> dict[str, str]:
 def _key_attrs(key: str) -> dict[str, str]:
     """units, long_name and scene_key of a varied scene key."""
     unit, description = describe_key(key)
+    # the scene schema's descriptions end in "[unit]"; CF keeps the unit in `units` alone
+    description = description.removesuffix(f" [{unit}]") if unit else description
     attrs = {"long_name": description, "scene_key": key}
     if unit:
         attrs["units"] = unit
