@@ -7,9 +7,11 @@ stays cheap)::
 
     scene = load_scene("campaigns/demo_pin.yaml", ["params.mu=0.13"])
     result = simulate(scene)                 # result.outcome, result.reason, result.summary()
-    campaign = load_campaign("campaigns/demo_line.yaml")
+    campaign = load_campaign("campaigns/demo_line.yaml")   # or a dict: the parsed YAML
     run_campaign(campaign, "out/demo_line")  # resumes if the directory holds a journal
     results = open_results("out/demo_line")  # results.nc as an xarray.Dataset
+    fig = plot_results("out/demo_line")      # what `frictiondisk plot DIR` draws
+    fig = plot_orbit(simulate(scene, record=True, dt_out=0.05), scene)
 
 Everything else (the kernel, the campaign machinery, the figures) lives in the submodules;
 docs/model.md describes the model.
@@ -38,6 +40,8 @@ __all__ = [
     "load_campaign",
     "load_scene",
     "open_results",
+    "plot_orbit",
+    "plot_results",
     "run_campaign",
     "simulate",
 ]
@@ -68,11 +72,16 @@ def simulate(scene: SceneConfig, record: bool = False, dt_out: float = 0.0) -> S
     return _simulate(scene, record=record, dt_out=dt_out)
 
 
-def load_campaign(path: str | PathLike[str]) -> Campaign:
-    """Load and validate a campaign YAML file (find_jump, scan or trajectory task)."""
+def load_campaign(source: str | PathLike[str] | dict[str, Any]) -> Campaign:
+    """Load and validate a campaign: a YAML file's path, or its parsed content as a dict
+    (find_jump, scan, trajectory or basin task)."""
+    if isinstance(source, dict):
+        from frictiondisk.campaign.spec import campaign_from_dict
+
+        return campaign_from_dict(source, source="<dict>")
     from frictiondisk.campaign.spec import load_campaign as _load_campaign
 
-    return _load_campaign(path)
+    return _load_campaign(source)
 
 
 def run_campaign(
@@ -104,6 +113,23 @@ def open_results(path: str | PathLike[str], name: str = "results") -> xr.Dataset
         path = path / f"{name}.nc"
     with xr.open_dataset(path) as ds:
         return ds.load()
+
+
+def plot_results(path: str | PathLike[str], runs: bool = False):
+    """The matplotlib Figure `frictiondisk plot DIR [--runs]` draws for the campaign in
+    directory `path`, from its netCDF files alone, with axis units and a caption. runs:
+    overlay every run of a find_jump campaign."""
+    from frictiondisk.campaign.plot_cli import figure_for_dir
+
+    return figure_for_dir(Path(path), show_runs=runs)
+
+
+def plot_orbit(result: SimulationResult, scene: SceneConfig):
+    """The Figure of the orbit y(x) [m] recorded in `result` (simulate(..., record=True)):
+    sticking segments dark, sliding light, the master axis and the spring rest marked."""
+    from frictiondisk.plotting import plot_orbit as _plot_orbit
+
+    return _plot_orbit(result, scene)
 
 
 class _Package(types.ModuleType):

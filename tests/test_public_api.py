@@ -1,4 +1,4 @@
-"""The public API of `frictiondisk/__init__.py`: five names, cheap to import."""
+"""The public API of `frictiondisk/__init__.py`: seven names, cheap to import."""
 
 from __future__ import annotations
 
@@ -39,7 +39,16 @@ def test_simulate_stays_the_function_after_the_submodule_is_imported():
     assert callable(pack_parameters)
     assert frictiondisk.simulate is simulate
     assert sorted(frictiondisk.__all__) == sorted(
-        ["__version__", "load_campaign", "load_scene", "open_results", "run_campaign", "simulate"]
+        [
+            "__version__",
+            "load_campaign",
+            "load_scene",
+            "open_results",
+            "plot_orbit",
+            "plot_results",
+            "run_campaign",
+            "simulate",
+        ]
     )
 
 
