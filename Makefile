@@ -1,7 +1,8 @@
 # frictiondisk: set-up, demo, tests, benchmarks and lint.
 #
-#   make demo    create .venv, install from the lock file, locate mu* along the demo line,
-#                print the mu* table, draw the mu* line and one orbit, show where the outputs are
+#   make demo    create .venv, install from the lock file, locate mu* along the demo lines
+#                (the pin, and the paper's disk from rest), print the mu* tables, draw the
+#                mu* lines and one orbit, show where the outputs are
 #   make test    create .venv if needed, install from the lock file, run the test suite
 #   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows)
 #   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
@@ -33,6 +34,9 @@ DEMO_JSON := $(DEMO_DIR)/summary.json
 DEMO_CAMPAIGN := campaigns/demo_line.yaml
 DEMO_CAMPAIGN_DIR := out/demo_line
 DEMO_LINE_PNG := $(DEMO_CAMPAIGN_DIR)/mu_star.png
+DEMO_DISK_CAMPAIGN := campaigns/demo_disk_line.yaml
+DEMO_DISK_DIR := out/demo_disk_line
+DEMO_DISK_PNG := $(DEMO_DISK_DIR)/mu_star.png
 LOCK := requirements/lock.txt
 
 .PHONY: all install lock demo test bench figures gallery basin-figures lint clean distclean
@@ -64,6 +68,9 @@ demo: $(STAMP)
 	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) -o $(DEMO_CAMPAIGN_DIR)
 	$(BIN)/frictiondisk status $(DEMO_CAMPAIGN_DIR)
 	$(BIN)/frictiondisk plot $(DEMO_CAMPAIGN_DIR) -o $(DEMO_LINE_PNG)
+	$(BIN)/frictiondisk run $(DEMO_DISK_CAMPAIGN) -o $(DEMO_DISK_DIR)
+	$(BIN)/frictiondisk status $(DEMO_DISK_DIR)
+	$(BIN)/frictiondisk plot $(DEMO_DISK_DIR) -o $(DEMO_DISK_PNG)
 	@mkdir -p $(DEMO_DIR)
 	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)
 	@echo ""
@@ -71,6 +78,8 @@ demo: $(STAMP)
 	@echo "  jump mu* along x_ms (netCDF): $(abspath $(DEMO_CAMPAIGN_DIR)/results.nc)"
 	@echo "  every run of it (netCDF):     $(abspath $(DEMO_CAMPAIGN_DIR)/runs.nc)"
 	@echo "  the mu* line (PNG):           $(abspath $(DEMO_LINE_PNG))"
+	@echo "  disk from rest, mu* (netCDF): $(abspath $(DEMO_DISK_DIR)/results.nc)"
+	@echo "  disk from rest, mu* (PNG):    $(abspath $(DEMO_DISK_PNG))"
 	@echo "  one run, summary (JSON):      $(abspath $(DEMO_JSON))"
 	@echo "  one run, trajectory (netCDF): $(abspath $(DEMO_NC))"
 	@echo "  one run, orbit plot (PNG):    $(abspath $(DEMO_PNG))"
