@@ -4,7 +4,8 @@
 #                (the pin, and the paper's disk from rest), print the mu* tables, draw the
 #                mu* lines and one orbit, show where the outputs are
 #   make test    create .venv if needed, install from the lock file, run the test suite
-#   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows)
+#   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows;
+#                LOCK_ARGS= keeps the pinned versions and only adds what is new)
 #   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
 #                run alongside; bench_layouts: cost per step against N, arrow vs dense LU),
 #                runs per mu* (bench_runs: the search against plain bisection)
@@ -38,6 +39,7 @@ DEMO_DISK_CAMPAIGN := campaigns/demo_disk_line.yaml
 DEMO_DISK_DIR := out/demo_disk_line
 DEMO_DISK_PNG := $(DEMO_DISK_DIR)/mu_star.png
 LOCK := requirements/lock.txt
+LOCK_ARGS ?= --upgrade
 
 .PHONY: all install lock demo test bench figures gallery basin-figures lint clean distclean
 
@@ -59,7 +61,7 @@ install: $(STAMP)
 lock:
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q uv
-	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --upgrade --generate-hashes \
+	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --extra dashboard $(LOCK_ARGS) --generate-hashes \
 		--python-version 3.11 --python-platform x86_64-unknown-linux-gnu -o $(LOCK)
 
 # The main job: locate the jump mu* along a line of axes offsets (resumes if interrupted),

@@ -54,3 +54,43 @@ def test_a_campaign_with_its_stderr_in_a_file_logs_lines(tmp_path):
     assert result.exit_code == 0, result.output
     assert "\r" not in result.output
     assert "log_line: 2/2 point (100%)" in result.output
+
+
+DASHBOARD_CAMPAIGN = """\
+name: dash_line
+scene: pin
+find_jump:
+  bracket: [0.05, 0.3]
+  tol: 1.0e-8
+  lanes: 1
+  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 40}}
+"""
+
+
+def test_dashboard_serves_a_page_while_the_campaign_runs(tmp_path):
+    import signal
+    import subprocess
+    import sys
+    import urllib.request
+
+    spec = tmp_path / "d.yaml"
+    spec.write_text(DASHBOARD_CAMPAIGN)
+    cmd = [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(tmp_path / "o")]
+    proc = subprocess.Popen(
+        [*cmd, "--dashboard"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    try:
+        link = None
+        for line in proc.stderr:
+            if line.startswith("Dask dashboard: "):
+                link = line.split(": ", 1)[1].strip()
+                break
+        assert link and link.startswith("http"), link
+        with urllib.request.urlopen(link, timeout=30) as page:
+            body = page.read().decode("utf-8", "replace")
+            assert page.status == 200
+        assert "<html" in body.lower() and "dask" in body.lower()
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.communicate(timeout=120)
+    assert proc.returncode in (0, 130)

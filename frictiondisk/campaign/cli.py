@@ -51,6 +51,7 @@ def _execute(
     processes: bool,
     worker_wait: float,
     force: bool = False,
+    dashboard: bool = False,
 ):
     from frictiondisk.campaign.journal import CampaignLocked
     from frictiondisk.campaign.preflight import preflight
@@ -69,7 +70,13 @@ def _execute(
     try:
         with _sigterm_stops_like_ctrl_c():
             summary = run_campaign(
-                campaign, out_dir, workers, scheduler, processes, worker_wait=worker_wait
+                campaign,
+                out_dir,
+                workers,
+                scheduler,
+                processes,
+                worker_wait=worker_wait,
+                dashboard=dashboard,
             )
     except CampaignChanged as exc:
         fail(f"{out_dir}: the campaign differs from the one this directory holds", exc.differences)
@@ -158,6 +165,11 @@ _worker_wait = click.option(
     metavar="SECONDS",
     help="With --scheduler: fail after this long without a live worker (warns at once).",
 )
+_dashboard = click.option(
+    "--dashboard",
+    is_flag=True,
+    help="Serve the Dask dashboard (bokeh) of the local workers and print its address.",
+)
 _processes = click.option(
     "--processes/--threads",
     default=False,
@@ -180,6 +192,7 @@ _processes = click.option(
 @_scheduler
 @_worker_wait
 @_processes
+@_dashboard
 @click.option(
     "--force",
     is_flag=True,
@@ -192,6 +205,7 @@ def run(
     scheduler,
     worker_wait: float,
     processes: bool,
+    dashboard: bool,
     force: bool,
 ) -> None:
     """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it."""
@@ -204,7 +218,7 @@ def run(
         campaign = load_campaign(campaign_file)
     except ConfigError as exc:
         fail(str(campaign_file), list(exc.problems))
-    _execute(campaign, out_dir, workers, scheduler, processes, worker_wait, force)
+    _execute(campaign, out_dir, workers, scheduler, processes, worker_wait, force, dashboard)
 
 
 @click.command()
@@ -213,11 +227,14 @@ def run(
 @_scheduler
 @_worker_wait
 @_processes
-def resume(out_dir: Path, workers: int, scheduler, worker_wait: float, processes: bool) -> None:
+@_dashboard
+def resume(
+    out_dir: Path, workers: int, scheduler, worker_wait: float, processes: bool, dashboard: bool
+) -> None:
     """Continue the campaign in DIR from its journal (no finished run is computed again)."""
     if not (out_dir / "campaign.yaml").is_file():
         fail(f"{out_dir} is not a campaign directory (no campaign.yaml)", [])
-    _execute(None, out_dir, workers, scheduler, processes, worker_wait)
+    _execute(None, out_dir, workers, scheduler, processes, worker_wait, dashboard=dashboard)
 
 
 @click.command()
