@@ -8,7 +8,8 @@
 #                LOCK_ARGS= keeps the pinned versions and only adds what is new)
 #   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
 #                run alongside; bench_layouts: cost per step against N, arrow vs dense LU),
-#                runs per mu* (bench_runs: the search against plain bisection)
+#                runs per mu* (bench_runs: the search against plain bisection), start-up
+#                (bench_startup: warm simulate, the fixed cost of run)
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
@@ -94,6 +95,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_campaign.py
 	$(BIN)/python benchmarks/bench_layouts.py
 	$(BIN)/python benchmarks/bench_runs.py
+	$(BIN)/python benchmarks/bench_startup.py
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)

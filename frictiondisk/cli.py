@@ -178,7 +178,7 @@ def simulate(
             fig = plot_orbit(result, config)
             outputs["plot"] = str(save_figure(fig, plot_path).resolve())
 
-    from frictiondisk.trajectory import scene_headline
+    from frictiondisk.headline import scene_headline
 
     head = scene_headline(config)
     summary = result.summary()

@@ -21,8 +21,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from frictiondisk.files import atomic_write
+from frictiondisk.headline import scene_headline
 from frictiondisk.result import SimulationResult
-from frictiondisk.trajectory import scene_headline
 
 STICK_COLOR = "#08306b"  # dark blue
 SLIDE_COLOR = "#9ecae1"  # light blue

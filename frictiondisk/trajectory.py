@@ -15,10 +15,10 @@ from typing import Any
 
 import numpy as np
 import xarray as xr
-import yaml
 
 from frictiondisk import cf
 from frictiondisk.files import atomic_write_netcdf
+from frictiondisk.headline import scene_headline
 from frictiondisk.result import SimulationResult
 from frictiondisk.version import __version__
 
@@ -40,19 +40,6 @@ _CONTACT_VARIABLES: dict[str, tuple[str, str]] = {
 
 MODE_SLIDE = 0
 MODE_STICK = 1
-
-
-def scene_headline(config: Any) -> dict[str, Any]:
-    """The scene name, mu and x_ms of a configuration (for titles, summaries and reports)."""
-    try:
-        scene = getattr(config.scene, "value", config.scene)
-        params = config.params
-        mu, x_ms = params.mu, params.x_ms
-    except AttributeError:  # any other layout: read the canonical YAML
-        data = yaml.safe_load(config.to_yaml())
-        scene = data["scene"]
-        mu, x_ms = data["params"]["mu"], data["params"]["x_ms"]
-    return {"scene": str(scene), "mu": float(mu), "x_ms": float(x_ms)}
 
 
 def _attr_value(value: Any) -> Any:

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import math
 
-from scipy.stats import binomtest, norm
-
 CONFIDENCE = 0.95
+# scipy.stats is imported where it is used: importing it costs about 1 s, which every
+# `frictiondisk run` paid at start-up (plan.py imports this module), basin or not
 
 
 def fraction(k: int, n: int) -> float:
@@ -33,6 +33,8 @@ def wilson_interval(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[flo
     """Wilson score interval (no continuity correction) of p = k / n; NaNs for n = 0."""
     if not n:
         return math.nan, math.nan
+    from scipy.stats import binomtest
+
     ci = binomtest(k, n).proportion_ci(confidence_level=confidence, method="wilson")
     return float(ci.low), float(ci.high)
 
@@ -42,6 +44,8 @@ def stopping_error(k: int, n: int, confidence: float = CONFIDENCE) -> float:
     half-width over z (z = 1.96 at 95 %). For large n it equals `standard_error`; unlike
     it, it does not vanish when every sample so far has the same outcome (k = 0 or n),
     so a first batch that happens to agree does not stop the sampling at once."""
+    from scipy.stats import norm
+
     lo, hi = wilson_interval(k, n, confidence)
     return 0.5 * (hi - lo) / norm.ppf(0.5 + 0.5 * confidence)
 
