@@ -152,3 +152,16 @@ def test_trajectory_measures_are_numbers_never_the_string_none(files):
             assert isinstance(ds.attrs[key], float | np.floating), key
         assert math.isnan(ds.attrs["a"])  # a stick has no cycle deviation
         assert ds.attrs["size"] > 0.0
+
+
+def test_a_basin_caption_does_not_give_a_sampled_key_its_base_value(files):
+    from frictiondisk import plot_results
+    from frictiondisk.campaign.figures import caption_text
+
+    with xr.open_dataset(files["basin/results.nc"]) as ds:
+        caption = caption_text(ds.load())
+    assert "x_ms 0.1 m" in caption  # fixed: named with its value
+    assert "x0" not in caption  # sampled (x0 ~ U[-0.05, 0.05]): it has no single value
+    fig = plot_results(files["basin/results.nc"].parent)
+    (title,) = [t for sub in fig.subfigs for t in [sub._suptitle] if t is not None]
+    assert "x0 ~ U[-0.05, 0.05] m" in title.get_text() and title.get_wrap()

@@ -144,7 +144,8 @@ def plot_basin_map(results: xr.Dataset, boundary: xr.Dataset | None = None) -> F
     )
     n = int(results["n_samples"])
     main.suptitle(
-        f"{results.attrs.get('campaign_name', '')}: basin map{mu_text}, {n} initial states"
+        f"{results.attrs.get('campaign_name', '')}: basin map{mu_text}, {n} initial states",
+        wrap=True,
     )
     return fig
 
@@ -190,7 +191,8 @@ def plot_basin_fractions(results: xr.Dataset) -> Figure:
         _stick_map(main, ax, results, dims)
     else:
         raise ValueError(f"a basin varies at most 2 keys, this one {dims}")
-    main.suptitle(title + " (bands: 95 % Wilson)" if len(dims) < 2 else title)
+    # wrapped to the figure's width: several sampled keys make a long title
+    main.suptitle(title + " (bands: 95 % Wilson)" if len(dims) < 2 else title, wrap=True)
     return fig
 
 
