@@ -23,15 +23,15 @@ from matplotlib.lines import Line2D
 from frictiondisk.files import atomic_write
 from frictiondisk.headline import scene_headline
 from frictiondisk.result import SimulationResult
+from frictiondisk.style import SLIDE_COLOR, STICK_COLOR, styled  # noqa: F401 (re-exported)
 
-STICK_COLOR = "#08306b"  # dark blue
-SLIDE_COLOR = "#9ecae1"  # light blue
 STICK_WIDTH = 2.2
 SLIDE_WIDTH = 1.0
 
 FIGURE_FORMATS = {".png": "png", ".pdf": "pdf", ".svg": "svg"}
 
 
+@styled
 def plot_orbit(result: SimulationResult, config: Any, ax: Axes | None = None) -> Figure:
     """Draw the orbit y(x) of the slave position recorded in `result`.
 

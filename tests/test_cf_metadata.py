@@ -165,3 +165,18 @@ def test_a_basin_caption_does_not_give_a_sampled_key_its_base_value(files):
     fig = plot_results(files["basin/results.nc"].parent)
     (title,) = [t for sub in fig.subfigs for t in [sub._suptitle] if t is not None]
     assert "x0 ~ U[-0.05, 0.05] m" in title.get_text() and title.get_wrap()
+
+
+@pytest.mark.parametrize("kind", ["line", "scan", "orbit", "basin"])
+def test_every_figure_has_the_one_house_style_whatever_the_callers_rc(files, kind):
+    import matplotlib
+
+    from frictiondisk import plot_results
+    from frictiondisk.style import LABEL_FONT_PT
+
+    with matplotlib.rc_context({"font.size": 20.0, "axes.labelsize": 20.0, "axes.grid": False}):
+        fig = plot_results(files[f"{kind}/results.nc"].parent)
+    labelled = [ax for ax in fig.get_axes() if ax.get_xlabel()]
+    assert labelled, kind
+    for ax in labelled:
+        assert ax.xaxis.label.get_fontsize() == LABEL_FONT_PT, (kind, ax.get_xlabel())

@@ -25,6 +25,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from frictiondisk.accuracy.ladder import INTEGRATOR_KNOBS
+from frictiondisk.style import styled
 
 COSTS = (
     ("n_steps", "accepted steps, summed over the bisection's runs"),
@@ -34,6 +35,7 @@ FLOOR_PER_TOL = 0.1  # errors below tol * this are drawn at that floor
 MARKERS = "osD^v<>ph*X"
 
 
+@styled
 def work_precision_figure(ds: xr.Dataset) -> Figure:
     """The work-precision figure of `ds` (as written by `frictiondisk accuracy`)."""
     tol = float(ds.attrs["tol"])

@@ -27,6 +27,7 @@ from matplotlib.patches import Patch
 
 from frictiondisk.campaign.figures import OUTCOME_STYLE, axis_label, new_figure
 from frictiondisk.config import describe_key
+from frictiondisk.style import styled
 
 __all__ = ["outcome_colors", "plot_basin", "plot_basin_fractions", "plot_basin_map"]
 
@@ -69,6 +70,7 @@ def _sample_text(results: xr.Dataset) -> str:
     return ", ".join(parts)
 
 
+@styled
 def plot_basin(results: xr.Dataset, boundary: xr.Dataset | None = None) -> Figure:
     """The figure that fits a basin results.nc (see the module docstring)."""
     if results.attrs.get("task") != "basin":
@@ -90,6 +92,7 @@ def _edges(values: np.ndarray) -> np.ndarray:
     return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
 
 
+@styled
 def plot_basin_map(results: xr.Dataset, boundary: xr.Dataset | None = None) -> Figure:
     """The outcome of each initial state of a basin map, one colour per outcome.
 
@@ -170,6 +173,7 @@ def _draw_boundary(ax, boundary: xr.Dataset, dims: list[str], mu: float) -> list
 
 
 # ---- fractions -------------------------------------------------------------------------------
+@styled
 def plot_basin_fractions(results: xr.Dataset) -> Figure:
     """Sampled basin fractions with 95 % Wilson intervals (see the module docstring)."""
     _check(results, _FRACTION_VARS)

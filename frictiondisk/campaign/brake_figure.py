@@ -20,7 +20,9 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk import admissibility as ad
+from frictiondisk.campaign.figure_style import MU_LABEL
 from frictiondisk.campaign.spec import campaign_from_text
+from frictiondisk.style import styled
 
 SERIES_STYLE = {
     "rest": {"color": "#1f4e79", "marker": "o", "label": "\u03bc* from rest (\u03c6\u03070 = 0)"},
@@ -53,13 +55,13 @@ def bounds_for(results: xr.Dataset) -> dict[str, np.ndarray]:
     return {key: np.asarray(values, dtype=float) for key, values in out.items()}
 
 
+@styled
 def plot_brake(series: dict[str, xr.Dataset]):
     """The figure: mu* with its bracket for every series, and both bounds of the first."""
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
 
-    fig, (ax, ax_gap) = plt.subplots(
-        2, 1, figsize=(7.0, 6.4), sharex=True, gridspec_kw={"height_ratios": [3, 1.3]}
-    )
+    fig = Figure(figsize=(7.0, 6.4), layout="constrained")
+    ax, ax_gap = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 1.3]})
     for name, results in series.items():
         style = SERIES_STYLE[name]
         beta_b = results["beta_b"].values
@@ -96,15 +98,12 @@ def plot_brake(series: dict[str, xr.Dataset]):
             lw=1.0,
             label=name,
         )
-    ax.set_ylabel("friction coefficient \u03bc [1]")
+    ax.set_ylabel(MU_LABEL)
     ax.set_title("Fig 11: jump \u03bc* against the brake damping \u03b2_b (disk, x_ms = 0.1 m)")
-    ax.legend(fontsize=7, loc="upper left")
-    ax.grid(alpha=0.3)
+    ax.legend(loc="upper left")
     ax_gap.axhline(0.0, color="0.3", lw=0.8)
-    ax_gap.set_ylabel("\u03bc* \u2212 shakedown [1]")
+    ax_gap.set_ylabel("\u03bc* \u2212 shakedown [-]")
     ax_gap.set_xlabel("brake damping \u03b2_b [N m s/rad]")
-    ax_gap.grid(alpha=0.3)
-    fig.tight_layout()
     return fig
 
 

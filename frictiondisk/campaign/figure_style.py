@@ -14,7 +14,7 @@ import yaml
 from matplotlib.figure import Figure, SubFigure
 
 from frictiondisk.horizon import horizon_key
-from frictiondisk.plotting import SLIDE_COLOR, STICK_COLOR
+from frictiondisk.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 
 MU_LABEL = "friction coefficient \u03bc [-]"
 MU_STAR_LABEL = "\u03bc* [-]"
@@ -28,9 +28,7 @@ LINE_COLOR = "0.15"
 RUG_Y = 0.03  # axes fraction at which points without a value are drawn
 MAX_LISTED = 8  # failed points listed by name; the rest are counted
 LIST_WIDTH = 112  # characters per line of the failure list (fits 7.2 in at NOTE_FONT_PT)
-NOTE_FONT_PT = 7.0
 REGION_FONT_PT = 12.0
-CAPTION_FONT_PT = 7.0
 CAPTION_SEP = " | "
 
 # marker style of each outcome (face colour, edge colour, marker)

@@ -70,6 +70,7 @@ from frictiondisk.campaign.figure_style import (  # noqa: F401  (re-exported)
 )
 from frictiondisk.cf import flag_meanings
 from frictiondisk.plotting import SLIDE_COLOR, STICK_COLOR
+from frictiondisk.style import styled
 
 __all__ = [
     "FIGURE_KINDS",
@@ -353,6 +354,7 @@ def _flagged(results: xr.Dataset, meaning: str) -> np.ndarray:
     return np.isin(np.asarray(var.values), codes)
 
 
+@styled
 def plot_jump_line(
     results: xr.Dataset, runs: xr.Dataset | None = None, *, show_runs: bool = False
 ) -> Figure:
@@ -650,6 +652,7 @@ def _edges(values: np.ndarray) -> np.ndarray:
     return np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])
 
 
+@styled
 def plot_jump_grid(
     results: xr.Dataset, runs: xr.Dataset | None = None, *, show_runs: bool = False
 ) -> Figure:
@@ -871,6 +874,7 @@ def _sorted_scan(results: xr.Dataset, mu_dim: str, other: str | None = None) -> 
     return ds
 
 
+@styled
 def plot_scan_mu(results: xr.Dataset) -> Figure:
     """A scan of mu alone (paper Figs 6-7): size and a against mu, sharing the mu axis.
 
@@ -958,6 +962,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
     return fig
 
 
+@styled
 def plot_scan_family(results: xr.Dataset) -> Figure:
     """A scan of mu and one more key: `size` against mu, one curve per value of that key.
 
@@ -1057,6 +1062,7 @@ def plot_scan_family(results: xr.Dataset) -> Figure:
 
 
 # ---- dispatch ----------------------------------------------------------------------------
+@styled
 def plot_campaign(
     results: xr.Dataset, runs: xr.Dataset | None = None, *, show_runs: bool = False
 ) -> Figure:

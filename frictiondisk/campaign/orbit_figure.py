@@ -17,6 +17,7 @@ from matplotlib.lines import Line2D
 
 from frictiondisk.campaign.figure_style import new_figure
 from frictiondisk.plotting import STICK_COLOR, draw_orbit
+from frictiondisk.style import styled
 
 A_COLOR = "tab:orange"
 
@@ -33,6 +34,7 @@ def cycle_window(t: np.ndarray, all_stick: np.ndarray) -> tuple[float, float]:
     return float(starts[-2]), float(starts[-1])
 
 
+@styled
 def plot_trajectory(results: xr.Dataset, trajectory: xr.Dataset) -> Figure:
     """Orbit figure of a trajectory campaign (see the module docstring)."""
     show = str(results.attrs.get("show", "whole"))

@@ -27,10 +27,12 @@ from frictiondisk.campaign.figure_style import (
     new_figure,
     scene_title,
 )
+from frictiondisk.style import styled
 
 JUMP_MARK_Y = 1.0  # axes fraction of the triangle marking a located jump
 
 
+@styled
 def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figure:
     """Size curves and jumps of a prescanned find_jump line (module docstring); `runs`
     (runs.nc) adds the zoom on the middle point's jump with its bisection runs."""
