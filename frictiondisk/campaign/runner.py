@@ -595,18 +595,19 @@ class _Driver:
     def write_partial(self) -> int:
         """Write results.nc from the finished points, the rest pending, marked `partial`
         (frictiondisk.campaign.partial); returns the points it holds (0: nothing written,
-        as for a trajectory or when no point is finished). Never raises for a full disk:
-        the journal keeps everything, and the final write says what went wrong."""
+        as for a trajectory or when no point is finished). Never raises: a failure is
+        reported on stderr, the journal keeps every run, and the final write of results.nc
+        raises as usual."""
         done = self._points_done()
         if done == 0 or self.planner.done or self.campaign.kind == "trajectory":
             return 0
-        pending = with_pending(self.campaign.kind, self.planner)
-        ds = self._datasets().results_dataset(self.campaign, pending)
-        ds.attrs.update(partial=1, points_done=done, points_total=len(self.planner.points))
         try:
+            pending = with_pending(self.campaign.kind, self.planner)
+            ds = self._datasets().results_dataset(self.campaign, pending)
+            ds.attrs.update(partial=1, points_done=done, points_total=len(self.planner.points))
             atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
-        except OSError as exc:
-            print(f"partial results not written: {exc}", file=sys.stderr)
+        except Exception as exc:  # noqa: BLE001  a side file: never stop the campaign for it
+            print(f"warning: partial results not written: {exc!r}", file=sys.stderr)
             return 0
         return done
 
