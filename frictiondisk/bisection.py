@@ -47,6 +47,12 @@ ROOT_FINDERS = ("itp", "bisect")
 ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
 
 
+def zero_crossing(mu_a: float, signal_a: float, mu_b: float, signal_b: float) -> float:
+    """mu where the straight line through (mu_a, signal_a) and (mu_b, signal_b) crosses
+    zero (a secant step); the signals must differ."""
+    return mu_a - signal_a * (mu_b - mu_a) / (signal_b - signal_a)
+
+
 @dataclasses.dataclass(frozen=True)
 class RunRequest:
     """One simulation the bisection needs: friction coefficient, retry level and
@@ -154,7 +160,6 @@ class Bisection:
         self._decided: list[tuple[tuple[int, int, float], float]] = []
         self._probe: tuple[int, float] | None = None  # (round, mu) of this round's probe
         self._itp: tuple[int, int] | None = None  # (first bisect round, its round budget)
-        self._estimate: float | None = None  # the last round's root estimate
 
     # ---- what to run ------------------------------------------------------------------
     def pending(self) -> list[RunRequest]:
@@ -335,11 +340,9 @@ class Bisection:
         # (a hair under, so that rounding at the last round cannot leave it above tol)
         window = tol * 2.0 ** (budget - (self._round - first) - 1) * (1.0 - 1e-6)
         if 2.0 * window <= hi - lo:  # no room left: bisection keeps the promise
-            self._estimate = None
             return mid
         estimate = self._root_estimate()
         if estimate is None:
-            self._estimate = None
             return mid
         near, far = (lo, hi) if estimate - lo < hi - estimate else (hi, lo)
         toward_far = 1.0 if far > near else -1.0
@@ -351,7 +354,6 @@ class Bisection:
             # side behind, and the next round can close the bracket in one run
             step = min(0.5 * tol, 0.5 * abs(far - estimate))
             probe = estimate + toward_far * step
-        self._estimate = estimate
         probe = min(max(probe, hi - window), lo + window)
         if not lo < probe < hi or probe in self._known:
             return mid
@@ -363,30 +365,24 @@ class Bisection:
         verdict (reserve > 0: stick), else a unit slope from the end that does (the
         reserve is mu minus a demand that moves slowly with mu)."""
         lo, hi = self.lo, self.hi
-        agrees = {mu: self._agrees(mu) for mu in (lo, hi)}
-        estimate = None
+        return next((e for e in self._estimates() if e is not None and lo < e < hi), None)
+
+    def _estimates(self):
+        """Root estimates, best first (lazily: each is tried only if the ones before it
+        fall outside the bracket)."""
+        lo, hi, signal = self.lo, self.hi, self._signal
         recent = [mu for _, mu in sorted(self._decided)[-2:] if self._agrees(mu)]
-        if len(recent) == 2 and self._signal[recent[0]] != self._signal[recent[1]]:
+        if len(recent) == 2 and signal[recent[0]] != signal[recent[1]]:
             # the secant through the last two runs: no stagnation at a far end
-            (a, b), (s_a, s_b) = recent, (self._signal[mu] for mu in recent)
-            estimate = b - s_b * (b - a) / (s_b - s_a)
-            if not lo < estimate < hi:
-                estimate = None
-        if estimate is not None:
-            pass
-        elif agrees[lo] and agrees[hi]:
-            s_lo, s_hi = self._signal[lo], self._signal[hi]
-            estimate = lo - s_lo * (hi - lo) / (s_hi - s_lo)
+            a, b = recent
+            yield zero_crossing(b, signal[b], a, signal[a])
+        if self._agrees(lo) and self._agrees(hi):
+            # the reserve's sign agrees with both (different) verdicts, so signals differ
+            yield zero_crossing(lo, signal[lo], hi, signal[hi])
         else:
-            for end in (hi, lo):
-                if agrees[end]:
-                    estimate = end - self._signal[end]
-                    break
-        if estimate is None or not lo < estimate < hi:
-            estimate = self._past_a_contradiction()
-        if estimate is None or not lo < estimate < hi:
-            return None
-        return estimate
+            end = next((mu for mu in (hi, lo) if self._agrees(mu)), None)
+            yield None if end is None else end - signal[end]
+        yield self._past_a_contradiction()
 
     def _past_a_contradiction(self) -> float | None:
         """Where the jump may lie when a bracket end's reserve has the wrong sign by d (a
@@ -422,8 +418,7 @@ class Bisection:
             or self._signal[end] == self._signal[other]
         ):
             return far
-        s_end, s_other = self._signal[end], self._signal[other]
-        root = end - s_end * (end - other) / (s_end - s_other)
+        root = zero_crossing(end, self._signal[end], other, self._signal[other])
         direction = 1.0 if far > end else -1.0
         reach = (root - end) * direction  # how far beyond `end` the root lies
         if not 0.0 < reach < abs(far - end):

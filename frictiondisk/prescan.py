@@ -30,8 +30,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-STICK = "stick"
-UNDETERMINED = "undetermined"
+from frictiondisk.bisection import STICK, UNDETERMINED, zero_crossing
 
 
 def default_stride(n_values: int, mode: str, stick_rule: str) -> int:
@@ -75,8 +74,6 @@ class AdaptiveGrid:
         if n_values < 2 or stride < 1:
             raise ValueError(f"need 2 or more values and stride >= 1, got {n_values}, {stride}")
         self.mus = mus  # the grid, increasing
-        self.n_values = n_values
-        self.stride = stride
         self.wanted: set[int] = set(range(0, n_values, stride)) | {n_values - 1}
         self._runs: dict[int, dict[str, Any]] = {}  # index -> its settled run's summary
 
@@ -114,8 +111,7 @@ class AdaptiveGrid:
         zero = _reserve_zero((self.mus[i], a), (self.mus[j], b))
         if zero is None:
             return (i + j) // 2
-        nearest = min(range(i + 1, j), key=lambda k: abs(self.mus[k] - zero))
-        return nearest
+        return min(range(i + 1, j), key=lambda k: abs(self.mus[k] - zero))
 
 
 def _reserve_zero(*ends: tuple[float, dict[str, Any]]) -> float | None:
@@ -123,8 +119,7 @@ def _reserve_zero(*ends: tuple[float, dict[str, Any]]) -> float | None:
     unit slope from the one finite reserve; None without a finite reserve."""
     finite = [(mu, r) for mu, run in ends if (r := _finite(run.get("reserve"))) is not None]
     if len(finite) == 2 and finite[0][1] != finite[1][1]:
-        (mu_a, r_a), (mu_b, r_b) = finite
-        return mu_a - r_a * (mu_b - mu_a) / (r_b - r_a)
+        return zero_crossing(*finite[0], *finite[1])
     if finite:
         mu, r = finite[0]
         return mu - r
