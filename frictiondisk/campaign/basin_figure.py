@@ -19,12 +19,12 @@ from typing import Any
 
 import numpy as np
 import xarray as xr
-import yaml
 from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from frictiondisk.campaign.figure_style import sample_spec
 from frictiondisk.campaign.figures import OUTCOME_STYLE, axis_label, new_figure
 from frictiondisk.config import describe_key
 from frictiondisk.style import styled
@@ -56,12 +56,8 @@ def _check(results: xr.Dataset, names: tuple[str, ...]) -> None:
 
 def _sample_text(results: xr.Dataset) -> str:
     """ "x0 ~ U[-0.05, 0.05]" for each sampled key (from the sample_yaml attribute)."""
-    try:
-        sample = yaml.safe_load(str(results.attrs.get("sample_yaml", ""))) or {}
-    except yaml.YAMLError:
-        return ""
     parts = []
-    for key, dist in sample.items():
+    for key, dist in sample_spec(results).items():
         name = str(key).split(".")[-1]
         for kind, (a, b) in dist.items():
             unit = describe_key(str(key))[0]

@@ -120,15 +120,14 @@ def _echo_uncertain(results_path: Path) -> None:
     best bracket of each is kept in results.nc, flagged `uncertain`."""
     import xarray as xr
 
-    from frictiondisk.campaign.table import runs_summary, uncertain_summary
+    from frictiondisk.campaign.table import closing_lines
 
     if results_path.name != "results.nc" or not results_path.is_file():
         return
     with xr.open_dataset(results_path) as results:
-        lines = [runs_summary(results), uncertain_summary(results)]
+        lines = closing_lines(results)
     for line in lines:
-        if line:
-            click.echo(line)
+        click.echo(line)
 
 
 def _echo_basin(results_path: Path) -> None:
@@ -282,11 +281,8 @@ def status(out_dir: Path) -> None:
     if holder is not None and eta is not None:
         age = time.time() - info.get("updated", time.time())
         lines.append(f"time left: about {max(0.0, eta - age):.0f} s")
-    if state == "complete":
-        lines.append(f"results:   {out_dir / RESULTS_FILE}")
-        lines += _mu_star_lines(out_dir / RESULTS_FILE)
-    elif results_ok:
-        lines += _partial_lines(out_dir / RESULTS_FILE)
+    if results_ok:  # a complete state always has them (else it is "damaged")
+        lines += _results_lines(out_dir / RESULTS_FILE, complete=state == "complete")
     if state == "damaged":
         lines.append(f"results.nc is missing or damaged; rebuild it: frictiondisk resume {out_dir}")
     elif state in ("interrupted", "not started"):
@@ -332,30 +328,24 @@ def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
     return lines
 
 
-def _partial_lines(results_file: Path) -> list[str]:
-    """What a stopped or running campaign has found so far (its partial results.nc)."""
+def _results_lines(results_file: Path, complete: bool) -> list[str]:
+    """What results.nc says: the mu* table of a complete find_jump campaign, or what a
+    stopped or running campaign has found so far (its partial results.nc; [] if none)."""
     import xarray as xr
 
     from frictiondisk.campaign.basin_datasets import summary_lines
+    from frictiondisk.campaign.table import closing_lines, mu_star_table
 
     with xr.open_dataset(results_file) as results:
-        if not results.attrs.get("partial"):
+        if complete:
+            head = f"results:   {results_file}"
+        elif results.attrs.get("partial"):
+            head = (
+                f"results:   {results_file} (partial: {results.attrs.get('points_done')} of "
+                f"{results.attrs.get('points_total')} points finished)"
+            )
+        else:
             return []
-        head = (
-            f"results:   {results_file} (partial: {results.attrs.get('points_done')} of "
-            f"{results.attrs.get('points_total')} points finished)"
-        )
-        if results.attrs.get("task") == "basin":
+        if not complete and results.attrs.get("task") == "basin":
             return [head, *summary_lines(results.load())]
-    return [head, *_mu_star_lines(results_file)]
-
-
-def _mu_star_lines(results_file: Path) -> list[str]:
-    """The mu* table of a finished find_jump campaign (empty for other tasks)."""
-    import xarray as xr
-
-    from frictiondisk.campaign.table import mu_star_table, runs_summary, uncertain_summary
-
-    with xr.open_dataset(results_file) as results:
-        lines = [runs_summary(results), uncertain_summary(results)]
-        return mu_star_table(results) + [line for line in lines if line]
+        return [head, *mu_star_table(results), *closing_lines(results)]

@@ -159,7 +159,7 @@ def physics_text(ds: xr.Dataset) -> str:
     if "param_x_ms" not in ds.attrs:
         return ""
     varied = {str(ds[c].attrs.get("scene_key", "")) for c in ds.coords}
-    varied |= _sampled_keys(ds)  # a basin's sampled keys have no single value either
+    varied |= {str(key) for key in sample_spec(ds)}  # sampled: no single value either
     scene = _scene(ds).get("scene", "")
     shown = [
         f"{symbol} {_fmt(float(ds.attrs[f'param_{key}']))} {unit}"
@@ -171,13 +171,14 @@ def physics_text(ds: xr.Dataset) -> str:
     return ", ".join([str(scene or "scene"), *shown])
 
 
-def _sampled_keys(ds: xr.Dataset) -> set[str]:
-    """The scene keys a basin campaign samples (its sample_yaml attribute), else none."""
+def sample_spec(ds: xr.Dataset) -> dict[str, Any]:
+    """A basin campaign's sampled scene keys and their distributions (its sample_yaml
+    attribute: {key: {kind: [a, b]}}); {} for any other results."""
     try:
         sample = yaml.safe_load(str(ds.attrs.get("sample_yaml", ""))) or {}
     except yaml.YAMLError:
-        return set()
-    return {str(key) for key in sample} if isinstance(sample, dict) else set()
+        return {}
+    return sample if isinstance(sample, dict) else {}
 
 
 def caption_text(ds: xr.Dataset) -> str:

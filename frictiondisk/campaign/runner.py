@@ -223,7 +223,8 @@ def run_campaign(
             raise
         except KeyboardInterrupt as stop:
             driver.interrupted()
-            what = "terminated (SIGTERM)" if isinstance(stop, Terminated) else "interrupted"
+            terminated = isinstance(stop, Terminated)
+            what = "terminated (SIGTERM)" if terminated else "interrupted"
             written = driver.write_partial()
             raise CampaignInterrupted(
                 f"{what}; {driver.runs_done()} finished runs are in the journal"
@@ -233,7 +234,7 @@ def run_campaign(
                     else ""
                 )
                 + f". Continue with: frictiondisk resume {out_dir}",
-                143 if isinstance(stop, Terminated) else 130,
+                143 if terminated else 130,
             ) from None
         finally:
             driver.journal.close()

@@ -540,13 +540,12 @@ def _find_jump(data: Any, base: SceneConfig | None, problems: list[str]) -> Find
     if base is not None and None not in (max_retries, horizon_factor):
         _check_retry_horizon(base, prescan, max_retries, horizon_factor, problems)
     certify = _certify(spec.get("certify", True), problems)
-    root_finder = spec.get("root_finder", DEFAULT_ROOT_FINDER)
-    if root_finder not in ROOT_FINDERS:
-        allowed = " or ".join(repr(item) for item in ROOT_FINDERS)
-        problems.append(
-            f"find_jump.root_finder: {_show(root_finder)} is not allowed: must be {allowed}"
-        )
-        root_finder = None
+    root_finder = _one_of(
+        spec.get("root_finder", DEFAULT_ROOT_FINDER),
+        "find_jump.root_finder",
+        ROOT_FINDERS,
+        problems,
+    )
     needed = (bracket, tol, limits, max_retries, horizon_factor, lanes, split, along, certify)
     if None in (*needed, root_finder):
         return None
@@ -679,12 +678,8 @@ def _trajectory(data: Any, base: SceneConfig | None, problems: list[str]) -> Tra
     if spec is None:
         return None
     dt_out = _number(spec.get("dt_out", DEFAULT_DT_OUT), "trajectory.dt_out", problems, gt=0)
-    show = spec.get("show", "whole")
-    if show not in TRAJECTORY_SHOW:
-        allowed = " or ".join(repr(item) for item in TRAJECTORY_SHOW)
-        problems.append(f"trajectory.show: {_show(show)} is not allowed: must be {allowed}")
-        show = None
-    elif show == "cycle" and base is not None and base.numerics.mode != "converge":
+    show = _one_of(spec.get("show", "whole"), "trajectory.show", TRAJECTORY_SHOW, problems)
+    if show == "cycle" and base is not None and base.numerics.mode != "converge":
         problems.append(
             "trajectory.show: 'cycle' needs the converged limit cycle: "
             f"set numerics.mode: converge (got {base.numerics.mode!r})"
@@ -948,6 +943,15 @@ def _name(value: Any, problems: list[str]) -> str | None:
         problems.append(f"name: {_show(value)} is not allowed: {must}")
     else:
         return value
+    return None
+
+
+def _one_of(value: Any, path: str, allowed: tuple[str, ...], problems: list[str]) -> Any:
+    """`value` if it is one of `allowed`, else None (and the problem, naming them)."""
+    if value in allowed:
+        return value
+    choices = " or ".join(repr(item) for item in allowed)
+    problems.append(f"{path}: {_show(value)} is not allowed: must be {choices}")
     return None
 
 

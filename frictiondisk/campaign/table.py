@@ -10,6 +10,7 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.cf import flag_meanings
+from frictiondisk.jumps import RUN_ROLES
 
 
 def _unit(coord: xr.DataArray) -> str:
@@ -93,7 +94,12 @@ def runs_summary(results: xr.Dataset) -> str | None:
     finished = int((results["status"] != "pending").sum()) if "status" in results else 0
     points = max(1, finished or int(results["n_runs"].size))
     parts = ", ".join(
-        f"{role} {float(results[f'runs_{role}'].sum()) / points:.3g}"
-        for role in ("search", "prescan", "certification")
+        f"{role} {float(results[f'runs_{role}'].sum()) / points:.3g}" for role in RUN_ROLES
     )
     return f"runs per point: {float(results['n_runs'].sum()) / points:.3g} ({parts})"
+
+
+def closing_lines(results: xr.Dataset) -> list[str]:
+    """What `run` and `status` print under a find_jump's results: runs per point, and the
+    uncertain points if any ([] for other tasks)."""
+    return [line for line in (runs_summary(results), uncertain_summary(results)) if line]
