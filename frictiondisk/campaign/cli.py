@@ -24,23 +24,33 @@ EXIT_LOCKED = 3
 
 
 @contextlib.contextmanager
-def _sigterm_stops_like_ctrl_c():
-    """SIGTERM (a batch scheduler, `kill`, a closed terminal) raises runner.Terminated in
-    the main thread, so a campaign stops as on Ctrl-C: runs journaled, partial results."""
-    from frictiondisk.campaign.runner import Terminated
+def _signals_stop_the_campaign():
+    """Ctrl-C (SIGINT) and SIGTERM (a batch scheduler, `kill`, a closed terminal) stop a
+    campaign alike: runs journaled, partial results. Each handler notes the stop before
+    raising it, so that a raise lost in a finalizer still stops the campaign loop."""
+    from frictiondisk.campaign.runner import Terminated, request_stop
 
-    def stop(signum, frame):
-        raise Terminated()
+    def stopper(stop):
+        def handler(signum, frame):
+            request_stop(stop)
+            raise stop()
 
+        return handler
+
+    wanted = {signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated}
+    previous = {}
     try:
-        previous = signal.signal(signal.SIGTERM, stop)
+        for signum, stop in wanted.items():
+            if signum == signal.SIGINT and signal.getsignal(signum) is signal.SIG_IGN:
+                continue  # started with Ctrl-C ignored (nohup, a background job)
+            previous[signum] = signal.signal(signum, stopper(stop))
     except ValueError:  # not the main thread (an embedding application): leave it alone
-        yield
-        return
+        pass
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
 
 def _execute(
@@ -68,7 +78,7 @@ def _execute(
     if problems:
         fail(f"{out_dir}: cannot start (nothing was created)", problems)
     try:
-        with _sigterm_stops_like_ctrl_c():
+        with _signals_stop_the_campaign():
             summary = run_campaign(
                 campaign,
                 out_dir,

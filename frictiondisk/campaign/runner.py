@@ -95,6 +95,21 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised in the main thread so that it stops a campaign like Ctrl-C."""
 
 
+_stop_requested: list[type[KeyboardInterrupt]] = []
+
+
+def request_stop(stop: type[KeyboardInterrupt]) -> None:
+    """Note a stop (KeyboardInterrupt or Terminated) asked for by a signal. The handler
+    raises it too, but an exception raised while the main thread runs a finalizer (Dask's
+    Future.__del__) is printed and lost; the campaign loop then raises it from this note."""
+    _stop_requested.append(stop)
+
+
+def _raise_if_stop_requested() -> None:
+    if _stop_requested:
+        raise _stop_requested[-1]()
+
+
 @dataclasses.dataclass
 class RunSummary:
     points: int
@@ -207,6 +222,7 @@ def run_campaign(
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     _refuse_links(out_dir)
+    _stop_requested.clear()
     with CampaignLock(out_dir):
         campaign = prepare_directory(out_dir, campaign)
         if campaign.kind == "trajectory":
@@ -222,6 +238,7 @@ def run_campaign(
                 driver.interrupted()
             raise
         except KeyboardInterrupt as stop:
+            _stop_requested.clear()
             driver.interrupted()
             terminated = isinstance(stop, Terminated)
             what = "terminated (SIGTERM)" if terminated else "interrupted"
@@ -440,6 +457,7 @@ class _Driver:
             for future, value in self._done_queue.next_batch(block=True):
                 self._collect(client, future, value)
             self._tick()
+            _raise_if_stop_requested()
 
     def _wait_with_workers(self, client) -> None:
         """Wait for a job to finish on --scheduler, checking every POLL seconds that some
