@@ -77,10 +77,10 @@ class Found:
 def locate(scene: dict, setting: str) -> Found:
     """Prescan and bisect every jump of `scene` under `setting` (module docstring)."""
     from frictiondisk.campaign.tasks import run_bisection
-    from frictiondisk.certify import OFF, Certify
     from frictiondisk.config import scene_from_dict
     from frictiondisk.jumps import JumpSearch
     from frictiondisk.prescan import default_stride
+    from frictiondisk.search_settings import OFF, Certify
 
     config = scene_from_dict(scene)
     if setting == "reference":

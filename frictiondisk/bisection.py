@@ -40,10 +40,11 @@ import dataclasses
 import math
 from typing import Any
 
+from frictiondisk.search_settings import ROOT_FINDERS
+
 STICK = "stick"
 UNDETERMINED = "undetermined"
 WIDEN_FACTOR = 2.0  # a widened bracket is this many times wider
-ROOT_FINDERS = ("itp", "bisect")
 ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
 
 

@@ -30,29 +30,11 @@ from frictiondisk.bisection import (
     RunRecord,
     RunRequest,
 )
+from frictiondisk.search_settings import OFF, Certify
 
 # Flag values of the `certification` variables (CF flag_values / flag_meanings).
 CERTIFICATION_FLAGS = ("off", "certified", "recertified", "uncertain", "vanished", "failed")
 
-
-@dataclasses.dataclass(frozen=True)
-class Certify:
-    """How a jump is certified: each level multiplies the decision horizon by `horizon`
-    and rtol by `rtol`; `levels` is the strictest level a point may reach (0: off)."""
-
-    horizon: float = 4.0
-    rtol: float = 0.1
-    levels: int = 2
-
-    @property
-    def enabled(self) -> bool:
-        return self.levels > 0
-
-    def canonical(self) -> dict[str, Any]:
-        return {"horizon": self.horizon, "levels": self.levels, "rtol": self.rtol}
-
-
-OFF = Certify(levels=0)
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}

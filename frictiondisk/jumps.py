@@ -28,8 +28,9 @@ from frictiondisk.bisection import (
     RunRecord,
     RunRequest,
 )
-from frictiondisk.certify import OFF, CertifiedBisection, Certify, point_certification
+from frictiondisk.certify import CertifiedBisection, point_certification
 from frictiondisk.prescan import AdaptiveGrid
+from frictiondisk.search_settings import OFF, Certify
 
 RUN_ROLES = ("search", "prescan", "certification")
 

@@ -44,6 +44,14 @@ def default_stride(n_values: int, mode: str, stick_rule: str) -> int:
     return round(math.sqrt(n_values))
 
 
+def stride_of(prescan, stick_rule: str) -> int:
+    """The stride a point with this stick rule runs its campaign's `prescan` with: the
+    campaign's own, else `default_stride`."""
+    if prescan.stride is not None:
+        return prescan.stride
+    return default_stride(len(prescan.mu), prescan.mode, stick_rule)
+
+
 def needs_a_run_inside(a: dict[str, Any], b: dict[str, Any]) -> bool:
     """Whether the interval between run summaries `a` and `b` needs a grid value run
     inside: its verdicts differ, or its ends do not explain it."""

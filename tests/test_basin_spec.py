@@ -14,7 +14,8 @@ from matplotlib.figure import Figure
 from frictiondisk.campaign import basin_stats
 from frictiondisk.campaign.basin_datasets import results_dataset, runs_dataset, summary_lines
 from frictiondisk.campaign.basin_figure import outcome_colors, plot_basin
-from frictiondisk.campaign.basin_plan import BLOCK, BasinPlanner, SampleRequest
+from frictiondisk.campaign.basin_plan import BasinPlanner
+from frictiondisk.campaign.basin_sampling import BLOCK, SampleRequest
 from frictiondisk.campaign.spec import Basin, campaign_from_dict, campaign_from_text
 from frictiondisk.config import ConfigError
 from frictiondisk.result import OUTCOMES

@@ -762,7 +762,7 @@ def test_all_problems_are_reported_together():
 
 
 def test_certify_defaults_on_and_is_switched_off_or_tuned():
-    from frictiondisk.certify import Certify
+    from frictiondisk.search_settings import Certify
 
     base = find_jump()
     assert campaign_from_dict(base).task.certify == Certify(horizon=4.0, rtol=0.1, levels=2)

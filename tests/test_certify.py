@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import pytest
 
-from frictiondisk.certify import OFF, CertifiedBisection, Certify, point_certification
+from frictiondisk.certify import CertifiedBisection, point_certification
 from frictiondisk.jumps import JumpSearch
+from frictiondisk.search_settings import OFF, Certify
 
 TOL = 1e-4
 

@@ -7,7 +7,7 @@ import pytest
 from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.config import ConfigError
 from frictiondisk.jumps import JumpSearch
-from frictiondisk.prescan import AdaptiveGrid, default_stride, needs_a_run_inside
+from frictiondisk.prescan import AdaptiveGrid, default_stride, needs_a_run_inside, stride_of
 
 GRID = tuple(float(mu) for mu in np.round(np.linspace(0.05, 0.40, 36), 6))
 
@@ -164,10 +164,10 @@ find_jump:
 def test_spec_stride_is_checked_and_only_a_given_stride_enters_the_hash():
     auto = campaign_from_text(CAMPAIGN.format(extra=""), "<t>")
     assert auto.task.prescan.stride is None
-    assert auto.task.prescan.stride_for("corotation") == 5
+    assert stride_of(auto.task.prescan, "corotation") == 5
     assert "stride" not in auto.task.prescan.canonical()
     dense = campaign_from_text(CAMPAIGN.format(extra=", stride: 1"), "<t>")
-    assert dense.task.prescan.stride_for("corotation") == 1
+    assert stride_of(dense.task.prescan, "corotation") == 1
     assert dense.task.prescan.canonical()["stride"] == 1
     for bad in ("0", "26", "2.5", "'x'"):
         with pytest.raises(ConfigError, match=r"find_jump\.prescan\.stride: .* must be"):

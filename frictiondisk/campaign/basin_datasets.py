@@ -19,7 +19,7 @@ import xarray as xr
 
 from frictiondisk import cf
 from frictiondisk.campaign import basin_stats
-from frictiondisk.campaign.basin_plan import STICK, SampleRequest, not_stick_outcomes
+from frictiondisk.campaign.basin_sampling import STICK, SampleRequest, not_stick_outcomes
 from frictiondisk.campaign.datasets import (
     RUN_MEASURES,
     _coords,

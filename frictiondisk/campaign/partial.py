@@ -44,7 +44,7 @@ def pending_result(kind: str) -> Any:
     if kind == "find_jump":
         return PendingJump()
     if kind == "basin":
-        from frictiondisk.campaign.basin_plan import BasinPointResult
+        from frictiondisk.campaign.basin_sampling import BasinPointResult
 
         return BasinPointResult(status=PENDING, reason=PENDING_REASON, results=[])
     return {"outcome": "", "reason": PENDING_REASON}

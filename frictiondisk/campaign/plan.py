@@ -30,6 +30,7 @@ from frictiondisk.campaign.requests import run_config
 from frictiondisk.campaign.tasks import run_batch, run_bisection, run_scene
 from frictiondisk.certify import CertifiedBisection
 from frictiondisk.jumps import JumpSearch, JumpSearchResult, run_role
+from frictiondisk.prescan import stride_of
 
 WARM_ERROR_FACTOR = 2.0  # half-width of a quadratic prediction: this x |quadratic - linear|
 
@@ -237,7 +238,7 @@ class JumpPlanner:
                 self.task.split,
                 self.task.certify,
                 self.task.root_finder,
-                prescan.stride_for(self.points[i].config.numerics.stick_rule),
+                stride_of(prescan, self.points[i].config.numerics.stick_rule),
             )
             return
         bracket = self._predicted_bracket(i)

@@ -8,8 +8,8 @@ from __future__ import annotations
 from typing import Any
 
 from frictiondisk.bisection import RunRequest
-from frictiondisk.certify import OFF, Certify
 from frictiondisk.horizon import horizon_key, horizon_of
+from frictiondisk.search_settings import OFF, Certify
 
 
 def run_config(point_config, request: RunRequest, horizon_factor: float, certify: Certify = OFF):

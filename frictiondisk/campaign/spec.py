@@ -45,10 +45,6 @@ import yaml
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
-from frictiondisk.bisection import ROOT_FINDERS
-from frictiondisk.certify import OFF as CERTIFY_OFF
-from frictiondisk.certify import Certify
-
 # Private helpers of config are shared on purpose, so that campaign messages read exactly like
 # scene messages: _show/_kind render values, _requirement says what a scene field accepts.
 from frictiondisk.config import (
@@ -62,7 +58,8 @@ from frictiondisk.config import (
     _show,
     scene_from_dict,
 )
-from frictiondisk.prescan import default_stride
+from frictiondisk.search_settings import OFF as CERTIFY_OFF
+from frictiondisk.search_settings import ROOT_FINDERS, Certify
 from frictiondisk.yamlio import StrictDumper, load_yaml_text, read_text_file
 
 __all__ = [
@@ -139,7 +136,7 @@ class Prescan:
     """Values of mu run at every point before bisecting, in numerics.mode `mode`; every
     change between neighbours is then bisected (frictiondisk.jumps.JumpSearch). `stride`:
     run every stride-th value first and refine where needed (frictiondisk.prescan); None
-    picks `prescan.default_stride` (1, dense, for converge mode and stick_rule contacts)."""
+    picks `prescan.stride_of` (1, dense, for converge mode and stick_rule contacts)."""
 
     mu: tuple[float, ...]
     mode: str
@@ -150,12 +147,6 @@ class Prescan:
         if self.stride is not None:
             out["stride"] = self.stride
         return out
-
-    def stride_for(self, stick_rule: str) -> int:
-        """The stride a point with this stick rule runs with."""
-        if self.stride is not None:
-            return self.stride
-        return default_stride(len(self.mu), self.mode, stick_rule)
 
 
 @dataclass(frozen=True)

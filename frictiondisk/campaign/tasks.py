@@ -68,8 +68,8 @@ def run_bisection(
     Returns (bisection, [(RunRequest, result summary), ...] of the runs computed here)."""
     from frictiondisk.campaign.journal import Journal, run_key
     from frictiondisk.campaign.requests import run_config
-    from frictiondisk.certify import OFF
     from frictiondisk.config import scene_from_dict
+    from frictiondisk.search_settings import OFF
     from frictiondisk.simulate import simulate
 
     point_config = scene_from_dict(point_canonical)
