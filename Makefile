@@ -99,7 +99,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)
-	$(BIN)/python -m frictiondisk.gallery --campaigns campaigns --out out/figures --figures out/figures
+	$(BIN)/python -m frictiondisk.cli.gallery --campaigns campaigns --out out/figures --figures out/figures
 
 gallery: figures
 	cp out/figures/fig*.png figures/

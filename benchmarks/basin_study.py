@@ -27,10 +27,10 @@ from pathlib import Path
 
 import xarray as xr
 
-from frictiondisk.campaign import basin_stats
-from frictiondisk.campaign.basin_datasets import summary_lines
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text, load_campaign
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.model.campaign import campaign_from_text, load_campaign
+from frictiondisk.search import basin_stats
+from frictiondisk.store.basin_datasets import summary_lines
 
 FIGURES = {  # figure name -> (campaign, boundary campaign or None)
     "basin_pin_x0": ("basin_pin_x0", None),
@@ -63,8 +63,8 @@ def make_figure(name: str, campaigns: Path, out: Path, figures: Path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    from frictiondisk.campaign.plot_cli import figure_for_dir
-    from frictiondisk.plotting import save_figure
+    from frictiondisk.cli.plot import figure_for_dir
+    from frictiondisk.figures.plotting import save_figure
 
     campaign, boundary = FIGURES[name]
     directory = _run(campaigns, out, campaign)

@@ -13,9 +13,9 @@ from pathlib import Path
 
 import xarray as xr
 
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
-from frictiondisk.campaign.tasks import warm_up
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.engine.tasks import warm_up
+from frictiondisk.model.campaign import campaign_from_text
 
 LINES = {
     "pin": """name: bench_pin_line

@@ -15,8 +15,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from frictiondisk.config import scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import simulate
 
 ROOT = Path(__file__).resolve().parents[1]
 BASELINE = {"method": "scipy-radau", "rtol": 1e-6, "atol": 1e-9, "h_max": 0.02}

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import sys
 
-from frictiondisk.config import scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import simulate
 
 NS = (12, 24, 48, 96, 192, 384, 768)
 T_DECIDE = 5.0  # [s] decision horizon of the scaling runs

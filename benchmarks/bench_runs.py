@@ -33,9 +33,9 @@ import numpy as np
 import xarray as xr
 import yaml
 
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
-from frictiondisk.campaign.tasks import warm_up
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.engine.tasks import warm_up
+from frictiondisk.model.campaign import campaign_from_text
 
 ROOT = Path(__file__).resolve().parent.parent
 DISK_LINE = {

@@ -38,13 +38,13 @@ from pathlib import Path
 
 import xarray as xr
 
-from frictiondisk.campaign.journal import Journal, run_key
-from frictiondisk.campaign.plan import planner_for, run_config
-from frictiondisk.campaign.runner import run_campaign, task_sizing
-from frictiondisk.campaign.spec import campaign_from_text, load_campaign
-from frictiondisk.campaign.tasks import run_batch, run_bisection, warm_up
-from frictiondisk.config import scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.engine.plan import planner_for, run_config
+from frictiondisk.engine.runner import run_campaign, task_sizing
+from frictiondisk.engine.tasks import run_batch, run_bisection, warm_up
+from frictiondisk.model.campaign import campaign_from_text, load_campaign
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import simulate
+from frictiondisk.store.journal import Journal, run_key
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -101,7 +101,7 @@ class KernelLoops:
     measured at different times are comparable."""
 
     def __init__(self, loop_s: float):
-        from frictiondisk.bisection import RunRequest
+        from frictiondisk.search.bisection import RunRequest
 
         campaign = load_campaign(ROOT / "campaigns/disk_xms_at_rest.yaml")
         point = campaign.points()[4].config
@@ -306,8 +306,8 @@ def driver_cpu_per_task(tasks: int = 300) -> float:
     the way the runner does (in-process cluster, sealed tasks, our keys, as_completed)."""
     from distributed import Client, LocalCluster, as_completed
 
-    from frictiondisk.campaign.runner import _send_without_batching_delay
-    from frictiondisk.campaign.tasks import Sealed, noop, run_sealed
+    from frictiondisk.engine.runner import _send_without_batching_delay
+    from frictiondisk.engine.tasks import Sealed, noop, run_sealed
 
     with (
         LocalCluster(

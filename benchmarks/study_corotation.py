@@ -20,9 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from frictiondisk import admissibility as ad
-from frictiondisk.config import scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.outcome import admissibility as ad
+from frictiondisk.simulation.simulate import simulate
 
 STARTS = {"rest": 0.0, "corotating": 1.1}  # phidot0 [rad/s]
 
@@ -74,7 +74,7 @@ def plot(results: dict[str, list[dict]], beta_b: float, out: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from frictiondisk.plotting import save_figure
+    from frictiondisk.figures.plotting import save_figure
 
     fig, axes = plt.subplots(1, len(results), figsize=(6.2 * len(results), 4.6), sharey=True)
     markers = {"stick": "o", "creep": "D", "stick_slip": "s", "slide": "v", "undetermined": "x"}

@@ -76,11 +76,11 @@ class Found:
 
 def locate(scene: dict, setting: str) -> Found:
     """Prescan and bisect every jump of `scene` under `setting` (module docstring)."""
-    from frictiondisk.campaign.tasks import run_bisection
-    from frictiondisk.config import scene_from_dict
-    from frictiondisk.jumps import JumpSearch
-    from frictiondisk.prescan import default_stride
-    from frictiondisk.search_settings import OFF, Certify
+    from frictiondisk.engine.tasks import run_bisection
+    from frictiondisk.model.scene import scene_from_dict
+    from frictiondisk.model.search_settings import OFF, Certify
+    from frictiondisk.search.jumps import JumpSearch
+    from frictiondisk.search.prescan import default_stride
 
     config = scene_from_dict(scene)
     if setting == "reference":

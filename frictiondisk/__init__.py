@@ -13,14 +13,13 @@ stays cheap)::
     fig = plot_results("out/demo_line")      # what `frictiondisk plot DIR` draws
     fig = plot_orbit(simulate(scene, record=True, dt_out=0.05), scene)
 
-Everything else (the kernel, the campaign machinery, the figures) lives in the submodules;
-docs/model.md describes the model.
+Everything else lives in the packages below, in data-flow order (docs/architecture.md):
+model, kernel, outcome, simulation, search, store, engine, figures, cli. docs/model.md
+describes the model.
 """
 
 from __future__ import annotations
 
-import sys
-import types
 from os import PathLike
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -30,10 +29,10 @@ from frictiondisk.version import __version__
 if TYPE_CHECKING:
     import xarray as xr
 
-    from frictiondisk.campaign.runner import RunSummary
-    from frictiondisk.campaign.spec import Campaign
-    from frictiondisk.config import SceneConfig
-    from frictiondisk.result import SimulationResult
+    from frictiondisk.engine.runner import RunSummary
+    from frictiondisk.model.campaign import Campaign
+    from frictiondisk.model.scene import SceneConfig
+    from frictiondisk.outcome.result import SimulationResult
 
 __all__ = [
     "__version__",
@@ -53,9 +52,9 @@ def load_scene(
     """Load and validate a scene YAML file (every key not given takes its default, SI units).
 
     overrides: "KEY=VALUE" strings like the CLI's --set, e.g. "params.mu=0.13". A bad file
-    or value raises `frictiondisk.yamlio.ConfigError` naming the key and its allowed range.
+    or value raises `frictiondisk.model.yamlio.ConfigError` naming the key and its allowed range.
     """
-    from frictiondisk.config import load_scene as _load_scene
+    from frictiondisk.model.scene import load_scene as _load_scene
 
     return _load_scene(path, tuple(overrides))
 
@@ -67,7 +66,7 @@ def simulate(scene: SceneConfig, record: bool = False, dt_out: float = 0.0) -> S
     switching instant (dt_out = 0: every step). The first call in a process compiles the
     numba kernel (or loads it from its cache).
     """
-    from frictiondisk.simulate import simulate as _simulate
+    from frictiondisk.simulation.simulate import simulate as _simulate
 
     return _simulate(scene, record=record, dt_out=dt_out)
 
@@ -76,10 +75,10 @@ def load_campaign(source: str | PathLike[str] | dict[str, Any]) -> Campaign:
     """Load and validate a campaign: a YAML file's path, or its parsed content as a dict
     (find_jump, scan, trajectory or basin task)."""
     if isinstance(source, dict):
-        from frictiondisk.campaign.spec import campaign_from_dict
+        from frictiondisk.model.campaign import campaign_from_dict
 
         return campaign_from_dict(source, source="<dict>")
-    from frictiondisk.campaign.spec import load_campaign as _load_campaign
+    from frictiondisk.model.campaign import load_campaign as _load_campaign
 
     return _load_campaign(source)
 
@@ -93,7 +92,7 @@ def run_campaign(
     """Run a campaign (a `Campaign` or the path of its YAML file) into out_dir, resuming
     whatever out_dir's journal already holds; campaign=None resumes out_dir's own campaign.
     Writes out_dir/results.nc and runs.nc (trajectory.nc for a trajectory task)."""
-    from frictiondisk.campaign.runner import run_campaign as _run_campaign
+    from frictiondisk.engine.runner import run_campaign as _run_campaign
 
     if campaign is not None and not hasattr(campaign, "task"):
         campaign = load_campaign(campaign)
@@ -119,7 +118,7 @@ def plot_results(path: str | PathLike[str], runs: bool = False):
     """The matplotlib Figure `frictiondisk plot DIR [--runs]` draws for the campaign in
     directory `path`, from its netCDF files alone, with axis units and a caption. runs:
     overlay every run of a find_jump campaign."""
-    from frictiondisk.campaign.plot_cli import figure_for_dir
+    from frictiondisk.cli.plot import figure_for_dir
 
     return figure_for_dir(Path(path), show_runs=runs)
 
@@ -127,23 +126,6 @@ def plot_results(path: str | PathLike[str], runs: bool = False):
 def plot_orbit(result: SimulationResult, scene: SceneConfig):
     """The Figure of the orbit y(x) [m] recorded in `result` (simulate(..., record=True)):
     sticking segments dark, sliding light, the master axis and the spring rest marked."""
-    from frictiondisk.plotting import plot_orbit as _plot_orbit
+    from frictiondisk.figures.plotting import plot_orbit as _plot_orbit
 
     return _plot_orbit(result, scene)
-
-
-class _Package(types.ModuleType):
-    """The package module, keeping the name `simulate` for the function above.
-
-    Importing the submodule `frictiondisk.simulate` would otherwise rebind the package
-    attribute `simulate` to that module. The submodule stays importable under its full
-    name (`from frictiondisk.simulate import ...`).
-    """
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        if name == "simulate" and isinstance(value, types.ModuleType):
-            return
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package

@@ -1,4 +1,4 @@
-"""Admissibility of permanent co-rotation (frictiondisk/admissibility.py).
+"""Admissibility of permanent co-rotation (frictiondisk/outcome/admissibility.py).
 
 Checks: the pin reduction to docs/model.md's oracle; the ordering and limits of the four demands;
 the rigid-plastic capacity against its static certificate and a brute-force search; and a
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 from conftest import g_factor
 
-from frictiondisk import admissibility as ad
-from frictiondisk.config import scene_from_dict
-from frictiondisk.crosscheck import NumpyModel
-from frictiondisk.simulate import simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.outcome import admissibility as ad
+from frictiondisk.simulation.radau import NumpyModel
+from frictiondisk.simulation.simulate import simulate
 
 OMEGA = 1.1
 REV = 2 * math.pi / OMEGA

@@ -6,10 +6,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from frictiondisk.config import scene_from_dict
 from frictiondisk.kernel import linalg, model, rodas
 from frictiondisk.kernel.model import SLIDE, STICK
-from frictiondisk.simulate import initial_state, pack_parameters, simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import initial_state, pack_parameters, simulate
 
 EPS = np.finfo(float).eps
 

@@ -15,13 +15,13 @@ import pytest
 import xarray as xr
 from click.testing import CliRunner
 
-from frictiondisk.bisection import Bisection
-from frictiondisk.campaign.journal import Journal
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
-from frictiondisk.config import scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.search.bisection import Bisection
+from frictiondisk.simulation.simulate import simulate
+from frictiondisk.store.journal import Journal
 
 X0_RANGE = (-0.05, 0.05)  # [m]
 PIN = {"scene": "pin", "params": {"x_ms": 0.1, "mu": 0.125}}
@@ -203,7 +203,7 @@ basin:
 def test_a_job_that_keeps_failing_marks_its_point_failed_and_journals_nothing(
     tmp_path, monkeypatch
 ):
-    from frictiondisk.campaign import basin_plan
+    from frictiondisk.engine import basin_plan
 
     def broken(*args):
         raise RuntimeError("simulated worker crash")

@@ -19,8 +19,10 @@ from matplotlib.text import Text
 
 matplotlib.use("Agg")
 
-from frictiondisk import __version__, cf  # noqa: E402
-from frictiondisk.campaign.figures import (  # noqa: E402
+from frictiondisk import __version__
+from frictiondisk.cli import main  # noqa: E402
+from frictiondisk.engine.runner import run_campaign  # noqa: E402
+from frictiondisk.figures.campaign import (  # noqa: E402
     MU_LABEL,
     axis_label,
     caption_text,
@@ -31,12 +33,11 @@ from frictiondisk.campaign.figures import (  # noqa: E402
     plot_scan_family,
     plot_scan_mu,
 )
-from frictiondisk.campaign.runner import run_campaign  # noqa: E402
-from frictiondisk.campaign.spec import campaign_from_text  # noqa: E402
-from frictiondisk.campaign.table import mu_star_table, uncertain_summary  # noqa: E402
-from frictiondisk.certify import CERTIFICATION_FLAGS  # noqa: E402
-from frictiondisk.cli import main  # noqa: E402
-from frictiondisk.config import scene_from_dict  # noqa: E402
+from frictiondisk.model.campaign import campaign_from_text  # noqa: E402
+from frictiondisk.model.scene import scene_from_dict  # noqa: E402
+from frictiondisk.search.certify import CERTIFICATION_FLAGS  # noqa: E402
+from frictiondisk.store import cf  # noqa: E402
+from frictiondisk.store.table import mu_star_table, uncertain_summary  # noqa: E402
 
 NUMERICS_YAML = (
     "atol: 1.0e-09\ncycle_count: 3\ncycle_tol: 1.0e-06\ndt: 0.01\nh_max: 0.1\n"
@@ -480,9 +481,9 @@ def test_a_dataset_that_is_not_a_campaign_result_is_refused(line):
 
 def test_figures_module_never_loads_the_kernel():
     code = (
-        "import sys, frictiondisk.campaign.figures, frictiondisk.campaign.plot_cli;"
+        "import sys, frictiondisk.figures.campaign, frictiondisk.cli.plot;"
         "bad = [m for m in sys.modules if m.startswith(('frictiondisk.kernel', "
-        "'frictiondisk.simulate', 'numba'))]; assert not bad, bad"
+        "'frictiondisk.simulation.simulate', 'numba'))]; assert not bad, bad"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
 

@@ -18,10 +18,10 @@ import xarray as xr
 from click.testing import CliRunner
 from conftest import coulomb_mu_star
 
-from frictiondisk.campaign.journal import CampaignLock, Journal
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.store.journal import CampaignLock, Journal
 
 PIN_LINE = """\
 name: pin_line
@@ -199,7 +199,7 @@ def test_killed_worker_is_retried_and_the_campaign_completes(tmp_path):
 
 
 def test_a_job_that_keeps_failing_fails_its_point_without_inventing_runs(tmp_path, monkeypatch):
-    from frictiondisk.campaign import plan
+    from frictiondisk.engine import plan
 
     def broken(*args):
         raise RuntimeError("simulated worker crash")

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictiondisk.campaign.spec import (
+from frictiondisk.model.campaign import (
     Campaign,
     FindJump,
     Point,
@@ -20,7 +20,7 @@ from frictiondisk.campaign.spec import (
     campaign_from_text,
     load_campaign,
 )
-from frictiondisk.config import ConfigError, SceneConfig, scene_from_dict
+from frictiondisk.model.scene import ConfigError, SceneConfig, scene_from_dict
 
 CAMPAIGNS = Path(__file__).resolve().parent.parent / "campaigns"
 
@@ -762,7 +762,7 @@ def test_all_problems_are_reported_together():
 
 
 def test_certify_defaults_on_and_is_switched_off_or_tuned():
-    from frictiondisk.search_settings import Certify
+    from frictiondisk.model.search_settings import Certify
 
     base = find_jump()
     assert campaign_from_dict(base).task.certify == Certify(horizon=4.0, rtol=0.1, levels=2)

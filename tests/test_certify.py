@@ -1,13 +1,13 @@
-"""Certification of located jumps (frictiondisk.certify): the ladder on synthetic oracles
+"""Certification of located jumps (frictiondisk.search.certify): the ladder on synthetic oracles
 whose jump moves with the numerics level, as a short horizon moves it in the kernel."""
 
 from __future__ import annotations
 
 import pytest
 
-from frictiondisk.certify import CertifiedBisection, point_certification
-from frictiondisk.jumps import JumpSearch
-from frictiondisk.search_settings import OFF, Certify
+from frictiondisk.model.search_settings import OFF, Certify
+from frictiondisk.search.certify import CertifiedBisection, point_certification
+from frictiondisk.search.jumps import JumpSearch
 
 TOL = 1e-4
 

@@ -1,5 +1,5 @@
 """CF-1.10 metadata of every netCDF file we write: results.nc, runs.nc, trajectory.nc and
-accuracy.nc (frictiondisk/cf.py)."""
+accuracy.nc (frictiondisk/store/cf.py)."""
 
 from __future__ import annotations
 
@@ -12,9 +12,9 @@ import xarray as xr
 import yaml
 from click.testing import CliRunner
 
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.model.campaign import campaign_from_text
 
 ACCURACY_PIN = Path(__file__).resolve().parents[1] / "campaigns" / "accuracy_pin.yaml"
 
@@ -156,7 +156,7 @@ def test_trajectory_measures_are_numbers_never_the_string_none(files):
 
 def test_a_basin_caption_does_not_give_a_sampled_key_its_base_value(files):
     from frictiondisk import plot_results
-    from frictiondisk.campaign.figures import caption_text
+    from frictiondisk.figures.campaign import caption_text
 
     with xr.open_dataset(files["basin/results.nc"]) as ds:
         caption = caption_text(ds.load())
@@ -172,7 +172,7 @@ def test_every_figure_has_the_one_house_style_whatever_the_callers_rc(files, kin
     import matplotlib
 
     from frictiondisk import plot_results
-    from frictiondisk.style import LABEL_FONT_PT
+    from frictiondisk.figures.style import LABEL_FONT_PT
 
     with matplotlib.rc_context({"font.size": 20.0, "axes.labelsize": 20.0, "axes.grid": False}):
         fig = plot_results(files[f"{kind}/results.nc"].parent)

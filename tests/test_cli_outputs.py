@@ -18,7 +18,7 @@ from click.testing import CliRunner
 
 from frictiondisk import __version__
 from frictiondisk.cli import main
-from frictiondisk.result import SimulationResult, Trajectory
+from frictiondisk.outcome.result import SimulationResult, Trajectory
 
 OMEGA_M = 1.1
 RADIUS = 0.05
@@ -27,7 +27,7 @@ STICK_SLICE = slice(100, 200)  # samples during which every contact sticks
 
 
 def _config(scene: str):
-    config_module = pytest.importorskip("frictiondisk.config")
+    config_module = pytest.importorskip("frictiondisk.model.scene")
     return config_module.scene_from_dict({"scene": scene})
 
 
@@ -75,7 +75,7 @@ def _result(scene: str, n_contacts: int, *, record: bool = True) -> SimulationRe
 
 
 def test_netcdf_round_trip_pin(tmp_path: Path) -> None:
-    from frictiondisk.trajectory import write_trajectory
+    from frictiondisk.store.trajectory import write_trajectory
 
     config = _config("pin")
     result = _result("pin", 1)
@@ -125,7 +125,7 @@ def test_switches_go_to_their_own_dimension_and_time_strictly_increases(tmp_path
 
     import netCDF4
 
-    from frictiondisk.trajectory import write_trajectory
+    from frictiondisk.store.trajectory import write_trajectory
 
     result = _result("pin", 1)
     traj = result.trajectory
@@ -159,7 +159,7 @@ def test_switches_go_to_their_own_dimension_and_time_strictly_increases(tmp_path
 
 
 def test_netcdf_disk_has_rotation(tmp_path: Path) -> None:
-    from frictiondisk.trajectory import write_trajectory
+    from frictiondisk.store.trajectory import write_trajectory
 
     config = _config("disk")
     result = _result("disk", 12)
@@ -175,7 +175,7 @@ def test_netcdf_disk_has_rotation(tmp_path: Path) -> None:
 
 
 def test_write_trajectory_replaces_existing_file(tmp_path: Path) -> None:
-    from frictiondisk.trajectory import write_trajectory
+    from frictiondisk.store.trajectory import write_trajectory
 
     config = _config("pin")
     path = tmp_path / "traj.nc"
@@ -186,7 +186,7 @@ def test_write_trajectory_replaces_existing_file(tmp_path: Path) -> None:
 
 
 def test_dataset_needs_a_trajectory() -> None:
-    from frictiondisk.trajectory import trajectory_dataset
+    from frictiondisk.store.trajectory import trajectory_dataset
 
     with pytest.raises(ValueError, match="no trajectory"):
         trajectory_dataset(_result("pin", 1, record=False), _config("pin"))
@@ -198,7 +198,7 @@ def test_dataset_needs_a_trajectory() -> None:
 def test_plot_orbit_png(tmp_path: Path) -> None:
     import matplotlib.image
 
-    from frictiondisk.plotting import plot_orbit, save_figure
+    from frictiondisk.figures.plotting import plot_orbit, save_figure
 
     config = _config("pin")
     fig = plot_orbit(_result("pin", 1), config)
@@ -231,7 +231,7 @@ def test_plot_orbit_png(tmp_path: Path) -> None:
 def test_plot_orbit_disk_pdf_and_given_axes(tmp_path: Path) -> None:
     from matplotlib.figure import Figure
 
-    from frictiondisk.plotting import plot_orbit, save_figure
+    from frictiondisk.figures.plotting import plot_orbit, save_figure
 
     fig = Figure()
     ax = fig.add_subplot()
@@ -245,7 +245,7 @@ def test_plot_orbit_disk_pdf_and_given_axes(tmp_path: Path) -> None:
 def test_save_figure_rejects_unknown_suffix(tmp_path: Path) -> None:
     from matplotlib.figure import Figure
 
-    from frictiondisk.plotting import save_figure
+    from frictiondisk.figures.plotting import save_figure
 
     with pytest.raises(ValueError, match="suffix"):
         save_figure(Figure(), tmp_path / "orbit.gif")
@@ -273,7 +273,7 @@ def _run_cli(args: list[str]):
 def test_bad_scene_exits_2_naming_the_field(
     tmp_path: Path, yaml_text: str, needles: list[str]
 ) -> None:
-    pytest.importorskip("frictiondisk.config")
+    pytest.importorskip("frictiondisk.model.scene")
     scene = tmp_path / "bad.yaml"
     scene.write_text(yaml_text)
 
@@ -289,7 +289,7 @@ def test_bad_scene_exits_2_naming_the_field(
 
 
 def test_bad_override_exits_2(tmp_path: Path) -> None:
-    pytest.importorskip("frictiondisk.config")
+    pytest.importorskip("frictiondisk.model.scene")
     scene = tmp_path / "ok.yaml"
     scene.write_text("scene: pin\n")
 
@@ -301,7 +301,7 @@ def test_bad_override_exits_2(tmp_path: Path) -> None:
 
 
 def test_missing_scene_file_exits_2(tmp_path: Path) -> None:
-    pytest.importorskip("frictiondisk.config")
+    pytest.importorskip("frictiondisk.model.scene")
     missing = tmp_path / "nope.yaml"
     result, text = _run_cli(["simulate", str(missing)])
     assert result.exit_code == 2, text
@@ -334,7 +334,7 @@ def test_version_and_help() -> None:
 
 def test_console_entry_bad_scene_has_no_traceback(tmp_path: Path) -> None:
     """The real process: exit status 2, message on stderr, nothing on stdout."""
-    pytest.importorskip("frictiondisk.config")
+    pytest.importorskip("frictiondisk.model.scene")
     scene = tmp_path / "bad.yaml"
     scene.write_text("scene: pin\nparams: {x_ms: -inf}\n")
     proc = subprocess.run(

@@ -8,7 +8,7 @@ import xarray as xr
 from click.testing import CliRunner
 
 from frictiondisk.cli import main
-from frictiondisk.plotting import SLIDE_COLOR, STICK_COLOR
+from frictiondisk.figures.plotting import SLIDE_COLOR, STICK_COLOR
 
 
 def _run(tmp_path, text, *args):

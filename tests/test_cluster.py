@@ -17,9 +17,9 @@ import pytest
 import xarray as xr
 
 import frictiondisk
-from frictiondisk.campaign.journal import Journal
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.store.journal import Journal
 
 REPO = Path(frictiondisk.__file__).resolve().parent.parent
 START_TIMEOUT_S = 120.0  # scheduler and workers up (imports, on a busy machine)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import io
 from types import SimpleNamespace
 
-from frictiondisk import compile_notice
-from frictiondisk.compile_notice import MESSAGE, announce_compile, needs_compiling
+from frictiondisk.simulation import compile_notice
+from frictiondisk.simulation.compile_notice import MESSAGE, announce_compile, needs_compiling
 
 
 def _dispatcher(signatures, index=None, broken=False):

@@ -11,9 +11,9 @@ import numpy as np
 import pydantic
 import pytest
 
-from frictiondisk.config import ConfigError, SceneConfig, load_scene, scene_from_dict
-from frictiondisk.yamlio import ConfigError as YamlConfigError
-from frictiondisk.yamlio import dump_yaml, load_yaml_file, load_yaml_text
+from frictiondisk.model.scene import ConfigError, SceneConfig, load_scene, scene_from_dict
+from frictiondisk.model.yamlio import ConfigError as YamlConfigError
+from frictiondisk.model.yamlio import dump_yaml, load_yaml_file, load_yaml_text
 
 DEFAULTS = {
     "params": {
@@ -723,5 +723,5 @@ def test_single_point_disk(tmp_path):
 
 
 def test_config_modules_do_not_import_numba():
-    code = "import sys, frictiondisk.config, frictiondisk.yamlio; sys.exit('numba' in sys.modules)"
+    code = "import sys, frictiondisk.model.scene, frictiondisk.model.yamlio; sys.exit('numba' in sys.modules)"
     assert subprocess.run([sys.executable, "-c", code]).returncode == 0

@@ -1,6 +1,6 @@
 """stick_rule corotation: permanent sticking is co-rotation without net slip (issue 9).
 
-Oracles: the Melan shakedown and collapse bounds of frictiondisk/admissibility.py, which
+Oracles: the Melan shakedown and collapse bounds of frictiondisk/outcome/admissibility.py, which
 the classifier never reads, and the pin, for which both stick rules must agree.
 """
 
@@ -9,9 +9,9 @@ import math
 import numpy as np
 import pytest
 
-from frictiondisk import admissibility as ad
-from frictiondisk.config import ConfigError, scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.model.scene import ConfigError, scene_from_dict
+from frictiondisk.outcome import admissibility as ad
+from frictiondisk.simulation.simulate import simulate
 
 BRAKE = 0.005  # beta_b [N m s/rad]
 

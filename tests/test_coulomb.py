@@ -1,13 +1,13 @@
-"""The exact Coulomb pin (frictiondisk/coulomb.py): the c -> infinity limit of the
+"""The exact Coulomb pin (frictiondisk/simulation/coulomb.py): the c -> infinity limit of the
 regularized model, and the located jump against the sticking-circle oracle."""
 
 import pytest
 from conftest import coulomb_mu_star, g_factor
 
-from frictiondisk.bisection import Bisection
-from frictiondisk.campaign.tasks import run_bisection
-from frictiondisk.config import ConfigError, scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.engine.tasks import run_bisection
+from frictiondisk.model.scene import ConfigError, scene_from_dict
+from frictiondisk.search.bisection import Bisection
+from frictiondisk.simulation.simulate import simulate
 
 G = g_factor()  # default pin [N/m]
 

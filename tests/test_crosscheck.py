@@ -1,4 +1,4 @@
-"""scipy-radau cross-check (frictiondisk/crosscheck.py) against the numba kernel.
+"""scipy-radau cross-check (frictiondisk/simulation/radau.py) against the numba kernel.
 
 Tolerances are in units of the requested accuracy, as in scipy's test_ivp.py: a length
 difference is measured in units of atol + rtol |value|, a time difference in units of
@@ -18,12 +18,12 @@ import math
 import numpy as np
 import pytest
 
-from frictiondisk import crosscheck
-from frictiondisk.classify import revolution
-from frictiondisk.config import scene_from_dict
-from frictiondisk.crosscheck import NumpyModel, simulate_radau
 from frictiondisk.kernel import model as km
-from frictiondisk.simulate import pack_parameters, simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.outcome.classify import revolution
+from frictiondisk.simulation import radau as crosscheck
+from frictiondisk.simulation.radau import NumpyModel, simulate_radau
+from frictiondisk.simulation.simulate import pack_parameters, simulate
 
 RTOL, ATOL = 1e-8, 1e-11
 OMEGA_M = 1.1  # [rad/s], the default master
@@ -155,7 +155,7 @@ def test_initial_modes_follow_the_rule():
     """Stick iff |k(0)| < F_St: the pin at rest on a turning master starts sliding."""
     config = scene_from_dict({"scene": "pin"})
     model = NumpyModel.from_config(config)
-    from frictiondisk.simulate import initial_modes, initial_state
+    from frictiondisk.simulation.simulate import initial_modes, initial_state
 
     y0 = initial_state(config)
     p, pts = pack_parameters(config)

@@ -11,7 +11,7 @@ import yaml
 from click.testing import CliRunner
 
 from frictiondisk.cli import main
-from frictiondisk.config import Params, load_scene, scene_from_dict
+from frictiondisk.model.scene import Params, load_scene, scene_from_dict
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -15,10 +15,15 @@ import zlib
 import numpy as np
 import pytest
 
-from frictiondisk.config import Numerics, scene_from_dict
 from frictiondisk.kernel import energy as ken
 from frictiondisk.kernel import model as km
-from frictiondisk.simulate import energy_balance, initial_state, pack_parameters, simulate
+from frictiondisk.model.scene import Numerics, scene_from_dict
+from frictiondisk.simulation.simulate import (
+    energy_balance,
+    initial_state,
+    pack_parameters,
+    simulate,
+)
 
 STRIBECK = {"r": 0.5, "v_s": 0.05, "delta": 1.5}  # v_s of the order of the sliding speeds
 INSTANT_SCENES = {

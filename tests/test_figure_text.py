@@ -8,15 +8,15 @@ matplotlib.use("Agg")
 
 import xarray as xr  # noqa: E402
 
-from frictiondisk import cf  # noqa: E402
-from frictiondisk.campaign.figure_style import (  # noqa: E402
+from frictiondisk.figures.shared import (  # noqa: E402
     MU_LABEL,
     caption_text,
     physics_text,
     scene_title,
 )
-from frictiondisk.campaign.spec import campaign_from_text  # noqa: E402
-from frictiondisk.config import scene_from_dict  # noqa: E402
+from frictiondisk.model.campaign import campaign_from_text  # noqa: E402
+from frictiondisk.model.scene import scene_from_dict  # noqa: E402
+from frictiondisk.store import cf  # noqa: E402
 
 LINE = """\
 name: diff_line
@@ -76,7 +76,7 @@ def test_a_changed_campaign_is_shown_rounded():
 def test_the_mu_star_table_lists_every_point():
     import numpy as np
 
-    from frictiondisk.campaign.table import mu_star_table
+    from frictiondisk.store.table import mu_star_table
 
     ds = xr.Dataset(
         {

@@ -96,8 +96,8 @@ def test_a_stop_raised_inside_a_finalizer_still_stops_the_campaign_loop():
     import gc
     import os
 
-    from frictiondisk.campaign import runner
-    from frictiondisk.campaign.cli import _signals_stop_the_campaign
+    from frictiondisk.cli.campaign import _signals_stop_the_campaign
+    from frictiondisk.engine import runner
 
     class SignalledWhileFinalized:
         def __del__(self):

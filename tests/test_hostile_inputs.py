@@ -28,14 +28,14 @@ from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from frictiondisk.campaign import budget
-from frictiondisk.campaign import journal as journal_module
-from frictiondisk.campaign import runner as runner_module
-from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
-from frictiondisk.config import ConfigError, scene_from_dict
-from frictiondisk.limits import max_workers
-from frictiondisk.yamlio import load_yaml_text
+from frictiondisk.engine import budget
+from frictiondisk.engine import runner as runner_module
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.model.limits import max_workers
+from frictiondisk.model.scene import ConfigError, scene_from_dict
+from frictiondisk.model.yamlio import load_yaml_text
+from frictiondisk.store import journal as journal_module
 
 REPO = Path(__file__).resolve().parent.parent
 BOUND_S = 30.0  # the issue's bound on every case
@@ -78,8 +78,10 @@ def no_kernel(monkeypatch):
     def tripwire(*args, **kwargs):
         raise AssertionError("the kernel ran; the input should have been refused first")
 
-    # the module, not the package attribute `frictiondisk.simulate` (the public function)
-    monkeypatch.setattr(importlib.import_module("frictiondisk.simulate"), "simulate", tripwire)
+    # the module, not the package attribute `frictiondisk.simulation.simulate` (the public function)
+    monkeypatch.setattr(
+        importlib.import_module("frictiondisk.simulation.simulate"), "simulate", tripwire
+    )
     monkeypatch.setattr(runner_module._Driver, "run", tripwire)
 
 
@@ -413,7 +415,7 @@ def test_scheduler_without_workers_warns_then_fails(tmp_path, monkeypatch):
 
 def test_recording_stops_when_its_buffer_is_full():
     """The kernel once kept evaluating dense output after the buffer was full."""
-    from frictiondisk.simulate import simulate
+    from frictiondisk.simulation.simulate import simulate
 
     config = scene_from_dict({"scene": "pin", "numerics": {"t_decide": 2.0}})
     t0 = time.monotonic()
@@ -429,7 +431,7 @@ def test_stick_after_zero_steps_is_undetermined(rule):
     """Past validation (model_copy skips it), x_ms = omega_m = vx0 = 1e300 made a revolution
     of 6e-300 s and 'stuck' at t = 0; a stick needs steps, so it is undetermined (under
     `corotation` the first step, cut at that revolution, already underflows)."""
-    from frictiondisk.simulate import simulate
+    from frictiondisk.simulation.simulate import simulate
 
     config = scene_from_dict({"scene": "pin", "numerics": {"stick_rule": rule}})
     huge = {"omega_m": 1e300, "x_ms": 1e300, "vx0": 1e300}

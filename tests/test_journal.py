@@ -17,20 +17,20 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from frictiondisk.campaign import journal as journal_module
-from frictiondisk.campaign.journal import (
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.store import journal as journal_module
+from frictiondisk.store.files import (
+    atomic_write_bytes,
+    atomic_write_netcdf,
+    atomic_write_text,
+    netcdf_is_valid,
+)
+from frictiondisk.store.journal import (
     CampaignLock,
     CampaignLocked,
     Journal,
     kernel_version,
     run_key,
-)
-from frictiondisk.config import scene_from_dict
-from frictiondisk.files import (
-    atomic_write_bytes,
-    atomic_write_netcdf,
-    atomic_write_text,
-    netcdf_is_valid,
 )
 
 RESULT = {"outcome": "stick_slip", "t_stick": None, "x_amplitude": 0.0123456789, "n_events": 42}
@@ -269,7 +269,7 @@ def test_truncated_last_log_line_is_ignored_and_next_put_still_logged(tmp_path):
 _HOLDER_SCRIPT = textwrap.dedent(
     """
     import sys, time
-    from frictiondisk.campaign.journal import CampaignLock
+    from frictiondisk.store.journal import CampaignLock
     with CampaignLock(sys.argv[1]):
         print("locked", flush=True)
         time.sleep(60)

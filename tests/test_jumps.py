@@ -1,4 +1,4 @@
-"""Every jump of a point: prescan, then bisect each change (frictiondisk/jumps.py), and the
+"""Every jump of a point: prescan, then bisect each change (frictiondisk/search/jumps.py), and the
 find_jump `prescan` end to end."""
 
 import math
@@ -8,10 +8,10 @@ import pytest
 import xarray as xr
 from conftest import coulomb_mu_star
 
-from frictiondisk.bisection import RunRequest
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
-from frictiondisk.jumps import JumpSearch
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.search.bisection import RunRequest
+from frictiondisk.search.jumps import JumpSearch
 
 
 def drive(search, outcome_of):

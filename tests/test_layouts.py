@@ -8,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from frictiondisk import layouts
-from frictiondisk.config import ConfigError, scene_from_dict
-from frictiondisk.simulate import pack_parameters, simulate
-from frictiondisk.yamlio import load_yaml_text
+from frictiondisk.model import layouts
+from frictiondisk.model.scene import ConfigError, scene_from_dict
+from frictiondisk.model.yamlio import load_yaml_text
+from frictiondisk.simulation.simulate import pack_parameters, simulate
 
 CLUTCH = {"layout": "annulus", "inner_radius": 0.063, "outer_radius": 0.087}
 

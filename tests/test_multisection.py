@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from frictiondisk.bisection import Bisection
-from frictiondisk.jumps import JumpSearch
+from frictiondisk.search.bisection import Bisection
+from frictiondisk.search.jumps import JumpSearch
 
 
 def drive(search, oracle, order=None):
@@ -102,8 +102,8 @@ def test_split_below_two_is_refused():
 
 @pytest.mark.parametrize("value", [1, 0, 2.5, 65, "three"])
 def test_a_bad_split_is_refused_naming_the_field_and_range(value):
-    from frictiondisk.campaign.spec import campaign_from_text
-    from frictiondisk.config import ConfigError
+    from frictiondisk.model.campaign import campaign_from_text
+    from frictiondisk.model.scene import ConfigError
 
     text = f"""name: c
 scene: pin
@@ -118,7 +118,7 @@ find_jump:
 
 
 def test_split_two_keeps_the_campaign_hash_and_other_splits_change_it():
-    from frictiondisk.campaign.spec import campaign_from_text
+    from frictiondisk.model.campaign import campaign_from_text
 
     base = "name: c\nscene: pin\nfind_jump:\n  bracket: [0.05, 0.3]\n{}  along: {{params.x_ms: [0.1]}}\n"
     plain = campaign_from_text(base.format(""), "<t>")

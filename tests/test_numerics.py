@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from frictiondisk.config import scene_from_dict
 from frictiondisk.kernel import events, model, rodas
 from frictiondisk.kernel.model import SLIDE, STICK
-from frictiondisk.simulate import initial_state, pack_parameters, simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import initial_state, pack_parameters, simulate
 
 
 def _random_state(rng, cfg):

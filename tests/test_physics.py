@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from conftest import g_factor
 
-from frictiondisk.config import scene_from_dict
-from frictiondisk.simulate import simulate
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import simulate
 
 OMEGA = 1.1
 REV = 2 * math.pi / OMEGA

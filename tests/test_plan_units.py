@@ -6,10 +6,10 @@ import random
 
 import pytest
 
-from frictiondisk.campaign.plan import JumpPlanner, Sizing
-from frictiondisk.campaign.spec import campaign_from_text
-from frictiondisk.campaign.tasks import run_batch, run_bisection
-from frictiondisk.prescan import default_stride
+from frictiondisk.engine.plan import JumpPlanner, Sizing
+from frictiondisk.engine.tasks import run_batch, run_bisection
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.search.prescan import default_stride
 
 PRESCAN = """\
 name: units

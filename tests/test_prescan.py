@@ -1,13 +1,13 @@
-"""The adaptive prescan (frictiondisk/prescan.py): a coarse grid, refined where verdicts
+"""The adaptive prescan (frictiondisk/search/prescan.py): a coarse grid, refined where verdicts
 change or the friction reserve does not explain them; the same jumps as a dense prescan."""
 
 import numpy as np
 import pytest
 
-from frictiondisk.campaign.spec import campaign_from_text
-from frictiondisk.config import ConfigError
-from frictiondisk.jumps import JumpSearch
-from frictiondisk.prescan import AdaptiveGrid, default_stride, needs_a_run_inside, stride_of
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.model.scene import ConfigError
+from frictiondisk.search.jumps import JumpSearch
+from frictiondisk.search.prescan import AdaptiveGrid, default_stride, needs_a_run_inside, stride_of
 
 GRID = tuple(float(mu) for mu in np.round(np.linspace(0.05, 0.40, 36), 6))
 

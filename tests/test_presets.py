@@ -2,15 +2,15 @@
 
 import pytest
 
-from frictiondisk.campaign.journal import run_key
-from frictiondisk.campaign.spec import campaign_from_text
-from frictiondisk.config import (
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.model.scene import (
     NUMERICS_PRESETS,
     ConfigError,
     Numerics,
     load_scene,
     scene_from_dict,
 )
+from frictiondisk.store.journal import run_key
 
 PRESET_KEYS = ("method", "rtol", "atol", "dt", "h_max")
 

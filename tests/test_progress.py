@@ -1,11 +1,11 @@
-"""Progress off a terminal is plain log lines, never carriage returns (frictiondisk/progress.py)."""
+"""Progress off a terminal is plain log lines, never carriage returns (frictiondisk/engine/progress.py)."""
 
 import io
 
 from click.testing import CliRunner
 
 from frictiondisk.cli import main
-from frictiondisk.progress import LogLines, progress_bar
+from frictiondisk.engine.progress import LogLines, progress_bar
 
 
 class FakeTerminal(io.StringIO):

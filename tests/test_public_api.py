@@ -9,7 +9,7 @@ import pytest
 
 import frictiondisk
 from frictiondisk import load_campaign, load_scene, open_results, run_campaign, simulate
-from frictiondisk.yamlio import ConfigError
+from frictiondisk.model.yamlio import ConfigError
 
 TINY_LINE = """\
 name: tiny_api_line
@@ -32,12 +32,11 @@ def test_import_is_cheap():
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
-def test_simulate_stays_the_function_after_the_submodule_is_imported():
-    import frictiondisk.simulate as submodule_or_function  # noqa: F401
-    from frictiondisk.simulate import pack_parameters  # the submodule stays importable
+def test_simulate_stays_the_function_after_the_simulation_package_is_imported():
+    from frictiondisk.simulation.simulate import pack_parameters
 
     assert callable(pack_parameters)
-    assert frictiondisk.simulate is simulate
+    assert frictiondisk.simulate is simulate and callable(frictiondisk.simulate)
     public = "__version__ load_campaign load_scene open_results plot_orbit plot_results"
     assert sorted(frictiondisk.__all__) == sorted([*public.split(), "run_campaign", "simulate"])
 

@@ -10,10 +10,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from frictiondisk.bisection import ITP_SLACK, Bisection
-from frictiondisk.campaign.plan import refinement
-from frictiondisk.campaign.spec import campaign_from_text
-from frictiondisk.config import ConfigError
+from frictiondisk.engine.plan import refinement
+from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.model.scene import ConfigError
+from frictiondisk.search.bisection import ITP_SLACK, Bisection
 
 BRACKET, LIMITS = (0.05, 0.3), (1e-6, 10.0)
 

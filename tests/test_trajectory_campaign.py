@@ -6,10 +6,10 @@ import pytest
 import xarray as xr
 from click.testing import CliRunner
 
-from frictiondisk.campaign.orbit_figure import cycle_window
-from frictiondisk.campaign.runner import run_campaign
-from frictiondisk.campaign.spec import campaign_from_text
 from frictiondisk.cli import main
+from frictiondisk.engine.runner import run_campaign
+from frictiondisk.figures.orbit import cycle_window
+from frictiondisk.model.campaign import campaign_from_text
 
 CYCLE = """\
 name: cycle

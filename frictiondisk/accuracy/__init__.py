@@ -1,1 +1,0 @@
-"""Accuracy study of the jump search: mu* against numerics and regularization settings."""

@@ -1,1 +1,0 @@
-"""Campaigns: validated campaign files (spec), and what is built on them."""

@@ -1,0 +1,5 @@
+"""`python -m frictiondisk.cli`: the command line."""
+
+from frictiondisk.cli.main import main
+
+main()

@@ -1,0 +1,361 @@
+"""Campaign commands: `run`, `resume`, `status` (thin; the work is in runner.py).
+
+Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
+path that cannot be written (named, with the cause), a symbolic link in DIR, an
+unreachable scheduler or a campaign over its size limits; 3 DIR is in use by another run,
+130 interrupted (Ctrl-C), 143 terminated (SIGTERM). A stop journals the runs in flight
+that finish within 30 s and writes results.nc with the finished points, marked partial;
+resume continues.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import signal
+import time
+from pathlib import Path
+
+import click
+
+from frictiondisk.cli.options import fail
+
+EXIT_LOCKED = 3
+
+
+@contextlib.contextmanager
+def _signals_stop_the_campaign():
+    """Ctrl-C (SIGINT) and SIGTERM (a batch scheduler, `kill`, a closed terminal) stop a
+    campaign alike: runs journaled, partial results. Each handler notes the stop before
+    raising it, so that a raise lost in a finalizer still stops the campaign loop."""
+    from frictiondisk.engine.runner import Terminated, request_stop
+
+    def stopper(stop):
+        def handler(signum, frame):
+            request_stop(stop)
+            raise stop()
+
+        return handler
+
+    wanted = {signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated}
+    previous = {}
+    try:
+        for signum, stop in wanted.items():
+            if signum == signal.SIGINT and signal.getsignal(signum) is signal.SIG_IGN:
+                continue  # started with Ctrl-C ignored (nohup, a background job)
+            previous[signum] = signal.signal(signum, stopper(stop))
+    except ValueError:  # not the main thread (an embedding application): leave it alone
+        pass
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+
+
+def _execute(
+    campaign,
+    out_dir: Path,
+    workers: int,
+    scheduler: str | None,
+    processes: bool,
+    worker_wait: float,
+    force: bool = False,
+    dashboard: bool = False,
+):
+    from frictiondisk.engine.preflight import preflight
+    from frictiondisk.engine.runner import (
+        CampaignChanged,
+        CampaignInterrupted,
+        SchedulerFailed,
+        run_campaign,
+    )
+    from frictiondisk.model.scene import ConfigError
+    from frictiondisk.store.journal import CampaignLocked
+    from frictiondisk.store.paths import describe_os_error
+
+    problems = preflight(campaign, out_dir, workers, scheduler, force)
+    if problems:
+        fail(f"{out_dir}: cannot start (nothing was created)", problems)
+    try:
+        with _signals_stop_the_campaign():
+            summary = run_campaign(
+                campaign,
+                out_dir,
+                workers,
+                scheduler,
+                processes,
+                worker_wait=worker_wait,
+                dashboard=dashboard,
+            )
+    except CampaignChanged as exc:
+        fail(f"{out_dir}: the campaign differs from the one this directory holds", exc.differences)
+    except CampaignLocked as exc:
+        fail(str(exc), [], EXIT_LOCKED)
+    except CampaignInterrupted as exc:
+        fail(str(exc), [], exc.exit_code)
+    except ConfigError as exc:
+        fail(f"{out_dir}/campaign.yaml", list(exc.problems))
+    except SchedulerFailed as exc:
+        fail(str(exc), [f"continue with: frictiondisk resume {out_dir}"])
+    except FileNotFoundError as exc:
+        fail(str(exc) if exc.filename is None else describe_os_error(exc), [])
+    except OSError as exc:
+        fail(
+            describe_os_error(exc, exc.filename or out_dir),
+            [f"finished runs are in the journal; fix this, then: frictiondisk resume {out_dir}"],
+        )
+    for line in summary.moved_aside:
+        click.echo(f"journal: rejected and recomputed: {line}", err=True)
+    if summary.moved_aside:
+        click.echo(
+            f"journal: {len(summary.moved_aside)} entries failed verification; they are kept "
+            f"in {out_dir / 'journal' / 'corrupt'}",
+            err=True,
+        )
+    click.echo(
+        f"done: {summary.points} points ({summary.points_failed} failed), "
+        f"{summary.runs_total} runs used, {summary.runs_computed} computed now, "
+        f"{summary.runs_saved_by_warm_start} saved by warm starts, {summary.wall_s:.1f} s"
+    )
+    click.echo(f"results: {summary.results}")
+    label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
+    click.echo(f"{label} {summary.runs}")
+    _echo_uncertain(summary.results)
+    _echo_basin(summary.results)
+
+
+def _echo_uncertain(results_path: Path) -> None:
+    """A find_jump with uncertain points: one line naming them. Not an error (exit 0): the
+    best bracket of each is kept in results.nc, flagged `uncertain`."""
+    import xarray as xr
+
+    from frictiondisk.store.table import closing_lines
+
+    if results_path.name != "results.nc" or not results_path.is_file():
+        return
+    with xr.open_dataset(results_path) as results:
+        lines = closing_lines(results)
+    for line in lines:
+        click.echo(line)
+
+
+def _echo_basin(results_path: Path) -> None:
+    """A basin campaign: its fractions with their 95 % intervals, one line per point."""
+    import xarray as xr
+
+    with xr.open_dataset(results_path) as results:
+        if results.attrs.get("task") != "basin":
+            return
+        from frictiondisk.store.basin_datasets import summary_lines
+
+        for line in summary_lines(results.load()):
+            click.echo(line)
+
+
+_workers = click.option(
+    "--workers",
+    type=click.IntRange(1, 256),
+    default=2,
+    show_default=True,
+    help="Local Dask workers (ignored with --scheduler); at most 4 per CPU core.",
+)
+_scheduler = click.option(
+    "--scheduler",
+    metavar="ADDRESS",
+    default=None,
+    help="Use an existing Dask scheduler (e.g. tcp://host:8786) instead of a local cluster.",
+)
+_worker_wait = click.option(
+    "--worker-wait",
+    type=click.FloatRange(0, 86_400),
+    default=60.0,
+    show_default=True,
+    metavar="SECONDS",
+    help="With --scheduler: fail after this long without a live worker (warns at once).",
+)
+_dashboard = click.option(
+    "--dashboard",
+    is_flag=True,
+    help="Serve the Dask dashboard (bokeh) of the local workers and print its address.",
+)
+_processes = click.option(
+    "--processes/--threads",
+    default=False,
+    show_default=True,
+    help="Local workers as processes or as threads (the kernel releases the GIL).",
+)
+
+
+@click.command()
+@click.argument("campaign_file", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False, path_type=Path),
+    required=True,
+    help="Campaign directory (journal, results.nc, runs.nc).",
+)
+@_workers
+@_scheduler
+@_worker_wait
+@_processes
+@_dashboard
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run a campaign over the size limits (points, runs, memory) anyway.",
+)
+def run(
+    campaign_file: Path,
+    out_dir: Path,
+    workers: int,
+    scheduler,
+    worker_wait: float,
+    processes: bool,
+    dashboard: bool,
+    force: bool,
+) -> None:
+    """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it."""
+    from frictiondisk.model.campaign import load_campaign
+    from frictiondisk.model.scene import ConfigError
+
+    if not campaign_file.is_file():
+        fail(str(campaign_file), [f"campaign file not found: {campaign_file}"])
+    try:
+        campaign = load_campaign(campaign_file)
+    except ConfigError as exc:
+        fail(str(campaign_file), list(exc.problems))
+    _execute(campaign, out_dir, workers, scheduler, processes, worker_wait, force, dashboard)
+
+
+@click.command()
+@click.argument("out_dir", type=click.Path(file_okay=False, path_type=Path))
+@_workers
+@_scheduler
+@_worker_wait
+@_processes
+@_dashboard
+def resume(
+    out_dir: Path, workers: int, scheduler, worker_wait: float, processes: bool, dashboard: bool
+) -> None:
+    """Continue the campaign in DIR from its journal (no finished run is computed again)."""
+    if not (out_dir / "campaign.yaml").is_file():
+        fail(f"{out_dir} is not a campaign directory (no campaign.yaml)", [])
+    _execute(None, out_dir, workers, scheduler, processes, worker_wait, dashboard=dashboard)
+
+
+@click.command()
+@click.argument("out_dir", type=click.Path(file_okay=False, path_type=Path))
+def status(out_dir: Path) -> None:
+    """Report progress of the campaign in DIR: points, runs, failures, time left."""
+    from frictiondisk.engine.runner import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
+    from frictiondisk.store.files import netcdf_is_valid
+    from frictiondisk.store.journal import CampaignLock, Journal
+    from frictiondisk.store.paths import describe_os_error, refuse_symlink
+
+    if not (out_dir / CAMPAIGN_FILE).is_file():
+        fail(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})", [])
+    info = {}
+    status_file = out_dir / STATUS_FILE
+    try:
+        refuse_symlink(status_file)
+        if status_file.is_file():
+            info = json.loads(status_file.read_text())
+        holder = CampaignLock.holder(out_dir)
+    except ValueError:
+        info, holder = {}, CampaignLock.holder(out_dir)
+    except OSError as exc:
+        fail(describe_os_error(exc), [])
+    # a trajectory campaign keeps no journal: its one run is counted in status.json
+    runs_done = Journal.count(out_dir) or int(info.get("runs_done", 0))
+    state = info.get("state", "not started")
+    if holder is not None:
+        state = f"running (pid {holder})"
+    elif state == "running":
+        state = "interrupted"
+    results_ok = netcdf_is_valid(out_dir / RESULTS_FILE)
+    if state == "complete" and not results_ok:
+        state = "damaged"
+    total = info.get("points_total", "?")
+    lines = [
+        f"campaign:  {info.get('campaign', '?')} in {out_dir}",
+        f"state:     {state}",
+        f"points:    {info.get('points_done', 0)} of {total} done, "
+        f"{info.get('points_failed', 0)} failed",
+        f"runs:      {runs_done} done; "
+        f"{info.get('jobs_in_flight', 0) if holder else 0} tasks in flight",
+    ]
+    eta = info.get("eta_s")
+    if holder is not None and eta is not None:
+        age = time.time() - info.get("updated", time.time())
+        lines.append(f"time left: about {max(0.0, eta - age):.0f} s")
+    if results_ok:  # a complete state always has them (else it is "damaged")
+        lines += _results_lines(out_dir / RESULTS_FILE, complete=state == "complete")
+    if state == "damaged":
+        lines.append(f"results.nc is missing or damaged; rebuild it: frictiondisk resume {out_dir}")
+    elif state in ("interrupted", "not started"):
+        lines.append(f"continue with: frictiondisk resume {out_dir}")
+    lines += _journal_report(out_dir)
+    lines += _edit_report(out_dir)
+    click.echo("\n".join(lines))
+
+
+def _edit_report(out_dir: Path) -> list[str]:
+    """Lines saying that DIR/campaign.yaml was edited by hand (resume refuses it)."""
+    from frictiondisk.engine.runner import CAMPAIGN_FILE, record_differences
+    from frictiondisk.model.campaign import load_campaign
+    from frictiondisk.model.scene import ConfigError
+
+    try:
+        differences = record_differences(out_dir, load_campaign(out_dir / CAMPAIGN_FILE))
+    except ConfigError as exc:
+        differences = [f"{out_dir / CAMPAIGN_FILE} no longer validates:", *exc.problems]
+    if not differences:
+        return []
+    return [f"campaign:  resume will refuse: {differences[0]}"] + [
+        f"  {line}" for line in differences[1:]
+    ]
+
+
+def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
+    """Lines on journal entries that fail verification now, and those moved aside before."""
+    from frictiondisk.store.journal import Journal
+
+    failing, moved = Journal.audit(out_dir)
+    lines = []
+    if failing:
+        lines.append(
+            f"journal:   {len(failing)} entries fail verification and will not be used "
+            "(resume moves each one it needs to journal/corrupt/ and recomputes it):"
+        )
+        lines += [f"  {line}" for line in failing[:shown]]
+        lines += [f"  ... and {len(failing) - shown} more"] if len(failing) > shown else []
+    if moved:
+        lines.append(f"journal:   {len(moved)} entries were moved aside to journal/corrupt/:")
+        lines += [f"  {line}" for line in moved[-shown:]]
+    return lines
+
+
+def _results_lines(results_file: Path, complete: bool) -> list[str]:
+    """What results.nc says: the mu* table of a complete find_jump campaign, or what a
+    stopped or running campaign has found so far (its partial results.nc; [] if none)."""
+    import xarray as xr
+
+    from frictiondisk.store.basin_datasets import summary_lines
+    from frictiondisk.store.table import closing_lines, mu_star_table
+
+    with xr.open_dataset(results_file) as results:
+        if complete:
+            head = f"results:   {results_file}"
+        elif results.attrs.get("partial"):
+            head = (
+                f"results:   {results_file} (partial: {results.attrs.get('points_done')} of "
+                f"{results.attrs.get('points_total')} points finished)"
+            )
+        else:
+            return []
+        if not complete and results.attrs.get("task") == "basin":
+            return [head, *summary_lines(results.load())]
+        return [head, *mu_star_table(results), *closing_lines(results)]

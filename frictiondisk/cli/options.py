@@ -1,0 +1,34 @@
+"""What the command modules share: the usage exit code, error reports and option checks."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import NoReturn
+
+import click
+
+EXIT_USAGE = 2  # bad command line, bad scene or campaign file, unreadable result file
+
+
+def fail(header: str, lines: list[str], code: int = EXIT_USAGE) -> NoReturn:
+    """Report `error: header` and one indented line per problem on stderr, then exit with
+    `code` (no traceback)."""
+    click.echo(f"error: {header}", err=True)
+    for line in lines:
+        click.echo(f"  {line}", err=True)
+    raise SystemExit(code)
+
+
+def check_figure_suffix(
+    ctx: click.Context, param: click.Parameter, value: Path | None
+) -> Path | None:
+    """A figure path whose suffix names a format matplotlib writes for us."""
+    if value is None:
+        return None
+    from frictiondisk.figures.plotting import FIGURE_FORMATS
+
+    if value.suffix.lower() not in FIGURE_FORMATS:
+        raise click.BadParameter(
+            f"{str(value)!r}: the suffix picks the format; use one of {', '.join(FIGURE_FORMATS)}"
+        )
+    return value

@@ -1,0 +1,228 @@
+"""What every campaign figure shares: axis labels, outcome styles, the caption line and
+the figure frame (plot, note, caption). The figure modules (figures.py, size_figure.py,
+orbit_figure.py) import from here; nothing here imports them, nor the kernel.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+import numpy as np
+import xarray as xr
+import yaml
+from matplotlib.figure import Figure, SubFigure
+
+from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
+from frictiondisk.outcome.horizon import horizon_key
+
+MU_LABEL = "friction coefficient \u03bc [-]"
+MU_STAR_LABEL = "\u03bc* [-]"
+SIZE_LABEL = "size (sticking radius) [m]"
+A_LABEL = "deviation from circle a [m]"
+
+FAIL_COLOR = "tab:red"
+SLIDE_GREY = "0.55"
+NON_MONOTONE_COLOR = "tab:orange"
+LINE_COLOR = "0.15"
+RUG_Y = 0.03  # axes fraction at which points without a value are drawn
+MAX_LISTED = 8  # failed points listed by name; the rest are counted
+LIST_WIDTH = 112  # characters per line of the failure list (fits 7.2 in at NOTE_FONT_PT)
+REGION_FONT_PT = 12.0
+CAPTION_SEP = " | "
+
+# marker style of each outcome (face colour, edge colour, marker)
+OUTCOME_STYLE: dict[str, dict[str, Any]] = {
+    "stick": {"color": STICK_COLOR, "edge": STICK_COLOR, "marker": "o"},
+    "creep": {"color": "#e0a040", "edge": "#9a6a1c", "marker": "D"},
+    "stick_slip": {"color": SLIDE_COLOR, "edge": "#3f6e8c", "marker": "o"},
+    "slide": {"color": SLIDE_GREY, "edge": "0.35", "marker": "s"},
+    "undetermined": {"color": FAIL_COLOR, "edge": FAIL_COLOR, "marker": "x"},
+}
+OUTCOME_LABEL = {
+    "stick": "stick",
+    "creep": "creep (ratchets on the small orbit)",
+    "stick_slip": "stick_slip (limit cycle)",
+    "slide": "slide",
+    "undetermined": "undetermined",
+}
+
+
+# ---- labels and caption ------------------------------------------------------------------
+def _unit_text(units: Any) -> str | None:
+    if units is None or str(units).strip() == "":
+        return None
+    return "-" if str(units).strip() == "1" else str(units).strip()
+
+
+def axis_label(coord: xr.DataArray) -> str:
+    """Axis label of a varied coordinate from its attributes, e.g. "axes offset x_ms [m]".
+
+    The description is the coordinate's long_name up to its first ':' or ';' (without a
+    trailing "[unit]"); the symbol is the last part of its scene_key; "1" shows as "[-]".
+    mu is always labelled `MU_LABEL`.
+    """
+    key = str(coord.attrs.get("scene_key", coord.name))
+    if key == "params.mu":
+        return MU_LABEL
+    name = key.split(".")[-1]
+    long_name = re.sub(r"\s*\[[^\]]*\]\s*$", "", str(coord.attrs.get("long_name", "")))
+    description = re.split(r"[:;]", long_name, maxsplit=1)[0].strip()
+    words = re.findall(r"[\w]+", description)
+    text = description if name in words else f"{description} {name}".strip()
+    unit = _unit_text(coord.attrs.get("units"))
+    return f"{text} [{unit}]" if unit else text
+
+
+def _value_text(coord: xr.DataArray, value: float) -> str:
+    """ "x_ms = 0.1 m": a point's value of a varied key, with its unit."""
+    name = str(coord.attrs.get("scene_key", coord.name)).split(".")[-1]
+    unit = _unit_text(coord.attrs.get("units"))
+    return f"{name} = {value:.6g}{' ' + unit if unit and unit != '-' else ''}"
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, float | np.floating):
+        return f"{float(value):g}"
+    return str(value)
+
+
+def _caption_parts(ds: xr.Dataset) -> list[str]:
+    attrs = ds.attrs
+    parts = [f"campaign {attrs.get('campaign_name', '?')}", f"task {attrs.get('task', '?')}"]
+    if "tol" in attrs:
+        parts.append(f"tol {_fmt(float(attrs['tol']))}")
+    try:
+        numerics = yaml.safe_load(str(attrs.get("numerics_yaml", ""))) or {}
+    except yaml.YAMLError:
+        numerics = {}
+    if not isinstance(numerics, dict):
+        numerics = {}
+    mode = numerics.get("mode")
+    if attrs.get("task") == "scan":  # the scan's own mode overrides numerics.mode
+        try:
+            spec = yaml.safe_load(str(attrs.get("campaign_yaml", ""))) or {}
+            mode = (spec.get("scan") or {}).get("mode", "converge")
+        except (yaml.YAMLError, AttributeError):
+            pass
+    horizon = horizon_key(mode)
+    numerics_text = ", ".join(
+        f"{label}{_fmt(numerics[key])}{unit}"
+        for key, label, unit in (
+            ("method", "", ""),
+            ("rtol", "rtol ", ""),
+            ("atol", "atol ", ""),
+            (horizon, f"{horizon} ", " s"),
+        )
+        if key in numerics
+    )
+    if numerics_text or mode:
+        parts.append(f"numerics {numerics_text}" + (f", mode {mode}" if mode else ""))
+    physics = physics_text(ds)
+    if physics:
+        parts.append(physics)
+    parts.append(f"frictiondisk {attrs.get('frictiondisk_version', '?')}")
+    if attrs.get("kernel_version"):
+        parts.append(str(attrs["kernel_version"]))
+    return parts
+
+
+# physical parameters named in captions: (param attribute, symbol, unit, disk only)
+CAPTION_PARAMS = (
+    ("x_ms", "x_ms", "m", False),
+    ("x0", "x0", "m", False),
+    ("beta_b", "$\\beta_b$", "N m s/rad", True),
+    ("phidot0", "$\\dot{\\varphi}_0$", "rad/s", True),
+)
+
+
+def _scene(ds: xr.Dataset) -> dict[str, Any]:
+    try:
+        return yaml.safe_load(str(ds.attrs.get("scene_yaml", ""))) or {}
+    except yaml.YAMLError:
+        return {}
+
+
+def scene_title(ds: xr.Dataset) -> str:
+    """ "Pin" or "Disk (12 contact points)": what a figure shows, from its resolved scene."""
+    scene = _scene(ds)
+    name = str(scene.get("scene", "") or "")
+    if name == "disk":
+        points = (scene.get("contact") or {}).get("points")
+        return f"Disk ({points} contact points)" if points else "Disk"
+    return name.capitalize() or str(ds.attrs.get("campaign_name", ""))
+
+
+def physics_text(ds: xr.Dataset) -> str:
+    """The physical parameters that are not varied, e.g. "pin, x_ms 0.1 m, x0 0 m" (disk:
+    also beta_b and phidot0); empty for results without the resolved scene."""
+    if "param_x_ms" not in ds.attrs:
+        return ""
+    varied = {str(ds[c].attrs.get("scene_key", "")) for c in ds.coords}
+    varied |= {str(key) for key in sample_spec(ds)}  # sampled: no single value either
+    scene = _scene(ds).get("scene", "")
+    shown = [
+        f"{symbol} {_fmt(float(ds.attrs[f'param_{key}']))} {unit}"
+        for key, symbol, unit, disk_only in CAPTION_PARAMS
+        if f"param_{key}" in ds.attrs
+        and f"params.{key}" not in varied
+        and (scene == "disk" or not disk_only)
+    ]
+    return ", ".join([str(scene or "scene"), *shown])
+
+
+def sample_spec(ds: xr.Dataset) -> dict[str, Any]:
+    """A basin campaign's sampled scene keys and their distributions (its sample_yaml
+    attribute: {key: {kind: [a, b]}}); {} for any other results."""
+    try:
+        sample = yaml.safe_load(str(ds.attrs.get("sample_yaml", ""))) or {}
+    except yaml.YAMLError:
+        return {}
+    return sample if isinstance(sample, dict) else {}
+
+
+def caption_text(ds: xr.Dataset) -> str:
+    """One line on how the results were made: campaign name, task, tolerance, numerics
+    (method, rtol, atol, horizon, mode; from the numerics_yaml attribute), the physical
+    parameters that are not varied, and the package and numerics versions."""
+    return CAPTION_SEP.join(_caption_parts(ds))
+
+
+def _wrap_parts(parts: list[str], width: int) -> list[str]:
+    """Join caption parts into lines of at most `width` characters (a part is never split)."""
+    lines: list[str] = []
+    for part in parts:
+        if lines and len(lines[-1]) + len(CAPTION_SEP) + len(part) <= width:
+            lines[-1] += CAPTION_SEP + part
+        else:
+            lines.append(part)
+    return lines
+
+
+def new_figure(
+    results: xr.Dataset, width: float, height: float, note_lines: int
+) -> tuple[Figure, SubFigure, SubFigure | None]:
+    """A Figure of three stacked subfigures: the plot (height [in]), a note of `note_lines`
+    monospace lines (none if 0) and the caption (wrapped to the figure width).
+
+    Returns the figure, the plot's subfigure and the note's (or None). Separate subfigures
+    keep the note and caption out of the plot's constrained layout.
+    """
+    chars = int(width * 72 / (0.56 * CAPTION_FONT_PT))
+    caption = _wrap_parts(_caption_parts(results), chars)
+    caption_h = 0.1 + 0.14 * len(caption)
+    note_h = 0.125 * note_lines + 0.2 if note_lines else 0.0
+    ratios = [height, *([note_h] if note_lines else []), caption_h]
+    fig = Figure(figsize=(width, sum(ratios)), layout="constrained")
+    subs = fig.subfigures(len(ratios), 1, height_ratios=ratios, hspace=0.0)
+    subs[-1].text(
+        0.01,
+        0.5,
+        "\n".join(caption),
+        ha="left",
+        va="center",
+        fontsize=CAPTION_FONT_PT,
+        color="0.3",
+        gid="caption",
+    )
+    return fig, subs[0], (subs[1] if note_lines else None)

@@ -1,0 +1,689 @@
+"""Validated scene configuration (docs/model.md section 5): models, loading, canonical form, hash.
+
+Defaults, units and allowed ranges live only in the model fields below. Each field's
+`description` ends with its unit in brackets and `json_schema_extra["unit"]` holds the
+unit alone ("1" = dimensionless); error messages read the bounds from the fields.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import json
+import math
+import re
+import reprlib
+import types
+from collections.abc import Iterable, Mapping, Sequence
+from os import PathLike
+from typing import Any, Literal, Union, get_args, get_origin
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic.fields import FieldInfo
+from pydantic_core import ErrorDetails, PydanticCustomError
+
+from frictiondisk.model import layouts
+from frictiondisk.model.yamlio import ConfigError, dump_yaml, load_yaml_file, load_yaml_text
+
+__all__ = [
+    "NUMERICS_PRESETS",
+    "ConfigError",
+    "Contact",
+    "Numerics",
+    "Params",
+    "SceneConfig",
+    "Stribeck",
+    "load_scene",
+    "scene_from_dict",
+]
+
+DEFAULT_DISK_POINTS = 12  # contact points of a disk when contact.points is null
+MAX_POINTS = 1000  # most contact points of a scene
+
+# Upper bounds that keep the kernel's arithmetic meaningful (issue 14). Integers go to the
+# kernel as int64. Lengths, speeds and the master speed are bounded far beyond any friction
+# disk, so that squared terms stay finite and one revolution stays longer than a step:
+# x_ms = omega_m = vx0 = 1e300 made a revolution 6e-300 s, "decided" stick after 0 steps.
+INT64_MAX = 2**63 - 1
+MAX_LENGTH = 1.0e3  # [m]
+MAX_SPEED = 1.0e4  # [m/s]
+MAX_OMEGA = 1.0e4  # [rad/s]
+MAX_HORIZON = 1.0e9  # [s] simulated time of one run, retries included
+MAX_KEY_PARTS = 8  # parts of a dotted --set key (the deepest scene key has 3)
+
+# strict: no "0.1" -> 0.1, no true -> 1.0, no 1.5 -> int; allow_inf_nan: reject inf/nan.
+_MODEL_CONFIG = ConfigDict(extra="forbid", frozen=True, strict=True, allow_inf_nan=False)
+
+
+def _layout_error(name: str, value: Any, message: str) -> None:
+    """Reject contact.<name> (a layout rule): the message names the field and the rule."""
+    raise PydanticCustomError("layout_rule", message, {"path": f"contact.{name}", "value": value})
+
+
+def _field(default: Any, unit: str | None, doc: str, **constraints: Any) -> Any:
+    """Field with default, unit ("1" = dimensionless, None = not a quantity) and bounds."""
+    return Field(
+        default,
+        description=f"{doc} [{unit}]" if unit else doc,
+        json_schema_extra={"unit": unit} if unit else None,
+        **constraints,
+    )
+
+
+class Stribeck(BaseModel):
+    """Stribeck curve mu(v) = mu*[r + (1 - r)*exp(-(v/v_s)**delta)] (docs/model.md section 3)."""
+
+    model_config = _MODEL_CONFIG
+
+    r: float = _field(1.0, "1", "ratio mu_kinetic/mu_static; 1 is Coulomb friction", gt=0, le=1)
+    v_s: float = _field(1.0e-3, "m/s", "Stribeck velocity", gt=0)
+    delta: float = _field(1.0, "1", "Stribeck exponent", gt=0)
+
+
+class Params(BaseModel):
+    """Physical parameters and initial state (paper symbols, docs/model.md sections 2 and 5)."""
+
+    model_config = _MODEL_CONFIG
+
+    mu: float = _field(0.13, "1", "static friction coefficient", gt=0)
+    omega_m: float = _field(1.1, "rad/s", "angular velocity of the master disk", ge=0, le=MAX_OMEGA)
+    c_s: float = _field(1.0, "N/m", "stiffness of the slave's support spring", ge=0)
+    beta_s: float = _field(0.1, "N s/m", "damping of the slave's support", ge=0)
+    m_s: float = _field(1.0, "kg", "slave mass", gt=0)
+    F_n: float = _field(1.0, "N", "total normal force", gt=0)
+    J_s: float = _field(0.02, "kg m^2", "moment of inertia of the slave disk", gt=0)
+    beta_b: float = _field(0.0, "N m s/rad", "brake (rotational viscous) damping", ge=0)
+    x_ms: float = _field(
+        0.1,
+        "m",
+        "axes offset: the slave's rest position is (x_ms, 0)",
+        ge=-MAX_LENGTH,
+        le=MAX_LENGTH,
+    )
+    x0: float = _field(
+        0.0,
+        "m",
+        "initial spring deflection: the slave starts at x_ms + x0",
+        ge=-MAX_LENGTH,
+        le=MAX_LENGTH,
+    )
+    y0: float = _field(0.0, "m", "initial y position of the slave", ge=-MAX_LENGTH, le=MAX_LENGTH)
+    vx0: float = _field(0.0, "m/s", "initial x velocity of the slave", ge=-MAX_SPEED, le=MAX_SPEED)
+    vy0: float = _field(0.0, "m/s", "initial y velocity of the slave", ge=-MAX_SPEED, le=MAX_SPEED)
+    phidot0: float = _field(
+        0.0,
+        "rad/s",
+        "initial angular velocity of the slave disk",
+        ge=-MAX_OMEGA,
+        le=MAX_OMEGA,
+    )
+
+
+class Contact(BaseModel):
+    """Regularized friction contact (docs/model.md section 3); the totals c, beta, F_n are
+    spread over the points of `layout` by their weights (frictiondisk/model/layouts.py)."""
+
+    model_config = _MODEL_CONFIG
+
+    stiffness: float = _field(2.53e5, "N/m", "contact stiffness c", gt=0)
+    damping: float | None = _field(
+        None, "N s/m", "contact damping beta; null: damping_ratio*2*sqrt(stiffness*m_s)", gt=0
+    )
+    damping_ratio: float = _field(
+        1.0,
+        "1",
+        "damping as a fraction of critical 2*sqrt(stiffness*m_s), if damping is null",
+        gt=0,
+    )
+    eps: float = _field(1.0e-9, "m/s", "slip-rate threshold of the slide->stick event", gt=0)
+    layout: Literal["ring", "annulus", "points"] = _field(
+        "ring",
+        None,
+        "where the disk's contacts lie: ring (ring_radius), annulus (inner_radius, "
+        "outer_radius; uniform pressure) or points (positions, weights)",
+    )
+    points: int | None = _field(
+        None,
+        "1",
+        f"number of contact points; null: 1 (pin), {DEFAULT_DISK_POINTS} (disk ring or "
+        "annulus), len(positions) (layout points)",
+        ge=1,
+        le=MAX_POINTS,
+    )
+    ring_radius: float = _field(0.05, "m", "radius of the ring of disk contact points", gt=0)
+    inner_radius: float | None = _field(
+        None, "m", "inner radius of the annulus (layout annulus only)", ge=0
+    )
+    outer_radius: float | None = _field(
+        None, "m", "outer radius of the annulus, > inner_radius (layout annulus only)", gt=0
+    )
+    positions: list[list[float]] | None = _field(
+        None, "m", "body-frame contact points [[x, y], ...] (layout points only)"
+    )
+    weights: list[float] | None = _field(
+        None,
+        "1",
+        "share of each point in normal force, stiffness and damping, each > 0, normalized "
+        "to sum 1; null: equal (layout points only)",
+    )
+    stribeck: Stribeck = Field(default_factory=Stribeck, description="Stribeck curve")
+
+    @model_validator(mode="after")
+    def _layout_fields(self) -> Contact:
+        """Each layout's own fields are given, the other layouts' are not."""
+        own = {"annulus": ("inner_radius", "outer_radius"), "points": ("positions",)}
+        for layout, names in own.items():
+            for name in names:
+                value = getattr(self, name)
+                if layout == self.layout and value is None:
+                    _layout_error(name, value, f"layout {layout!r} needs it")
+                if layout != self.layout and value is not None:
+                    _layout_error(name, value, f"only used by layout {layout!r}")
+        if self.weights is not None and self.layout != "points":
+            _layout_error("weights", self.weights, "only used by layout 'points'")
+        if self.layout == "annulus" and self.outer_radius <= self.inner_radius:
+            _layout_error(
+                "outer_radius",
+                self.outer_radius,
+                f"must be > inner_radius = {self.inner_radius} m",
+            )
+        if self.layout == "points":
+            self._check_points()
+        return self
+
+    def _check_points(self) -> None:
+        n = len(self.positions)
+        if not 1 <= n <= MAX_POINTS:
+            _layout_error("positions", self.positions, f"must hold 1 to {MAX_POINTS} points")
+        for i, xy in enumerate(self.positions):
+            if len(xy) != 2:
+                _layout_error(f"positions.{i}", xy, "must be a pair [x, y] of numbers in m")
+        if self.points is not None and self.points != n:
+            _layout_error("points", self.points, f"must be null or len(positions) = {n}")
+        if self.weights is not None:
+            if len(self.weights) != n:
+                _layout_error("weights", self.weights, f"must have one weight per position ({n})")
+            for i, w in enumerate(self.weights):
+                if not w > 0.0:
+                    _layout_error(f"weights.{i}", w, "must be > 0")
+
+
+# Numerics presets (issue 5): each sets every key it names unless the scene gives that key
+# explicitly (explicit keys win). `default` is the field defaults, so a scene without a preset
+# is unchanged. Chosen from the accuracy study (`frictiondisk accuracy` on
+# campaigns/accuracy_pin.yaml and accuracy_disk.yaml, bisection tol 1e-9): |mu* - mu*_ref|
+# against rodas4 at rtol 1e-9 on the default pin / co-rotating disk, and kernel steps of the
+# whole bisection relative to `default`:
+#   fast       rtol 1e-4, atol 1e-7   9.0e-6 / Zeno     0.64x / 0.49x
+#   default    rtol 1e-6, atol 1e-9   5.8e-7 / 6.5e-9   1
+#   reference  rtol 1e-9, atol 1e-12  the reference     6.5x / 6.5x
+# All well below the campaigns' bisection tol 1e-4. atol = 1e-3 rtol throughout (states are
+# O(0.1) m, m/s, N). t_decide is not part of a preset: a horizon that is too short misses a
+# late permanent stick unless the run extends until its verdict is shown stationary
+# (docs/model.md section 6; before that rule, t_decide = 2 s misplaced mu* by 1e-2).
+NUMERICS_PRESETS: dict[str, dict[str, Any]] = {
+    "fast": {"method": "rodas4", "rtol": 1.0e-4, "atol": 1.0e-7, "dt": 1.0e-2, "h_max": 0.1},
+    "default": {"method": "rodas4", "rtol": 1.0e-6, "atol": 1.0e-9, "dt": 1.0e-2, "h_max": 0.1},
+    "reference": {
+        "method": "rodas4",
+        "rtol": 1.0e-9,
+        "atol": 1.0e-12,
+        "dt": 1.0e-2,
+        "h_max": 0.1,
+    },
+}
+
+
+class Numerics(BaseModel):
+    """Integrator, tolerances, horizons and limit-cycle detection.
+
+    `preset` (fast, default, reference) fills method, rtol, atol, dt and h_max from
+    NUMERICS_PRESETS; a key given explicitly next to it wins. The preset name itself is not
+    part of the canonical form (SceneConfig.canonical): only the values it resolved to are,
+    so equal numerics give equal content hashes and journal keys however they were written.
+    """
+
+    model_config = _MODEL_CONFIG
+
+    method: Literal["rodas4", "rodas4-fixed", "scipy-radau", "coulomb"] = _field(
+        "rodas4", None, "integration method"
+    )
+    rtol: float = _field(1.0e-6, "1", "relative tolerance", gt=0, lt=1)
+    atol: float = _field(1.0e-9, None, "absolute tolerance, in each state's SI unit", gt=0)
+    # dt = 0.01 s resolves the 4 ms initial contact transient (R1 error 4e-10 m on the default pin);
+    # 0.02 s does not (first stick misplaced by 0.2 s).
+    dt: float = _field(1.0e-2, "s", "step of rodas4-fixed", gt=0)
+    h_max: float = _field(0.1, "s", "largest step", gt=0)
+    mode: Literal["decide", "converge"] = _field(
+        "decide", None, "decide: stick or not; converge: run to a converged limit cycle"
+    )
+    # Measured: over 930 pin and disk runs (x_ms 0.02-0.2 m, x0 -0.05-0.05 m, mu 0.5-2 x the
+    # oracle) with a 600 s horizon, every permanent stick began before t = 4.8 s.
+    t_decide: float = _field(
+        30.0, "s", "decision horizon (simulated time) in mode decide", gt=0, le=MAX_HORIZON
+    )
+    t_max: float = _field(
+        3000.0, "s", "simulated-time horizon in mode converge", gt=0, le=MAX_HORIZON
+    )
+    stop_on_stick: bool = _field(True, None, "stop the run at permanent stick")
+    window_revs: float = _field(2.0, "1", "final window, in master revolutions", gt=0)
+    cycle_tol: float = _field(1.0e-6, "m", "limit-cycle section points agreement", gt=0)
+    cycle_count: int = _field(
+        3, "1", "successive section points that must agree", ge=2, le=INT64_MAX
+    )
+    stick_rule: Literal["corotation", "contacts"] = _field(
+        "corotation",
+        None,
+        "what `stick` means: corotation = the slave co-rotates with the master without net "
+        "slip (slip per revolution decays to zero; docs/model.md); contacts = every contact "
+        "stays in stick mode for one whole revolution",
+    )
+    horizon_budget: float = _field(
+        8.0,
+        "1",
+        "stick_rule corotation: a run still settling at its horizon may extend it, one "
+        "revolution at a time, up to this multiple of t_decide (t_max in mode converge)",
+        ge=1,
+        le=1000,
+    )
+    max_steps: int = _field(2_000_000, "1", "step budget of one run", ge=1, le=INT64_MAX)
+    max_events: int = _field(
+        200_000, "1", "mode-switch event budget of one run", ge=1, le=INT64_MAX
+    )
+    preset: Literal["fast", "default", "reference"] = _field(
+        "default",
+        None,
+        "numerics preset: sets method, rtol, atol, dt, h_max unless given explicitly",
+    )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _resolve_preset(cls, data: Any) -> Any:
+        """Fill the preset's keys that `data` does not give (explicit keys win)."""
+        if isinstance(data, Mapping):
+            name = data.get("preset", "default")
+            if isinstance(name, str) and name in NUMERICS_PRESETS:
+                return {**NUMERICS_PRESETS[name], **data}
+        return data  # not a mapping or a bad preset: field validation reports it
+
+
+class SceneConfig(BaseModel):
+    """One validated scene: build it with `load_scene` or `scene_from_dict`."""
+
+    model_config = _MODEL_CONFIG
+
+    scene: Literal["pin", "disk"] = Field(
+        description="pin: point mass on one contact; disk: slave disk on contact.points"
+    )
+    params: Params = Field(default_factory=Params, description="physical parameters")
+    contact: Contact = Field(default_factory=Contact, description="friction contact")
+    numerics: Numerics = Field(default_factory=Numerics, description="numerical settings")
+
+    @model_validator(mode="after")
+    def _pin_has_one_contact(self) -> SceneConfig:
+        if self.scene == "pin" and self.contact.layout != "ring":
+            raise PydanticCustomError(
+                "scene_rule",
+                "a pin has exactly one contact, at its centre; use layout 'ring'",
+                {"path": "contact.layout", "value": self.contact.layout, "scene": self.scene},
+            )
+        if self.scene == "pin" and self.contact.points not in (None, 1):
+            raise PydanticCustomError(
+                "scene_rule",
+                "a pin has exactly one contact; use 1 or null",
+                {"path": "contact.points", "value": self.contact.points, "scene": self.scene},
+            )
+        if (
+            self.scene == "disk"
+            and self.numerics.method == "scipy-radau"
+            and self.numerics.stick_rule == "corotation"
+        ):
+            raise PydanticCustomError(
+                "scene_rule",
+                "the scipy-radau cross-check measures no slip per revolution; set "
+                "numerics.stick_rule: contacts for a disk (the rules agree for the pin)",
+                {"path": "numerics.stick_rule", "value": "corotation", "scene": self.scene},
+            )
+        if self.scene != "pin" and self.numerics.method == "coulomb":
+            raise PydanticCustomError(
+                "scene_rule",
+                "the exact Coulomb model exists for scene pin only",
+                {"path": "numerics.method", "value": "coulomb", "scene": self.scene},
+            )
+        return self
+
+    @property
+    def n_contacts(self) -> int:
+        """Number of contact points N: 1 for a pin; for a disk `contact.points` or 12, or
+        len(contact.positions) for layout points."""
+        if self.scene == "pin":
+            return 1
+        if self.contact.layout == "points":
+            return len(self.contact.positions)
+        return self.contact.points or DEFAULT_DISK_POINTS
+
+    @property
+    def contact_damping(self) -> float:
+        """Total contact damping beta [N s/m]: `damping`, else a fraction of critical."""
+        if self.contact.damping is not None:
+            return self.contact.damping
+        critical = 2.0 * math.sqrt(self.contact.stiffness * self.params.m_s)
+        return self.contact.damping_ratio * critical
+
+    def _layout(self) -> tuple[np.ndarray, np.ndarray]:
+        con = self.contact
+        if self.scene == "pin":
+            return np.zeros((1, 2)), np.ones(1)
+        if con.layout == "annulus":
+            return layouts.annulus(self.n_contacts, con.inner_radius, con.outer_radius)
+        if con.layout == "points":
+            shares = np.ones(self.n_contacts) if con.weights is None else np.array(con.weights)
+            return np.array(con.positions, dtype=float).reshape(-1, 2), shares
+        return layouts.ring(self.n_contacts, con.ring_radius)
+
+    def contact_positions(self) -> np.ndarray:
+        """Body-frame contact points p_i [m], shape (N, 2), of `contact.layout`
+        (frictiondisk/model/layouts.py); a pin's one contact is at its centre."""
+        return self._layout()[0]
+
+    def contact_weights(self) -> np.ndarray:
+        """Relative weights N w_i (mean 1), shape (N,): contact i carries w_i of F_n, c
+        and beta. Exactly 1.0 for every point of a ring."""
+        return layouts.relative_weights(self._layout()[1])
+
+    def canonical(self) -> dict[str, Any]:
+        """Plain JSON-able dict, every default filled in, `points` resolved, keys sorted.
+
+        Only the fields of the chosen `contact.layout` are kept (ring: ring_radius;
+        annulus: inner_radius, outer_radius; points: positions and weights, null weights
+        written out as equal ones)."""
+        data = self.model_dump(mode="json")
+        data["contact"]["points"] = self.n_contacts
+        unused = {
+            "ring": ("inner_radius", "outer_radius", "positions", "weights"),
+            "annulus": ("ring_radius", "positions", "weights"),
+            "points": ("ring_radius", "inner_radius", "outer_radius"),
+        }
+        for name in unused[self.contact.layout]:
+            del data["contact"][name]
+        if self.contact.layout == "points" and self.contact.weights is None:
+            data["contact"]["weights"] = [1.0] * self.n_contacts
+        # the preset is resolved into concrete values; its name is not content
+        del data["numerics"]["preset"]
+        return _sorted(data)
+
+    def content_hash(self) -> str:
+        """sha256 hex digest of the canonical dict as compact, key-sorted JSON."""
+        text = json.dumps(self.canonical(), sort_keys=True, separators=(",", ":"))
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    def to_yaml(self) -> str:
+        """The canonical dict as YAML; `load_scene` reads it back to the same canonical form."""
+        return dump_yaml(self.canonical())
+
+    def with_overrides(self, overrides: Mapping[str, Any]) -> SceneConfig:
+        """New validated config with dotted keys set, e.g. {"params.mu": 0.12}.
+
+        Setting "numerics.preset" sets every key of that preset too (the values of this
+        config are all explicit by now), except keys given in the same `overrides`.
+        """
+        name = overrides.get("numerics.preset")
+        if isinstance(name, str) and name in NUMERICS_PRESETS:
+            implied = {f"numerics.{key}": value for key, value in NUMERICS_PRESETS[name].items()}
+            overrides = {**implied, **overrides}
+        origins = {key: f"override {key}" for key in overrides}
+        data = _apply(self.model_dump(), overrides.items(), "<overrides>")
+        return _validate(data, "<overrides>", origins)
+
+
+def scene_from_dict(
+    data: Any, overrides: Sequence[str] = (), source: str = "<dict>"
+) -> SceneConfig:
+    """Validate `data` (e.g. parsed YAML) after applying `KEY=VALUE` override strings.
+
+    Raises ConfigError listing every problem as `dotted.path: message`.
+    """
+    if isinstance(overrides, str):
+        raise TypeError("overrides must be a sequence of 'KEY=VALUE' strings, not one string")
+    pairs, problems = [], []
+    for text in overrides:
+        try:
+            pairs.append(_parse_override(text, source))
+        except ConfigError as err:
+            problems += err.problems
+    if problems:
+        raise ConfigError(problems, source)
+    origins = {key: f"--set {text}" for (key, _), text in zip(pairs, overrides, strict=True)}
+    return _validate(_apply(data, pairs, source), source, origins)
+
+
+def load_scene(path: str | PathLike[str], overrides: Sequence[str] = ()) -> SceneConfig:
+    """Load and validate a scene YAML file; `overrides` are CLI `--set KEY=VALUE` strings."""
+    return scene_from_dict(load_yaml_file(path), overrides, source=str(path))
+
+
+# --- overrides ------------------------------------------------------------------------
+
+_DOTTED_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*")
+
+
+def _parse_override(text: str, source: str) -> tuple[str, Any]:
+    """`"params.mu=0.13"` -> ("params.mu", 0.13); VALUE is read as strict YAML."""
+    key, sep, value = text.partition("=")
+    key = key.strip()
+    if key.count(".") >= MAX_KEY_PARTS:
+        raise ConfigError(
+            f"--set {_repr.repr(text)}: key has {key.count('.') + 1} dotted parts: "
+            f"allowed at most {MAX_KEY_PARTS} (scene keys have 2 or 3, e.g. params.mu)",
+            source,
+        )
+    if not sep or not _DOTTED_KEY.fullmatch(key):
+        raise ConfigError(
+            f"--set {text!r}: malformed override: expected KEY=VALUE with a dotted KEY, "
+            "e.g. params.mu=0.13",
+            source,
+        )
+    shown = text if len(text) <= 80 else text[:60] + "..."
+    return key, load_yaml_text(value, source=f"--set {shown}")
+
+
+def _apply(data: Any, pairs: Iterable[tuple[str, Any]], source: str) -> Any:
+    """Copy of `data` with each dotted key set to its value."""
+    for key, value in pairs:
+        if isinstance(key, str) and key.count(".") >= MAX_KEY_PARTS:
+            raise ConfigError(
+                f"{_repr.repr(key)}: override key has more than {MAX_KEY_PARTS} dotted parts",
+                source,
+            )
+        if not isinstance(key, str) or not _DOTTED_KEY.fullmatch(key):
+            raise ConfigError(
+                f"{key!r}: malformed override key: expected a dotted key, e.g. params.mu", source
+            )
+        data = _set_dotted(data, key.split("."), value, (), source)
+    return data
+
+
+def _set_dotted(
+    data: Any, keys: Sequence[str], value: Any, done: tuple[str, ...], source: str
+) -> dict[str, Any]:
+    """Copy of mapping `data` with data[k0][k1]... = value; a null section becomes {}."""
+    data = {} if data is None else data
+    if not isinstance(data, Mapping):
+        target = ".".join((*done, *keys))
+        raise ConfigError(
+            f"{_dotted(done)}: cannot set {target}: expected a mapping, "
+            f"got {_kind(data)} {_show(data)}",
+            source,
+        )
+    head, *rest = keys
+    out = dict(data)
+    out[head] = _set_dotted(out.get(head), rest, value, (*done, head), source) if rest else value
+    return out
+
+
+# --- error messages -------------------------------------------------------------------
+
+_BOUNDS = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
+_TYPE_NOUNS = {
+    "float_type": "a number",
+    "int_type": "an integer",
+    "bool_type": "a boolean",
+    "string_type": "a string",
+}
+_repr = reprlib.Repr()
+_repr.maxstring = _repr.maxother = 40
+
+
+def _validate(data: Any, source: str, origins: Mapping[str, str]) -> SceneConfig:
+    try:
+        return SceneConfig.model_validate(data)
+    except ValidationError as err:
+        problems = [_problem(error, origins) for error in err.errors(include_url=False)]
+        raise ConfigError(problems, source) from None
+
+
+def _problem(error: ErrorDetails, origins: Mapping[str, str]) -> str:
+    """One line `dotted.path: what is wrong; what is allowed` for one pydantic error."""
+    kind, loc, value = error["type"], error["loc"], error.get("input")
+    ctx = error.get("ctx") or {}
+    if kind == "scene_rule":
+        path = ctx["path"]
+        text = f"{_show(ctx['value'])} is not allowed for scene {ctx['scene']!r}: {error['msg']}"
+    elif kind == "layout_rule":
+        path = ctx["path"]
+        text = f"{_show(ctx['value'])} is not allowed: {error['msg']}"
+    elif kind in ("extra_forbidden", "invalid_key"):
+        path = _dotted(loc) if kind == "extra_forbidden" else _dotted(loc[:-1])
+        model = _model_at(loc[:-1])
+        under = f"under {_dotted(loc[:-1])}" if loc[:-1] else "at top level"
+        what = "unknown key" if kind == "extra_forbidden" else f"key {_show(value)} is not text"
+        text = f"{what}; allowed keys {under}: {', '.join(model.model_fields)}"
+        close = difflib.get_close_matches(str(loc[-1]), list(model.model_fields), n=1)
+        text += f" (did you mean {close[0]!r}?)" if close else ""
+    elif kind in ("model_type", "model_attributes_type", "dict_type"):
+        path = _dotted(loc)
+        keys = ", ".join(_model_at(loc).model_fields)
+        got = _kind(value) if value is None else f"{_kind(value)} {_show(value)}"
+        text = f"expected a mapping with keys {keys}; got {got}"
+    else:
+        path = _dotted(loc)
+        text = _field_problem(kind, value, _field_at(loc), error["msg"])
+    for key, origin in origins.items():
+        if path == key or path.startswith(key + "."):
+            text += f" (from {origin})"
+    return f"{path}: {text}"
+
+
+def _field_problem(kind: str, value: Any, field: FieldInfo | None, msg: str) -> str:
+    if field is None:
+        return f"{_show(value)}: {msg}"
+    must = f"must be {_requirement(field)}"
+    if kind == "missing":
+        return f"missing; {must}"
+    if kind == "finite_number" or kind == "literal_error":
+        return f"{_show(value)} is not allowed: {must}"
+    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        return f"{_show(value)} is out of range: must be {_bounds(field, value)}"
+    if value is None:
+        return f"missing value (null); {must}"
+    if kind in _TYPE_NOUNS:
+        number = kind in ("float_type", "int_type")
+        hint = " (write numbers without quotes)" if number and isinstance(value, str) else ""
+        return f"{_show(value)} is {_kind(value)}, not {_TYPE_NOUNS[kind]}: {must}{hint}"
+    return f"{_show(value)}: {msg}; {must}"
+
+
+def _requirement(field: FieldInfo) -> str:
+    """What a field accepts, e.g. "a finite number > 0 kg", "one of 'a', 'b', 'c'"."""
+    annotation = field.annotation
+    args = get_args(annotation) if get_origin(annotation) in (Union, types.UnionType) else ()
+    nullable = type(None) in args
+    base = next(a for a in args if a is not type(None)) if args else annotation
+    if get_origin(base) is list:
+        item = get_args(base)[0]
+        text = "a list of pairs [x, y]" if get_origin(item) is list else "a list of numbers"
+    elif get_origin(base) is Literal:
+        choices = [repr(choice) for choice in get_args(base)]
+        text = " or ".join(choices) if len(choices) == 2 else "one of " + ", ".join(choices)
+    else:
+        noun = {bool: "true or false", int: "an integer", float: "a finite number"}[base]
+        text = f"{noun} {_bounds(field)}".strip()
+    return f"null or {text}" if nullable else text
+
+
+def _bounds(field: FieldInfo, value: Any = None) -> str:
+    """The field's bounds and unit, e.g. "> 0 and < 1", ">= 0 rad/s"; "" if unbounded.
+
+    The int64 limit of integer fields is shown only to a `value` beyond it."""
+    beyond_int64 = isinstance(value, int) and value > INT64_MAX
+    parts = [
+        f"{symbol} {getattr(item, name)}"
+        for item in field.metadata
+        for name, symbol in _BOUNDS.items()
+        if getattr(item, name, None) is not None
+        and (getattr(item, name) != INT64_MAX or beyond_int64)
+    ]
+    extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
+    unit = extra.get("unit")
+    if not parts:
+        return ""
+    return " and ".join(parts) + (f" {unit}" if unit and unit != "1" else "")
+
+
+def _model_at(loc: tuple[int | str, ...]) -> type[BaseModel]:
+    """The model class that validates the mapping at `loc`."""
+    model: type[BaseModel] = SceneConfig
+    for part in loc:
+        model = model.model_fields[part].annotation
+    return model
+
+
+def _field_at(loc: tuple[int | str, ...]) -> FieldInfo | None:
+    try:
+        return _model_at(loc[:-1]).model_fields[loc[-1]]
+    except (KeyError, AttributeError, IndexError, TypeError):
+        return None
+
+
+def describe_key(dotted: str) -> tuple[str | None, str]:
+    """Unit ("1" = dimensionless, None = not a quantity) and description of a scene key,
+    e.g. "params.x_ms" -> ("m", "axes offset ... [m]"). KeyError for an unknown key."""
+    field = _field_at(tuple(dotted.split(".")))
+    if field is None:
+        raise KeyError(dotted)
+    extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
+    return extra.get("unit"), field.description or dotted
+
+
+def _dotted(loc: tuple[int | str, ...]) -> str:
+    return ".".join(map(str, loc)) or "(top level)"
+
+
+def _show(value: Any) -> str:
+    """A value as the user wrote it: YAML words for true/false/null, else a short repr."""
+    if value is None or isinstance(value, bool):
+        return json.dumps(value)
+    return _repr.repr(value)
+
+
+def _kind(value: Any) -> str:
+    if value is None:
+        return "null"
+    kinds = {
+        bool: "a boolean",
+        int: "an integer",
+        float: "a float",
+        str: "a string",
+        list: "a list",
+        dict: "a mapping",
+    }
+    return next(
+        (text for cls, text in kinds.items() if isinstance(value, cls)), f"a {type(value).__name__}"
+    )
+
+
+def _sorted(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {key: _sorted(value[key]) for key in sorted(value)}
+    return value

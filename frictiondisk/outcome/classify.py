@@ -1,0 +1,147 @@
+"""Kernel status + monitor summary -> outcome and reason (docs/model.md section 6)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from frictiondisk.kernel import monitor as mon
+from frictiondisk.kernel import status as st
+
+ERROR_REASONS = {
+    st.MAX_STEPS: "work budget exhausted: numerics.max_steps = {max_steps} steps at t = {t:.6g} s",
+    st.MAX_EVENTS: "work budget exhausted: numerics.max_events = {max_events} switches at t = {t:.6g} s",
+    st.STEP_TOO_SMALL: "integrator failed: step size underflow at t = {t:.6g} s",
+    st.NONFINITE: "integrator failed: non-finite state at t = {t:.6g} s",
+    st.ZENO: "integrator failed: endless switching at one instant (Zeno) at t = {t:.6g} s",
+}
+
+
+@dataclasses.dataclass(frozen=True)
+class Revolutions:
+    """The per-revolution measures behind the co-rotation verdict (kernel/monitor.py)."""
+
+    count: int  # whole master revolutions completed
+    slip: float  # net plastic slip over the last revolution [m]
+    drift: float  # drift of the slave centre over it, in the master frame [m]
+    spin_drift: float  # drift of the spin phase phi - omega_m t over it [rad] (NaN: pin)
+    decay: float  # mean log ratio of successive slips over the verdict window [1/rev]
+    decay_se: float  # its standard error [1/rev]
+    remaining: float  # slip still to come under that decay [m]
+    limit: float  # extrapolated limit of the slip per revolution [m] (NaN: none)
+    on_orbit: bool  # some contact stuck at every instant of the last revolution
+    settling: bool  # still on its way to a decision when the horizon budget ran out
+    tol: float  # slip per revolution that counts as none, atol + eps T [m]
+
+
+@dataclasses.dataclass(frozen=True)
+class RunFacts:
+    """What the kernel reports about one run, in the units of the model (s, m)."""
+
+    status: int
+    t_end: float
+    stuck_for: float  # uninterrupted whole-body sticking at t_end [s]
+    hold: float  # sticking time that decides `stick` [s]
+    window: tuple[float, float]  # final window [s]
+    frac_all: float  # window fraction with every contact sticking (decides the outcome)
+    frac_any: float  # window fraction with some contact sticking (reported only)
+    converge_mode: bool
+    max_steps: int
+    max_events: int
+    stick_rule: str = "contacts"  # numerics.stick_rule
+    revs: Revolutions | None = None
+
+
+def _rates(r: Revolutions) -> str:
+    spin = "" if math.isnan(r.spin_drift) else f", spin drift {r.spin_drift:.3g} rad"
+    return f"slip {r.slip:.3g} m, centre drift {r.drift:.3g} m{spin} per revolution"
+
+
+def _trend(r: Revolutions) -> str:
+    if math.isnan(r.decay):
+        return "no slip trend (a revolution without slip)"
+    return (
+        f"slip per revolution changes by a factor exp({r.decay:.3g} \u00b1 {r.decay_se:.2g}) "
+        "per revolution"
+    )
+
+
+def classify(facts: RunFacts) -> tuple[str, str]:
+    """Return (outcome, reason); never guesses: anything unclear is `undetermined`."""
+    t = facts.t_end
+    revs = facts.revs
+    if facts.status in ERROR_REASONS:
+        reason = ERROR_REASONS[facts.status].format(
+            t=t, max_steps=facts.max_steps, max_events=facts.max_events
+        )
+        return "undetermined", reason
+    if facts.status == st.COROTATING:
+        how = (
+            "it repeated within the integrator's tolerance, with every contact stuck "
+            f"throughout or no slip above atol + eps T = {revs.tol:.3g} m in the last revolutions"
+            if revs.remaining == 0.0
+            else f"shakedown: {_trend(revs)} towards a limit of "
+            f"{revs.limit:.3g} m <= atol + eps T = {revs.tol:.3g} m (slip still to come "
+            f"{revs.remaining:.3g} m)"
+        )
+        return "stick", (
+            f"co-rotates with the master without net slip at t = {t:.6g} s: last revolution "
+            f"{_rates(revs)}; {how}"
+        )
+    if facts.status == st.CREEPING:
+        limit = "" if math.isnan(revs.limit) else f", extrapolated limit {revs.limit:.3g} m"
+        return "creep", (
+            f"ratchets on its small orbit at t = {t:.6g} s: {_rates(revs)}, not decaying "
+            f"to zero ({_trend(revs)}{limit})"
+        )
+    # integrators without revolution measures apply the contacts rule (the pin only)
+    contacts_rule = facts.stick_rule == "contacts" or revs is None
+    if facts.status == st.STICK_HELD or (contacts_rule and facts.stuck_for >= facts.hold):
+        return "stick", (
+            f"every contact stuck without interruption for one master revolution "
+            f"({facts.hold:.6g} s) from t = {t - facts.stuck_for:.6g} s"
+        )
+    lo, hi = facts.window
+    if facts.status == st.CYCLE_CONVERGED:
+        return "stick_slip", f"limit cycle with sticking and sliding converged at t = {t:.6g} s"
+    if revs is not None and revs.settling:
+        if facts.stick_rule == "corotation" and revs.count < mon.VERDICT_REVS:
+            where = (
+                f"after {revs.count} whole revolutions ({mon.VERDICT_REVS} are needed to "
+                "tell stick, creep and stick_slip apart)"
+            )
+        elif revs.on_orbit and facts.stick_rule == "corotation":
+            where = "on its small orbit, co-rotation not yet decided"
+        else:
+            where = (
+                "not shown stationary: its slip or spin drift per revolution still falls, "
+                "or its sticking time per revolution still grows, towards permanent stick"
+            )
+        return "undetermined", (
+            f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}; "
+            f"{_trend(revs)} (raise numerics.horizon_budget or t_decide)"
+        )
+    if facts.frac_all == 0.0:
+        # outcome, stick_fraction and size all mean whole-body sticking (every contact)
+        partial = (
+            f"; single contacts stuck {facts.frac_any:.3g} of it" if facts.frac_any > 0 else ""
+        )
+        return "slide", (
+            f"the slave never stuck as a whole in the final window [{lo:.6g}, {hi:.6g}] s{partial}"
+        )
+    if facts.status == st.TMAX_REACHED:
+        return "undetermined", (
+            f"limit cycle not converged by numerics.t_max = {t:.6g} s "
+            f"(stick fraction {facts.frac_all:.3g} in the final window)"
+        )
+    if facts.status == st.HORIZON_REACHED:
+        return "stick_slip", (
+            f"sticking and sliding alternate in the final window [{lo:.6g}, {hi:.6g}] s "
+            f"(stick fraction {facts.frac_all:.3g})"
+        )
+    return "undetermined", f"unknown kernel status {facts.status} at t = {t:.6g} s"
+
+
+def revolution(omega_m: float) -> float:
+    """One master revolution 2 pi / omega_m [s]; 2 pi s for a master at rest (omega_m = 0)."""
+    return 2.0 * math.pi / omega_m if omega_m > 0.0 else 2.0 * math.pi

@@ -1,0 +1,230 @@
+"""Certification of a located jump: its bracket re-checked with stricter numerics. Pure Python.
+
+A bisection ends with a bracket [mu_lo, mu_hi] whose ends were decided with the point's
+numerics. `CertifiedBisection` then re-runs both ends at the next certification level
+(horizon x `Certify.horizon`, rtol x `Certify.rtol`, docs/model.md section 7):
+
+* both verdicts hold: the jump is `certified` (`recertified` after a re-search);
+* an end flips: the jump moved. While a stricter level is left, the search starts again
+  at the stricter level from the end that flipped (its strict run is reused as a bracket
+  end) and is certified again;
+* an end flips at the last level, both ends flip, or a strict run stays undetermined:
+  `uncertain`, with the best bracket kept;
+* the re-search finds no jump within the bracket's limits: `vanished` (a jump that existed
+  only because of the short horizon; a prescan drops it).
+
+Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
+nothing of simulation, so the same object drives a live campaign and its replay.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+from frictiondisk.model.search_settings import OFF, Certify
+from frictiondisk.search.bisection import (
+    STICK,
+    UNDETERMINED,
+    Bisection,
+    BisectionResult,
+    RunRecord,
+    RunRequest,
+)
+
+# Flag values of the `certification` variables (CF flag_values / flag_meanings).
+CERTIFICATION_FLAGS = ("off", "certified", "recertified", "uncertain", "vanished", "failed")
+
+
+# how much a flag weighs when a point with several jumps is summed up in one flag
+_RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
+
+
+def point_certification(flags) -> str:
+    """One flag for a point from its jumps' flags: the weakest of them (`failed` if none)."""
+    kept = [flag for flag in flags if flag != "vanished"]
+    return max(kept, key=_RANK.__getitem__) if kept else "failed"
+
+
+class CertifiedBisection:
+    """A `Bisection` whose converged bracket is re-checked at stricter numerics."""
+
+    def __init__(
+        self,
+        bracket: tuple[float, float],
+        tol: float,
+        limits: tuple[float, float],
+        max_retries: int,
+        rising: bool = True,
+        split: int = 2,
+        certify: Certify = OFF,
+        root_finder: str = "itp",
+    ):
+        self.tol = tol
+        self.limits = limits
+        self.max_retries = max_retries
+        self.rising = rising
+        self.split = split
+        self.certify = certify
+        self.root_finder = root_finder
+        self.search = Bisection(
+            bracket, tol, limits, max_retries, rising, split, root_finder=root_finder
+        )
+        self.searches: list[Bisection] = [self.search]
+        self._checks: dict[float, RunRecord] = {}  # mu -> decided strict run of this check
+        self._check_level: dict[float, int] = {}  # mu -> retry level to ask for next
+        self._check_runs: list[RunRecord] = []
+        self._issued: dict[RunRequest, tuple] = {}
+        self._checking = False
+        self._verdict: str | None = None  # set when done
+
+    # ---- what to run ------------------------------------------------------------------
+    @property
+    def done(self) -> bool:
+        return self._verdict is not None
+
+    def pending(self) -> list[RunRequest]:
+        if self.done:
+            return []
+        if not self._checking:
+            return self.search.pending()
+        strict = self.search.strict + 1
+        requests = [
+            RunRequest(mu, self._check_level.get(mu, 0), strict=strict)
+            for mu in (self.search.lo, self.search.hi)
+            if mu not in self._checks
+        ]
+        for request in requests:
+            self._issued.setdefault(request, (len(self.searches), request.level, request.mu))
+        return requests
+
+    def schedule_key(self, request: RunRequest) -> tuple | None:
+        for index, search in enumerate(self.searches):
+            key = search.schedule_key(request)
+            if key is not None:
+                return (index, 0, *key)
+        key = self._issued.get(request)
+        return None if key is None else (key[0] - 1, 1, *key[1:])
+
+    # ---- what came back ---------------------------------------------------------------
+    def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
+        if not self._checking:
+            self.search.feed(request, result)
+            if self.search.done:
+                self._after_search()
+            return
+        if request not in self.pending():
+            raise ValueError(f"unexpected run {request}")
+        record = RunRecord(request, result)
+        self._check_runs.append(record)
+        if result["outcome"] == UNDETERMINED:
+            if request.level < self.max_retries:
+                self._check_level[request.mu] = request.level + 1
+                return
+        self._checks[request.mu] = record
+        if len(self._checks) == 2:
+            self._after_check()
+
+    def abort(self, reason: str) -> None:
+        if not self.done:
+            self.search.abort(reason)
+            self._finish("failed")
+
+    def _after_search(self) -> None:
+        found = self.search.result()
+        if found.status != "converged":
+            # a re-search that finds no change within the limits: the jump was an artefact
+            self._finish("vanished" if len(self.searches) > 1 else "failed")
+        elif not self.certify.enabled:
+            self._finish("off")
+        else:
+            self._checking = True
+            self._checks = {}
+            self._check_level = {}
+
+    def _after_check(self) -> None:
+        lo, hi = self.search.lo, self.search.hi
+        runs = (self._checks[lo], self._checks[hi])
+        if any(run.outcome == UNDETERMINED for run in runs):
+            self._finish("uncertain")
+            return
+        lo_stick, hi_stick = (run.outcome == STICK for run in runs)
+        want_lo, want_hi = (False, True) if self.rising else (True, False)
+        lo_holds, hi_holds = lo_stick == want_lo, hi_stick == want_hi
+        if lo_holds and hi_holds:
+            self._finish("certified" if len(self.searches) == 1 else "recertified")
+            return
+        strict = self.search.strict + 1
+        if (not lo_holds and not hi_holds) or strict >= self.certify.levels:
+            self._finish("uncertain")
+            return
+        self._research(strict, hi_flipped=not hi_holds)
+
+    def _research(self, strict: int, hi_flipped: bool) -> None:
+        """Search again at `strict` from the end that flipped: it joins the other side."""
+        old = self.search
+        step = max(2.0 * (old.hi - old.lo), 2.0 * self.tol)
+        if hi_flipped:
+            near = old.hi
+            far = old.limits[1] if not self.rising else min(old.limits[1], near + step)
+            bracket = (near, far)
+        else:
+            near = old.lo
+            far = old.limits[0] if not self.rising else max(old.limits[0], near - step)
+            bracket = (far, near)
+        self._checking = False
+        if bracket[1] - bracket[0] <= self.tol * (1 + 1e-9):
+            self._finish("vanished")
+            return
+        search = Bisection(
+            bracket,
+            self.tol,
+            old.limits,
+            self.max_retries,
+            self.rising,
+            self.split,
+            strict,
+            self.root_finder,
+        )
+        self.search = search
+        self.searches.append(search)
+        # the strict run at the end that flipped is this search's check of that end
+        record = self._checks[near]
+        search.pending()
+        search.feed(RunRequest(near, 0, strict=strict), record.result)
+
+    def _finish(self, verdict: str) -> None:
+        self._verdict = verdict
+        self._checking = False
+
+    # ---- the answer -------------------------------------------------------------------
+    def result(self) -> BisectionResult:
+        if not self.done:
+            raise ValueError("bisection not finished")
+        final = self.search.result()
+        if self._verdict == "vanished" and len(self.searches) > 1:
+            final = self.searches[-2].result()
+        seen: set[int] = set()
+        runs: list[RunRecord] = []
+        for record in [*(r for s in self.searches for r in s.result().runs), *self._check_runs]:
+            if id(record.result) not in seen:  # a reused strict run counts once
+                seen.add(id(record.result))
+                runs.append(record)
+        # in the order requested, not the order results arrived: independent of timing
+        runs.sort(key=lambda run: self.schedule_key(run.request))
+        reason = final.reason
+        if self._verdict not in ("off", "failed"):
+            reason = f"{reason}; {self._verdict} ({self._describe()})"
+        return dataclasses.replace(
+            final,
+            reason=reason,
+            runs=tuple(runs),
+            certification=self._verdict,
+        )
+
+    def _describe(self) -> str:
+        level = self.search.strict + (1 if self._verdict != "vanished" else 0)
+        return (
+            f"ends re-run at horizon x {self.certify.horizon**level:g}, "
+            f"rtol x {self.certify.rtol**level:g}"
+        )

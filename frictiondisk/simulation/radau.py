@@ -1,0 +1,664 @@
+"""Cross-check integrator: the model in plain numpy, integrated by scipy's Radau.
+
+`simulate_radau` (selected by ``numerics.method: scipy-radau``) integrates the same scenes
+as the numba kernel, but shares with it only what must be shared:
+
+* the inputs: `initial_state` (state layout of kernel/model.py) and the config;
+* the bookkeeping: the kernel's monitor functions (kernel/monitor.py) on the same arrays,
+  and `run_common.build_result`, so both integrators are classified by the same rules.
+
+Everything that could hide a bug is written again here, from docs/model.md sections 2-4:
+the right-hand side, the switching functions (|k_i| - F_St,i in stick, minus beta_i eps in
+slide) and their
+time derivative (`NumpyModel`, parameters read from the config, not from
+`pack_parameters`), event location (scipy's `solve_ivp` events: brentq on Radau's dense
+output), simultaneous switches, refused entries and the stopping rules. A bug on either
+side shows as disagreement between the two.
+
+Integration is piecewise: between switches the contact modes are fixed and `solve_ivp`
+integrates one smooth ODE, with one terminal event per contact, w_i = sigma_i s_i
+(sigma = +1 in stick, -1 in slide) crossing 0 upwards. Radau gets a finite-difference
+Jacobian (scipy's own, one vectorized call of the numpy right-hand side per Jacobian)
+and its sparsity (`NumpyModel.jacobian_sparsity`: each contact couples only to the
+rigid-body coordinates), so it factors a sparse matrix: usable with hundreds of contacts.
+
+Contacts in the hysteresis band of their mode (kernel/driver.py) watch their stick rate
+ds/dt instead (a stuck one slides when it rises through 0, a sliding one sticks when it
+falls through 0), located as events on both sides. Deliberate differences from the kernel
+(the model is the same; these are numerics):
+* A contact leaves the hysteresis band of its mode (kernel/driver.py) when its switching
+  function changes sign: located here, tested at step ends by the driver (it changes no
+  dynamics, only which event is watched).
+* scipy finds an event only where w changes sign between two step ends; a crossing and
+  re-crossing inside one step (a graze, which the kernel's `find_graze` looks for) is
+  missed. Keep h_max small when comparing runs near a graze.
+* n_rejected is 0: solve_ivp does not report rejected steps.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from frictiondisk.kernel import monitor as mon
+from frictiondisk.kernel import status as st
+from frictiondisk.outcome.classify import revolution
+from frictiondisk.outcome.horizon import horizon_of
+from frictiondisk.outcome.result import SimulationResult, Trajectory
+from frictiondisk.simulation.common import build_result, initial_state
+
+__all__ = ["NumpyModel", "simulate_radau"]
+
+STICK = 1  # contact mode codes, as in kernel/model.py and Trajectory.mode
+SLIDE = 0
+
+SAME_TIME = 1e-12  # [s] switches closer than this count as one instant (Zeno guard, as the kernel)
+SIMULTANEOUS = 1e-9  # [s] crossings this close after a located one switch with it (kernel)
+COMPLEX_STEP = 1e-30  # [s] step of the complex-step derivative of s along the motion
+TINY_SEGMENT = 1e-14  # [s], relative to max(1, t): a segment this short is not integrated
+
+
+@dataclasses.dataclass(frozen=True)
+class NumpyModel:
+    """Pin or disk scene of docs/model.md sections 2-4, vectorized numpy (independent of the kernel).
+
+    State layout as kernel/model.py, nq = 2 (pin) or 3 (disk):
+        y[0:nq] = x, y (, phi);  y[nq:2nq] = vx, vy (, phidot);  y[2nq+2i:+2] = Z_i [N].
+    Every method takes y of shape (n,) or (n, k) (k states at once, as scipy's vectorized
+    finite-difference Jacobian asks) and returns arrays with the same trailing shape.
+    Real or complex y: `switch` is analytic in y, so a complex step differentiates it.
+    """
+
+    disk: bool
+    pts: np.ndarray  # body-frame contact points p_i [m], shape (N, 2)
+    mu: float  # static friction coefficient
+    omega_m: float  # master speed [rad/s]
+    c_s: float  # support stiffness [N/m]
+    beta_s: float  # support damping [N s/m]
+    m_s: float  # slave mass [kg]
+    J_s: float  # slave inertia [kg m^2]
+    beta_b: float  # brake damping [N m s/rad]
+    x_ms: float  # axes offset [m]
+    c_i: np.ndarray  # stiffness of each contact w_i c [N/m], shape (N, 1)
+    beta_i: np.ndarray  # damping of each contact w_i beta [N s/m], shape (N, 1)
+    F_n_i: np.ndarray  # normal force of each contact w_i F_n [N], shape (N, 1)
+    eps: float  # slide->stick threshold of the plastic rate [m/s]
+    stribeck_r: float  # mu_kinetic / mu_static
+    stribeck_v_s: float  # [m/s]
+    stribeck_delta: float
+    # True: u_i = v_i + omega_m e_z x z_i (docs/model.md section 3, the model). False: u_i = v_i, the
+    # contact state integrated without the rotation term -- a study variant only
+    # (benchmarks/study_brake.py), reachable from Python, never from a scene file.
+    objective_rate: bool = True
+
+    @classmethod
+    def from_config(cls, config, objective_rate: bool = True) -> NumpyModel:
+        """Read the parameters from a SceneConfig (docs/model.md section 3: totals spread over
+        the N points by the layout's weights w_i, sum w_i = 1).
+
+        objective_rate=False drops the rotation term of the contact rate (study only)."""
+        par = config.params
+        con = config.contact
+        n = config.n_contacts
+        pts = np.asarray(config.contact_positions(), dtype=float).reshape(n, 2)
+        w = (np.asarray(config.contact_weights(), dtype=float) / n).reshape(n, 1)
+        return cls(
+            disk=config.scene == "disk",
+            pts=pts,
+            mu=par.mu,
+            omega_m=par.omega_m,
+            c_s=par.c_s,
+            beta_s=par.beta_s,
+            m_s=par.m_s,
+            J_s=par.J_s,
+            beta_b=par.beta_b,
+            x_ms=par.x_ms,
+            c_i=w * con.stiffness,
+            beta_i=w * config.contact_damping,
+            F_n_i=w * par.F_n,
+            eps=con.eps,
+            stribeck_r=con.stribeck.r,
+            stribeck_v_s=con.stribeck.v_s,
+            stribeck_delta=con.stribeck.delta,
+            objective_rate=objective_rate,
+        )
+
+    @property
+    def nq(self) -> int:
+        return 3 if self.disk else 2
+
+    @property
+    def n_contacts(self) -> int:
+        return self.pts.shape[0]
+
+    @property
+    def n_states(self) -> int:
+        return 2 * self.nq + 2 * self.n_contacts
+
+    # --- kinematics and friction law ---------------------------------------------------
+
+    def friction_limit(self, speed):
+        """Stribeck limit F_St = F_n,i mu(|v|), mu(v) = mu [r + (1 - r) exp(-(v/v_s)^delta)]."""
+        fn_mu = self.F_n_i * self.mu
+        r = self.stribeck_r
+        if r == 1.0:
+            return fn_mu + 0.0 * speed
+        xi = speed / self.stribeck_v_s
+        return fn_mu * (r + (1.0 - r) * np.exp(-(xi**self.stribeck_delta)))
+
+    def contacts(self, y):
+        """Per-contact quantities, each of shape (N, k) for y of shape (n, k):
+
+        arm a_i = R(phi) p_i, sliding velocity v_i, k_i = Z_i + beta_i u_i, F_St,i.
+        """
+        nq = self.nq
+        om = self.omega_m
+        rx, ry = y[0], y[1]  # slave centre r
+        rdx, rdy = y[nq], y[nq + 1]  # its velocity r'
+        Zx = y[2 * nq :: 2]
+        Zy = y[2 * nq + 1 :: 2]
+        if self.disk:
+            phi, phid = y[2], y[nq + 2]
+            cos, sin = np.cos(phi), np.sin(phi)
+            px, py = self.pts[:, 0:1], self.pts[:, 1:2]
+            ax = cos * px - sin * py
+            ay = sin * px + cos * py
+        else:
+            phid = 0.0
+            ax = 0.0 * Zx
+            ay = 0.0 * Zy
+        # contact point q = r + a; slave material velocity r' + phi' e_z x a;
+        # master material velocity omega_m e_z x q (docs/model.md section 2)
+        qx, qy = rx + ax, ry + ay
+        slave_vx, slave_vy = rdx - phid * ay, rdy + phid * ax
+        master_vx, master_vy = -om * qy, om * qx
+        vx, vy = slave_vx - master_vx, slave_vy - master_vy
+        # exact relative displacement rate u = v + omega_m e_z x z, z = Z / c_i (docs/model.md section 3)
+        if self.objective_rate:
+            zx, zy = Zx / self.c_i, Zy / self.c_i
+            ux, uy = vx - om * zy, vy + om * zx
+        else:  # the variant without the rotation term (study_brake.py)
+            ux, uy = vx, vy
+        kx, ky = Zx + self.beta_i * ux, Zy + self.beta_i * uy
+        speed = np.sqrt(vx * vx + vy * vy)  # sqrt, not hypot: analytic for the complex step
+        return ax, ay, vx, vy, ux, uy, kx, ky, self.friction_limit(speed), Zx, Zy
+
+    def switch(self, y, modes):
+        """Switching functions [N], shape (N,) or (N, k): |k_i| - F_St,i for a contact in
+        stick, |k_i| - F_St,i - beta_i eps in slide (docs/model.md section 3)."""
+        y2 = np.asarray(y)
+        flat = y2.ndim == 1
+        if flat:
+            y2 = y2[:, None]
+        *_, kx, ky, fst, _, _ = self.contacts(y2)
+        stick = (np.asarray(modes) == STICK)[:, None]
+        offset = np.where(stick, 0.0, self.beta_i * self.eps)
+        s = np.sqrt(kx * kx + ky * ky) - fst - offset
+        return s[:, 0] if flat else s
+
+    def in_band(self, y, modes):
+        """Contacts inside the hysteresis band of their mode: stuck above the limit, or
+        sliding below the end-of-slide threshold (kernel/driver.py)."""
+        s = self.switch(y, modes)
+        return np.where(np.asarray(modes) == STICK, s > 0.0, s <= 0.0)
+
+    def rhs(self, y, modes):
+        """dy/dt in the given contact modes (1 = stick, 0 = slide), docs/model.md sections 3-4."""
+        y2 = np.asarray(y, dtype=float)
+        flat = y2.ndim == 1
+        if flat:
+            y2 = y2[:, None]
+        nq = self.nq
+        ax, ay, _, _, ux, uy, kx, ky, fst, Zx, Zy = self.contacts(y2)
+        stick = np.asarray(modes) == STICK
+        # stick: Z' = c u, F = -k;  slide (plastic flow, eq. 9): Z' = (c/beta)(F_St k/|k| - Z),
+        # F = -F_St k/|k| (and F = 0 at k = 0). Only the branches in use are computed.
+        if stick.all():
+            Zdx, Zdy = self.c_i * ux, self.c_i * uy
+            Fx, Fy = -kx, -ky
+        else:
+            kn = np.sqrt(kx * kx + ky * ky)
+            scale = fst / np.where(kn == 0.0, 1.0, kn)  # k = 0 there, so the force is 0
+            gx, gy = scale * kx, scale * ky
+            rate = self.c_i / self.beta_i
+            Zdx, Zdy = rate * (gx - Zx), rate * (gy - Zy)
+            Fx, Fy = -gx, -gy
+            if stick.any():
+                col = stick[:, None]
+                Zdx = np.where(col, self.c_i * ux, Zdx)
+                Zdy = np.where(col, self.c_i * uy, Zdy)
+                Fx = np.where(col, -kx, Fx)
+                Fy = np.where(col, -ky, Fy)
+
+        f = np.empty_like(y2)
+        f[0:nq] = y2[nq : 2 * nq]
+        # m_s r'' = F_s + sum F_i,  F_s = -c_s (r - r0) - beta_s r',  r0 = (x_ms, 0)
+        f[nq] = (-self.c_s * (y2[0] - self.x_ms) - self.beta_s * y2[nq] + Fx.sum(axis=0)) / self.m_s
+        f[nq + 1] = (-self.c_s * y2[1] - self.beta_s * y2[nq + 1] + Fy.sum(axis=0)) / self.m_s
+        if self.disk:
+            # J_s phi'' = -beta_b phi' + sum (a_i x F_i) . e_z
+            torque = (ax * Fy - ay * Fx).sum(axis=0)
+            f[nq + 2] = (torque - self.beta_b * y2[nq + 2]) / self.J_s
+        f[2 * nq :: 2] = Zdx
+        f[2 * nq + 1 :: 2] = Zdy
+        return f[:, 0] if flat else f
+
+    def jacobian_sparsity(self) -> np.ndarray:
+        """Structure of d(rhs)/dy, (n, n) of 0/1: the rigid-body block is full, contact
+        i's two rows touch the rigid coordinates and Z_i, the accelerations touch every Z."""
+        r = 2 * self.nq
+        n = self.n_states
+        pattern = np.zeros((n, n), dtype=np.int8)
+        pattern[:r, :r] = 1
+        pattern[self.nq : r, r:] = 1
+        pattern[r:, :r] = 1
+        for z in range(r, n, 2):
+            pattern[z : z + 2, z : z + 2] = 1
+        return pattern
+
+    def switch_rate(self, y, f):
+        """ds_i/dt along the motion y' = f, shape (N,): complex-step derivative of s (the
+        same in both modes: they differ by a constant).
+
+        ds/dt = grad s . f = Im s(y + i h f) / h exactly to round-off (no subtractive
+        cancellation, so h can be 1e-30): s is analytic in y away from |k| = 0 and |v| = 0.
+        """
+        y = np.asarray(y, dtype=float)
+        stick = np.full(self.n_contacts, STICK)
+        shifted = y + 1j * COMPLEX_STEP * np.asarray(f, dtype=float)
+        return self.switch(shifted, stick).imag / COMPLEX_STEP
+
+    def stick_rate(self, y, modes, i):
+        """ds_i/dt if contact i were in stick (the other contacts in `modes`)."""
+        trial = np.array(modes, dtype=np.int8)
+        trial[i] = STICK
+        return self.switch_rate(y, self.rhs(y, trial))[i]
+
+    def initial_modes(self, y):
+        """Stick iff |k_i(0)| < F_St,i (docs/model.md section 3)."""
+        s = self.switch(y, np.full(self.n_contacts, STICK))
+        return np.where(s < 0.0, STICK, SLIDE).astype(np.int8)
+
+
+class _StepBudget(Exception):
+    """Raised from inside solve_ivp when the step budget numerics.max_steps is used up."""
+
+
+@dataclasses.dataclass
+class _Segment:
+    """What one solve_ivp call between switches produced."""
+
+    t: np.ndarray  # step ends, t[0] = segment start [s]
+    y: np.ndarray  # states at t, shape (len(t), n), C-contiguous rows for the monitor
+    kind: str  # "end" (reached t1), "event", "budget" or "failed"
+    fired: list  # (kind, contact) of the terminal event: ("w" | "clear" | "enter", i)
+    sol: object = None  # dense output (OdeSolution) if requested
+    failure: int = 0  # kernel status code for kind == "failed"
+
+
+class _RadauRun:
+    """One run: the segment loop, switching rules and stopping rules of kernel/driver.py."""
+
+    def __init__(self, config, model: NumpyModel, record: bool, dt_out: float):
+        num = config.numerics
+        self.config = config
+        self.model = model
+        self.num = num
+        self.record = record
+        self.dt_out = dt_out
+        self.hold = revolution(config.params.omega_m)
+        self.horizon = horizon_of(config)
+        self.converge = num.mode == "converge"
+        n = model.n_contacts
+        self.sparsity = model.jacobian_sparsity()
+        self.modes = np.zeros(n, dtype=np.int8)
+        self.band = np.zeros(n, dtype=np.int8)
+        # contacts whose band was cleared at the last event: their s sits at 0 to round-off
+        self.cleared = np.zeros(n, dtype=bool)
+        self.mf = np.empty(mon.N_MF)
+        self.mi = np.empty(mon.N_MI, dtype=np.int64)
+        self.ring_all = np.empty((mon.RING, 2))
+        self.ring_any = np.empty((mon.RING, 2))
+        self.n_steps = 0
+        self.n_events = 0
+        self.n_refused = 0
+        self.rec_t: list[float] = []
+        self.rec_y: list[np.ndarray] = []
+        self.rec_m: list[np.ndarray] = []
+
+    # --- recording -----------------------------------------------------------------------
+
+    def _rec(self, t, y):
+        if self.record:
+            self.rec_t.append(float(t))
+            self.rec_y.append(np.array(y, dtype=float))
+            self.rec_m.append(self.modes.copy())
+
+    def trajectory(self) -> Trajectory:
+        nq = self.model.nq
+        t = np.asarray(self.rec_t)
+        y = np.vstack(self.rec_y) if self.rec_y else np.empty((0, self.model.n_states))
+        m = np.vstack(self.rec_m) if self.rec_m else np.empty((0, self.model.n_contacts), np.int8)
+        return Trajectory.from_states(t, y, m, nq)
+
+    # --- one segment -----------------------------------------------------------------------
+
+    def _integrate(self, t0: float, y0: np.ndarray, t1: float) -> _Segment:
+        """Integrate from t0 to t1 in the current modes; stop at the first switching event."""
+        model = self.model
+        modes = self.modes.copy()
+        band = self.band.copy()
+        cache: dict = {}
+
+        def fun(t, y):
+            return model.rhs(y, modes)
+
+        def s_all(t, y):
+            # solve_ivp evaluates every event at each step end with the same y object
+            if cache.get("y") is y and cache.get("t") == t:
+                return cache["s"]
+            s = model.switch(y, modes)
+            cache.update(t=t, y=y, s=s)
+            return s
+
+        events = []
+        labels = []
+        for i in range(model.n_contacts):
+            if band[i] and modes[i] == STICK:
+                # stuck above the limit: s falling through 0 clears the band, |k| starting
+                # to grow (stick rate rising through 0) makes it slide
+                events.append(lambda t, y, i=i: -s_all(t, y)[i])
+                labels.append(("clear", i))
+                events.append(lambda t, y, i=i: model.stick_rate(y, modes, i))
+                labels.append(("rise", i))
+            elif band[i]:
+                # sliding below the end-of-slide threshold: s rising through 0 clears the
+                # band, a stick rate falling through 0 lets it enter stick
+                events.append(lambda t, y, i=i: s_all(t, y)[i])
+                labels.append(("clear", i))
+                events.append(lambda t, y, i=i: -model.stick_rate(y, modes, i))
+                labels.append(("enter", i))
+            else:
+                sigma = 1.0 if modes[i] == STICK else -1.0
+                events.append(lambda t, y, i=i, sigma=sigma: sigma * s_all(t, y)[i])
+                labels.append(("w", i))
+        for ev in events:
+            ev.terminal = True
+            ev.direction = 1.0
+
+        # Step watchdog: solve_ivp calls every event function once at t0 and once per
+        # accepted step (root finding only calls *active* events, and this one never
+        # changes sign), so it sees every step end. It enforces numerics.max_steps.
+        budget = self.num.max_steps - self.n_steps
+        seen_t: list[float] = []
+        seen_y: list[np.ndarray] = []
+
+        def watchdog(t, y):
+            if len(seen_t) > budget:
+                raise _StepBudget
+            seen_t.append(float(t))
+            seen_y.append(np.array(y, dtype=float))
+            return 1.0
+
+        watchdog.terminal = False
+        watchdog.direction = 0.0
+
+        def partial(kind, failure=0):
+            ts = np.asarray(seen_t)
+            ys = np.vstack(seen_y) if seen_y else y0[None, :].copy()
+            return _Segment(ts, ys, kind, [], None, failure)
+
+        dense = self.record and self.dt_out > 0.0
+        try:
+            with np.errstate(all="ignore"):
+                sol = solve_ivp(
+                    fun,
+                    (t0, t1),
+                    y0,
+                    method="Radau",
+                    rtol=self.num.rtol,
+                    atol=self.num.atol,
+                    max_step=self.num.h_max,
+                    events=[*events, watchdog],
+                    vectorized=True,
+                    jac_sparsity=self.sparsity,
+                    dense_output=dense,
+                )
+        except _StepBudget:
+            return partial("budget")
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError, RuntimeError):
+            # e.g. brentq on NaN event values, or splu's "Factor is exactly singular" (a
+            # RuntimeError) on a NaN Jacobian: numerical trouble, never an exception to the user
+            return partial("failed", self._failure_code(seen_y[-1] if seen_y else y0))
+        ys = np.ascontiguousarray(sol.y.T)
+        if sol.status == -1:
+            return _Segment(sol.t, ys, "failed", [], None, self._failure_code(ys[-1]))
+        if sol.status == 1:
+            fired = [labels[k] for k in range(len(events)) if len(sol.t_events[k]) > 0]
+            return _Segment(sol.t, ys, "event", fired, sol.sol)
+        return _Segment(sol.t, ys, "end", [], sol.sol)
+
+    def _failure_code(self, y) -> int:
+        with np.errstate(all="ignore"):
+            f = self.model.rhs(y, self.modes)
+        if not (np.all(np.isfinite(y)) and np.all(np.isfinite(f))):
+            return st.NONFINITE
+        return st.STEP_TOO_SMALL
+
+    def _account(self, seg: _Segment):
+        """Monitor and record the accepted steps of a segment (the last one up to its event)."""
+        ts, ys = seg.t, seg.y
+        for k in range(1, len(ts)):
+            mon.monitor_step(self.mf, self.mi, ys[k - 1], ys[k], ts[k] - ts[k - 1])
+        self.n_steps += len(ts) - 1
+        if not self.record:
+            return
+        if self.dt_out > 0.0:
+            if seg.sol is not None and len(ts) > 1:
+                k0 = math.floor(ts[0] / self.dt_out) + 1
+                k1 = math.floor(ts[-1] / self.dt_out)
+                for k in range(k0, k1 + 1):
+                    tk = k * self.dt_out
+                    if ts[0] < tk <= ts[-1]:
+                        self._rec(tk, seg.sol(tk))
+            if seg.kind == "event":
+                self._rec(ts[-1], ys[-1])  # the switching point, in the old modes
+        else:
+            for k in range(1, len(ts)):
+                self._rec(ts[k], ys[k])
+
+    # --- switching rules ---------------------------------------------------------------
+
+    def _check_entries(self, y, entered) -> int:
+        """Refused-entry rule of the kernel (`_check_entries`, docs/model.md section 3).
+
+        A contact that entered stick whose s would increase under stick dynamics is refused:
+        it stays in slide and counts in n_refused (not as a switch: its mode does not
+        change). Every contact that switched gets its band flag. Returns the number refused.
+        ds/dt: complex-step derivative of the numpy s along the numpy rhs (`switch_rate`).
+        """
+        model = self.model
+        rate = model.switch_rate(y, model.rhs(y, self.modes))
+        in_band = model.in_band(y, self.modes)
+        for i in range(model.n_contacts):
+            if entered[i] or self.band[i]:
+                self.band[i] = int(in_band[i])
+        refused = 0
+        for i in np.nonzero(entered == 1)[0]:  # a re-entry (2) is consistent by construction
+            if self.modes[i] == STICK and rate[i] > 0.0:
+                self.modes[i] = SLIDE
+                entered[i] = 0
+                self.band[i] = 1  # sliding at its end-of-slide threshold: re-entry is watched
+                refused += 1
+        self.n_refused += refused
+        return refused
+
+    def _switch(self, t, y, seg: _Segment) -> int:
+        """Apply the switches at a terminal event; returns the number of mode switches."""
+        model = self.model
+        n = model.n_contacts
+        old_band = self.band.copy()
+        entered = np.zeros(n, dtype=np.int8)
+        n_sw = 0
+        s = model.switch(y, self.modes)
+        in_band = model.in_band(y, self.modes)
+        sigma = np.where(self.modes == STICK, 1.0, -1.0)
+        # w and its rate in the segment's modes: crossings within SIMULTANEOUS of the located
+        # one are switched together (symmetric contact layouts cross within round-off)
+        w = sigma * s
+        w_ahead = w + SIMULTANEOUS * sigma * model.switch_rate(y, model.rhs(y, self.modes))
+        fired_w = {i for kind, i in seg.fired if kind == "w"}
+        for i in range(n):
+            if old_band[i]:
+                continue
+            # a contact whose band was just cleared at a located root may sit on the far
+            # side of 0 by round-off while moving away from its threshold: not a crossing
+            past = w[i] >= 0.0 and not (self.cleared[i] and w_ahead[i] < 0.0)
+            if i in fired_w or past or w_ahead[i] >= 0.0:
+                self.modes[i] = SLIDE if self.modes[i] == STICK else STICK
+                entered[i] = 1
+                n_sw += 1
+        self.cleared[:] = False
+        for kind, i in seg.fired:
+            if kind == "w":
+                continue
+            self.band[i] = 0
+            self.cleared[i] = kind == "clear"
+            if kind in ("enter", "rise") and in_band[i]:
+                self.modes[i] = SLIDE if self.modes[i] == STICK else STICK
+                entered[i] = 2 if kind == "enter" else 1
+                n_sw += 1
+        if entered.any():
+            n_sw -= self._check_entries(y, entered)
+        return n_sw
+
+    # --- the run -------------------------------------------------------------------------
+
+    def run(self, y: np.ndarray, modes: np.ndarray) -> tuple[int, float, np.ndarray]:
+        """Integrate from t = 0 until a stopping rule fires: (status, t_end, y_end)."""
+        mf, mi = self.mf, self.mi
+        num = self.num
+        hold = self.hold
+        self.modes[:] = modes
+        self.band[:] = self.model.in_band(y, self.modes)
+        t = 0.0
+        mon.monitor_begin(
+            mf,
+            mi,
+            self.ring_all,
+            self.ring_any,
+            t,
+            y,
+            self.modes,
+            self.model.nq,
+            num.cycle_tol,
+            num.cycle_count,
+        )
+        self._rec(t, y)
+        t_stop = self.horizon
+        extended = False
+        t_last_event = -1.0
+        n_same_time = 0
+        horizon_status = st.TMAX_REACHED if self.converge else st.HORIZON_REACHED
+
+        while True:
+            # ---- stopping rules, in the driver's order -------------------------------------
+            if num.stop_on_stick and mi[mon.I_ALL] == 1:
+                # the segment is capped at exactly t_all + hold: compare with that same sum
+                if mon.stuck_for(mf, mi, t) >= hold or t >= mf[mon.F_T_ALL] + hold:
+                    return st.STICK_HELD, t, y
+            if self.converge and mon.cycle_converged(mi):
+                return st.CYCLE_CONVERGED, t, y
+            if t >= t_stop:
+                # Never stop inside a sticking phase that may still decide `stick`.
+                if num.stop_on_stick and mi[mon.I_ALL] == 1 and not extended:
+                    extended = True
+                    t_stop = mf[mon.F_T_ALL] + hold
+                    if t < t_stop:
+                        continue
+                return horizon_status, t, y
+            if extended and mi[mon.I_ALL] == 0:
+                return horizon_status, t, y
+            if self.n_steps >= num.max_steps:
+                return st.MAX_STEPS, t, y
+            if self.n_events >= num.max_events:
+                return st.MAX_EVENTS, t, y
+
+            # ---- one segment in fixed modes ---------------------------------------------
+            t1 = t_stop
+            if num.stop_on_stick and mi[mon.I_ALL] == 1:
+                t1 = min(t1, mf[mon.F_T_ALL] + hold)
+            if t1 - t <= TINY_SEGMENT * max(1.0, t):
+                t = t1  # closer than the time resolution: the target is reached
+                continue
+            seg = self._integrate(t, y, t1)
+            self._account(seg)
+            t = float(seg.t[-1])
+            y = seg.y[-1].copy()
+            if seg.kind == "budget":
+                return st.MAX_STEPS, t, y
+            if seg.kind == "failed":
+                return seg.failure, t, y
+
+            n_sw = 0
+            if seg.kind == "event":
+                if t - t_last_event < SAME_TIME:
+                    n_same_time += 1
+                    if n_same_time > 4 * self.model.n_contacts + 8:
+                        return st.ZENO, t, y
+                else:
+                    n_same_time = 0
+                t_last_event = t
+                n_sw += self._switch(t, y, seg)
+            if n_sw > 0:
+                mon.monitor_switch(mf, mi, self.ring_all, self.ring_any, t, y, self.modes, n_sw)
+                self.n_events += n_sw
+                self._rec(t, y)
+
+
+def simulate_radau(
+    config, record: bool = False, dt_out: float = 0.0, objective_rate: bool = True
+) -> SimulationResult:
+    """Run one scene with scipy's Radau (the cross-check and slow baseline of the kernel).
+
+    Same model, switching rules, stopping rules and classification as the numba kernel
+    (`frictiondisk.simulation.simulate.simulate` with method rodas4), from an independent numpy
+    implementation of the equations and scipy's event location.
+
+    record: keep the trajectory: every solver step, or dense-output samples every dt_out
+    seconds if dt_out > 0; switching instants are recorded twice (old and new modes).
+    Numerical failure never raises: it ends the run as `undetermined` with the reason.
+    objective_rate=False integrates the contact state without the rotation term of docs/model.md
+    section 3 (u_i = v_i): a study variant (benchmarks/study_brake.py), not the model.
+    """
+    wall0 = time.perf_counter()
+    model = NumpyModel.from_config(config, objective_rate=objective_rate)
+    y0 = initial_state(config).astype(float)
+    run = _RadauRun(config, model, record, dt_out)
+    status, t_end, y_end = run.run(y0, model.initial_modes(y0))
+    wall = time.perf_counter() - wall0
+    counters = {
+        "n_steps": run.n_steps,
+        # solve_ivp does not report rejected steps (Radau's OdeSolver keeps no such
+        # counter), so this is 0 = unknown, not "none rejected".
+        "n_rejected": 0,
+        "n_refused": run.n_refused,
+    }
+    trajectory = run.trajectory() if record else None
+    return build_result(
+        config,
+        int(status),
+        float(t_end),
+        y_end,
+        run.mf,
+        run.mi,
+        run.ring_all,
+        run.ring_any,
+        counters,
+        wall,
+        trajectory,
+    )

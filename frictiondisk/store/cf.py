@@ -1,0 +1,156 @@
+"""CF metadata (Climate and Forecast conventions, CF-1.10) for every netCDF file we write:
+results.nc, runs.nc, trajectory.nc and accuracy.nc.
+
+`complete(ds, title)` adds the global attributes (`Conventions`, `title`, `institution`,
+`source`, `history`, `references`) and, per variable, what the builder left out: the flag
+attributes of the 0/1 (and -1/0/1) indicator variables, `units` of the integer counters and
+a `long_name` and `comment` for the text variables. A numeric variable without units that is
+not listed here raises, so a new variable cannot slip through undocumented. Text variables
+carry no `units` (CF gives strings none); flags carry `flag_values` and `flag_meanings`
+(and units "1": they are dimensionless).
+
+`history` holds no clock time on purpose: results.nc is rebuilt from the journal on every
+run or resume, and the same campaign must give identical files whatever the worker count.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from frictiondisk.search.certify import CERTIFICATION_FLAGS
+from frictiondisk.version import NUMERICS_VERSION, __version__
+
+CONVENTIONS = "CF-1.10"
+REFERENCES = (
+    "W. Stamm and A. Fidlin, Radial dynamics of rigid friction disks with alternating "
+    "sticking and sliding; model: docs/model.md in the frictiondisk repository"
+)
+OUTCOMES = "stick creep stick_slip slide undetermined"
+
+# variable -> (flag_values, flag_meanings)
+FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
+    "monotone": ((0, 1), "contradicts_a_single_jump single_jump"),
+    "warm_start": ((0, 1), "bracket_from_campaign bracket_predicted"),
+    "cycle_converged": ((0, 1), "not_converged converged"),
+    "jump_rising": ((-1, 0, 1), "no_jump falling rising"),
+    "is_reference": ((0, 1), "not_reference reference"),
+    "in_ladder": ((0, 1), "not_in_ladder in_ladder"),
+    "mode": ((0, 1), "slide stick"),  # trajectory.nc: contact mode
+    "certification": (
+        tuple(range(-1, len(CERTIFICATION_FLAGS))),
+        " ".join(("pending", *CERTIFICATION_FLAGS)),
+    ),
+    "jump_certification": (
+        tuple(range(-1, len(CERTIFICATION_FLAGS))),
+        " ".join(("no_jump", *CERTIFICATION_FLAGS)),
+    ),
+}
+
+# text variable -> (long_name if the builder gave none, comment)
+TEXT: dict[str, tuple[str, str]] = {
+    "outcome": ("outcome of the run", f"one of: {OUTCOMES} (docs/model.md section 6)"),
+    "outcome_lo": ("outcome at mu_lo", f"one of: {OUTCOMES}"),
+    "outcome_hi": ("outcome at mu_hi", f"one of: {OUTCOMES}"),
+    "scan_outcome": (
+        "outcome of the prescan run",
+        f"one of: {OUTCOMES}; empty: a value the adaptive prescan did not need to run",
+    ),
+    "reason": ("why this outcome", "free text; for undetermined: what went wrong"),
+    "status": ("status of the point", "converged or failed; pending: not finished (partial)"),
+    "jump_status": ("status of the jump", "converged or failed; empty: no jump"),
+    "mode": ("numerics.mode of the run", "decide or converge"),
+    "key": ("journal key", "sha256 of the canonical scene and the numerics version"),
+}
+
+# integer counters and indices that the builders leave without units
+DIMENSIONLESS = {
+    "point",
+    "level",
+    "strict",
+    "n_runs",
+    "setting",
+    "contact",
+    "n_jumps",
+    "sample",
+    "n_samples",
+}
+# numeric variables whose unit differs from row to row, named by a text variable beside them
+MIXED_UNITS = {"value": "value_units"}
+
+
+def flag_meanings(var: xr.DataArray) -> dict[int, str]:
+    """flag_values -> flag_meanings of a CF flag variable ({} if it has none); flag_values
+    default to 0, 1, ... as in the builders."""
+    names = str(var.attrs.get("flag_meanings", "")).split()
+    values = var.attrs.get("flag_values", range(len(names)))
+    return {int(v): name for v, name in zip(values, names, strict=False)}
+
+
+def _source() -> str:
+    from frictiondisk.store.journal import kernel_version
+
+    return f"frictiondisk {__version__} simulation ({kernel_version()})"
+
+
+def _complete_variable(name: str, var: xr.Variable) -> None:
+    attrs = var.attrs
+    if var.dtype.kind in "USO":
+        long_name, comment = TEXT.get(name, (name.replace("_", " "), ""))
+        attrs.setdefault("long_name", long_name)
+        if comment:
+            attrs.setdefault("comment", comment)
+        attrs.pop("units", None)
+        return
+    if name in FLAGS and var.dtype.kind in "iu":
+        values, meanings = FLAGS[name]
+        attrs["flag_values"] = np.array(values, dtype=var.dtype)
+        attrs["flag_meanings"] = meanings
+        attrs["units"] = "1"
+        attrs.setdefault("long_name", name.replace("_", " "))
+        return
+    if name in MIXED_UNITS:
+        attrs.setdefault("comment", f"units differ per row: see the variable {MIXED_UNITS[name]}")
+        return
+    if "units" not in attrs:
+        if name not in DIMENSIONLESS:
+            raise ValueError(f"variable {name!r} has no units: give it units in its builder")
+        attrs["units"] = "1"
+    if "long_name" not in attrs:
+        raise ValueError(f"variable {name!r} has no long_name: give it one in its builder")
+
+
+def complete(ds: xr.Dataset, title: str, what: str) -> xr.Dataset:
+    """Add the CF attributes to `ds` in place (see the module docstring) and return it.
+
+    title: a one-line description of the file; what: how it was made, for `history`
+    (e.g. "frictiondisk run: campaign demo_line, task find_jump").
+    """
+    for name, var in ds.variables.items():
+        _complete_variable(str(name), var)
+    ds.attrs.update(
+        {
+            "Conventions": CONVENTIONS,
+            "title": title,
+            "institution": "frictiondisk",
+            "source": _source(),
+            "history": f"{what}; written by frictiondisk {__version__} "
+            f"(numerics version {NUMERICS_VERSION})",
+            "references": REFERENCES,
+        }
+    )
+    return ds
+
+
+def scene_attrs(config: Any) -> dict[str, Any]:
+    """The resolved physical parameters of a scene as attributes: `scene_yaml` (every key,
+    defaults filled in) and one `param_<name>` per physical parameter, in SI units."""
+    canonical = config.canonical()
+    attrs: dict[str, Any] = {"scene_yaml": str(config.to_yaml())}
+    for name, value in canonical["params"].items():
+        attrs[f"param_{name}"] = float(value)
+    attrs["param_contact_points"] = int(canonical["contact"]["points"])
+    attrs["param_contact_stiffness"] = float(canonical["contact"]["stiffness"])
+    return attrs
