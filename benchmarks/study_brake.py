@@ -27,7 +27,8 @@ import numpy as np
 
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.outcome import admissibility as ad
-from frictiondisk.simulation.radau import NumpyModel, simulate_radau
+from frictiondisk.simulation.numpy_model import NumpyModel
+from frictiondisk.simulation.radau import simulate_radau
 from frictiondisk.simulation.simulate import simulate
 
 OMEGA = 1.1  # [rad/s]

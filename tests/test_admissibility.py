@@ -14,7 +14,7 @@ from conftest import g_factor
 
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.outcome import admissibility as ad
-from frictiondisk.simulation.radau import NumpyModel
+from frictiondisk.simulation.numpy_model import NumpyModel
 from frictiondisk.simulation.simulate import simulate
 
 OMEGA = 1.1

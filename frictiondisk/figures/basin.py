@@ -24,8 +24,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from frictiondisk.figures.campaign import OUTCOME_STYLE, axis_label, new_figure
-from frictiondisk.figures.shared import sample_spec
+from frictiondisk.figures.shared import OUTCOME_STYLE, axis_label, new_figure, sample_spec
 from frictiondisk.figures.style import styled
 from frictiondisk.model.scene import describe_key
 

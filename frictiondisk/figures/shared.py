@@ -1,17 +1,22 @@
-"""What every campaign figure shares: axis labels, outcome styles, the caption line and
-the figure frame (plot, note, caption). The figure modules (figures.py, size_figure.py,
-orbit_figure.py) import from here; nothing here imports them, nor the kernel.
+"""What every campaign figure shares: axis labels, outcome styles, the caption line, the
+figure frame (plot, note, caption), the rug strip for points without a value, and the
+list of failed points of a find_jump figure. The figure modules (jump_line.py,
+jump_grid.py, scan.py, size.py, orbit.py, basin.py) import from here; nothing here imports
+them, nor the kernel.
 """
 
 from __future__ import annotations
 
 import re
+import textwrap
 from typing import Any
 
 import numpy as np
 import xarray as xr
 import yaml
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure, SubFigure
+from matplotlib.ticker import FuncFormatter
 
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 from frictiondisk.outcome.horizon import horizon_key
@@ -48,7 +53,7 @@ OUTCOME_LABEL = {
 }
 
 
-# ---- labels and caption ------------------------------------------------------------------
+# ---- labels and caption -----------------------------------------------------------------
 def _unit_text(units: Any) -> str | None:
     if units is None or str(units).strip() == "":
         return None
@@ -226,3 +231,73 @@ def new_figure(
         gid="caption",
     )
     return fig, subs[0], (subs[1] if note_lines else None)
+
+
+# ---- the note under the plot ------------------------------------------------------------
+def _add_note(note: SubFigure, lines: list[str], title: str) -> None:
+    note.text(
+        0.015,
+        0.96,
+        "\n".join([title, *lines]),
+        ha="left",
+        va="top",
+        fontsize=NOTE_FONT_PT,
+        family="monospace",
+        bbox={"boxstyle": "round,pad=0.4", "facecolor": "#fff5f0", "edgecolor": FAIL_COLOR},
+        gid="failed_list",
+    )
+
+
+# ---- axes -------------------------------------------------------------------------------
+def _make_rug_room(ax: Axes, frac: float) -> None:
+    """Extend the y axis downwards so that the data keep the upper 1 - `frac` of it; the strip
+    below (for marks of points without a value) is set off by a dotted line and has no tick
+    labels, so that nobody reads a value off a mark there."""
+    lo, hi = ax.get_ylim()
+    new_lo = lo - frac / (1.0 - frac) * (hi - lo)
+    ax.set_ylim(new_lo, hi)
+    ax.axhline(lo, color="0.6", linewidth=0.6, linestyle=":", zorder=1, gid="rug_line")
+
+    def label(value: float, pos: int | None = None) -> str:
+        return "" if value < lo - 1e-9 * abs(hi - lo) else f"{value:.6g}"
+
+    ax.yaxis.set_major_formatter(FuncFormatter(label))
+
+
+def _padded(lo: float, hi: float, frac: float) -> tuple[float, float]:
+    """(lo, hi) widened by `frac` of the span on each side (by 0.5 if lo == hi)."""
+    span = hi - lo
+    pad = frac * span if span > 0 else 0.5 * (abs(lo) or 1.0)
+    return lo - pad, hi + pad
+
+
+# ---- the failed points of a find_jump figure --------------------------------------------
+def _failure_lines(results: xr.Dataset, labels: list[str], failed: np.ndarray) -> list[str]:
+    """ "[k] x_ms = 0.1 m: reason" for each failed point (wrapped), at most MAX_LISTED."""
+    reasons = np.asarray(results["reason"].values).reshape(-1)
+    lines: list[str] = []
+    indices = np.flatnonzero(failed.reshape(-1))
+    for k, i in enumerate(indices[:MAX_LISTED], start=1):
+        lines += textwrap.wrap(
+            f"[{k}] {labels[i]}: {str(reasons[i]) or '(no reason given)'}",
+            width=LIST_WIDTH,
+            subsequent_indent="      ",
+            max_lines=3,
+            placeholder=" ...",
+        )
+    if len(indices) > MAX_LISTED:
+        lines.append(
+            f"... and {len(indices) - MAX_LISTED} more failed points (variable 'reason' in results.nc)"
+        )
+    return lines
+
+
+def _point_labels(results: xr.Dataset) -> list[str]:
+    """ "x_ms = 0.1 m, x0 = 0 m" for every point, in the Dataset's (C) order."""
+    dims = list(results["mu_star"].dims)
+    grids = np.meshgrid(*[results[d].values for d in dims], indexing="ij")
+    flat = [g.reshape(-1) for g in grids]
+    return [
+        ", ".join(_value_text(results[d], float(f[i])) for d, f in zip(dims, flat, strict=True))
+        for i in range(flat[0].size)
+    ]

@@ -1,7 +1,7 @@
 """Equations of motion of the pin and disk scenes (docs/model.md sections 2-4), numba only.
 
 Contacts: pts has one row (px, py, w) per contact: body-frame point p_i [m] and relative
-weight w = N w_i (mean 1; 1.0 on a ring, frictiondisk/layouts.py). Contact i has stiffness
+weight w = N w_i (mean 1; 1.0 on a ring, frictiondisk/model/layouts.py). Contact i has stiffness
 c_i = w p[P_CI], damping beta_i = w p[P_BETAI] and normal force F_n,i = w p[P_FNI].
 
 State layout, nq = 2 (pin) or 3 (disk):
