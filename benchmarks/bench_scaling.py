@@ -38,8 +38,9 @@ from pathlib import Path
 
 import xarray as xr
 
+from frictiondisk.engine.cluster import task_sizing
 from frictiondisk.engine.plan import planner_for, run_config
-from frictiondisk.engine.runner import run_campaign, task_sizing
+from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.tasks import run_batch, run_bisection, warm_up
 from frictiondisk.model.campaign import campaign_from_text, load_campaign
 from frictiondisk.model.scene import scene_from_dict
@@ -306,7 +307,7 @@ def driver_cpu_per_task(tasks: int = 300) -> float:
     the way the runner does (in-process cluster, sealed tasks, our keys, as_completed)."""
     from distributed import Client, LocalCluster, as_completed
 
-    from frictiondisk.engine.runner import _send_without_batching_delay
+    from frictiondisk.engine.cluster import _send_without_batching_delay
     from frictiondisk.engine.tasks import Sealed, noop, run_sealed
 
     with (

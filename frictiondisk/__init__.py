@@ -29,7 +29,7 @@ from frictiondisk.version import __version__
 if TYPE_CHECKING:
     import xarray as xr
 
-    from frictiondisk.engine.runner import RunSummary
+    from frictiondisk.engine.driver import RunSummary
     from frictiondisk.model.campaign import Campaign
     from frictiondisk.model.scene import SceneConfig
     from frictiondisk.outcome.result import SimulationResult

@@ -30,7 +30,7 @@ from hypothesis import strategies as st
 
 from frictiondisk.cli import main
 from frictiondisk.engine import budget
-from frictiondisk.engine import runner as runner_module
+from frictiondisk.engine import driver as driver_module
 from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.limits import max_workers
 from frictiondisk.model.scene import ConfigError, scene_from_dict
@@ -82,7 +82,7 @@ def no_kernel(monkeypatch):
     monkeypatch.setattr(
         importlib.import_module("frictiondisk.simulation.simulate"), "simulate", tripwire
     )
-    monkeypatch.setattr(runner_module._Driver, "run", tripwire)
+    monkeypatch.setattr(driver_module._Driver, "run", tripwire)
 
 
 def _write(path: Path, text: str) -> Path:
@@ -398,7 +398,7 @@ def test_full_disk_is_named_and_resumable(finished, tmp_path):
 def test_scheduler_without_workers_warns_then_fails(tmp_path, monkeypatch):
     from distributed import LocalCluster
 
-    monkeypatch.setattr(runner_module, "POLL", 0.2)
+    monkeypatch.setattr(driver_module, "POLL", 0.2)
     campaign = _write(tmp_path / "c.yaml", CAMPAIGN)
     with LocalCluster(
         n_workers=0, processes=False, protocol="tcp", dashboard_address=None

@@ -28,7 +28,7 @@ def _signals_stop_the_campaign():
     """Ctrl-C (SIGINT) and SIGTERM (a batch scheduler, `kill`, a closed terminal) stop a
     campaign alike: runs journaled, partial results. Each handler notes the stop before
     raising it, so that a raise lost in a finalizer still stops the campaign loop."""
-    from frictiondisk.engine.runner import Terminated, request_stop
+    from frictiondisk.engine.signals import Terminated, request_stop
 
     def stopper(stop):
         def handler(signum, frame):
@@ -63,15 +63,13 @@ def _execute(
     force: bool = False,
     dashboard: bool = False,
 ):
+    from frictiondisk.engine.cluster import SchedulerFailed
+    from frictiondisk.engine.directory import CampaignChanged
     from frictiondisk.engine.preflight import preflight
-    from frictiondisk.engine.runner import (
-        CampaignChanged,
-        CampaignInterrupted,
-        SchedulerFailed,
-        run_campaign,
-    )
+    from frictiondisk.engine.runner import run_campaign
+    from frictiondisk.engine.signals import CampaignInterrupted
     from frictiondisk.model.scene import ConfigError
-    from frictiondisk.store.journal import CampaignLocked
+    from frictiondisk.store.lock import CampaignLocked
     from frictiondisk.store.paths import describe_os_error
 
     problems = preflight(campaign, out_dir, workers, scheduler, force)
@@ -250,9 +248,10 @@ def resume(
 @click.argument("out_dir", type=click.Path(file_okay=False, path_type=Path))
 def status(out_dir: Path) -> None:
     """Report progress of the campaign in DIR: points, runs, failures, time left."""
-    from frictiondisk.engine.runner import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
+    from frictiondisk.engine.directory import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
     from frictiondisk.store.files import netcdf_is_valid
-    from frictiondisk.store.journal import CampaignLock, Journal
+    from frictiondisk.store.journal import Journal
+    from frictiondisk.store.lock import CampaignLock
     from frictiondisk.store.paths import describe_os_error, refuse_symlink
 
     if not (out_dir / CAMPAIGN_FILE).is_file():
@@ -304,7 +303,7 @@ def status(out_dir: Path) -> None:
 
 def _edit_report(out_dir: Path) -> list[str]:
     """Lines saying that DIR/campaign.yaml was edited by hand (resume refuses it)."""
-    from frictiondisk.engine.runner import CAMPAIGN_FILE, record_differences
+    from frictiondisk.engine.directory import CAMPAIGN_FILE, record_differences
     from frictiondisk.model.campaign import load_campaign
     from frictiondisk.model.scene import ConfigError
 

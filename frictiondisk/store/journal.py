@@ -1,4 +1,4 @@
-"""Append-only run journal and single-writer lock of a campaign directory.
+"""Append-only run journal of a campaign directory (its lock is in store/lock.py).
 
 Layout of a campaign directory DIR::
 
@@ -26,23 +26,19 @@ from __future__ import annotations
 
 import collections
 import contextlib
-import datetime
-import errno
-import fcntl
 import functools
 import hashlib
 import json
 import math
 import os
 import re
-import time
 from importlib import metadata
 from pathlib import Path
-from types import TracebackType
 from typing import Any
 
 from frictiondisk.store.files import TEMP_SUFFIX, atomic_write_bytes, fsync_directory
-from frictiondisk.store.paths import SymlinkRefused, refuse_symlink
+from frictiondisk.store.lock import CampaignLock, CampaignLocked  # re-exported: see __all__
+from frictiondisk.store.paths import SymlinkRefused, open_nofollow, read_nofollow, refuse_symlink
 from frictiondisk.version import NUMERICS_VERSION
 
 __all__ = [
@@ -110,22 +106,6 @@ class _Inputs:
 def key_of_inputs(inputs: dict[str, Any]) -> str:
     """The key `run_key` gives the config whose canonical form is `inputs` (current numerics)."""
     return run_key(_Inputs(inputs))
-
-
-def _open_nofollow(path: Path, flags: int, mode: int = 0o666) -> int:
-    """os.open with O_NOFOLLOW; a symbolic link raises SymlinkRefused naming `path`."""
-    try:
-        return os.open(path, flags | os.O_NOFOLLOW, mode)
-    except OSError as err:
-        if err.errno == errno.ELOOP:
-            raise SymlinkRefused(path) from None
-        raise
-
-
-def _read_nofollow(path: Path) -> bytes:
-    fd = _open_nofollow(path, os.O_RDONLY)
-    with open(fd, "rb") as fh:
-        return fh.read()
 
 
 def _check_key(key: Any) -> str:
@@ -230,7 +210,7 @@ class Journal:
         """
         path = self.entry_path(key)
         try:
-            raw = _read_nofollow(path)
+            raw = read_nofollow(path)
         except FileNotFoundError:
             return None
         except SymlinkRefused:
@@ -253,7 +233,7 @@ class Journal:
         if shard.is_symlink() or shard.parent.is_symlink():
             return None
         try:
-            raw = _read_nofollow(shard / f"{key}.json")
+            raw = read_nofollow(shard / f"{key}.json")
         except OSError:
             return None
         entry, reason = cls._verify(key, raw)
@@ -323,7 +303,7 @@ class Journal:
                 if not _KEY.fullmatch(key):
                     continue
                 try:
-                    raw = _read_nofollow(path)
+                    raw = read_nofollow(path)
                 except SymlinkRefused:
                     problems.append(f"{key}: a symbolic link (never followed)")
                     continue
@@ -340,7 +320,7 @@ class Journal:
         """Lines "<file>: <reason>" of every entry moved to corrupt/ so far (reasons.log)."""
         log = Path(campaign_dir) / "journal" / "corrupt" / _REASONS_LOG
         try:
-            data = _read_nofollow(log)
+            data = read_nofollow(log)
         except OSError:
             return []
         lines = data.decode("utf-8", "replace").splitlines()
@@ -399,7 +379,7 @@ class Journal:
         ignored. A key counted more than once was computed more than once.
         """
         try:
-            data = _read_nofollow(self.log_path)
+            data = read_nofollow(self.log_path)
         except FileNotFoundError:
             return collections.Counter()
         lines = data.split(b"\n")[:-1]  # the part after the last newline is incomplete
@@ -473,7 +453,7 @@ class Journal:
         file stays open for the next put (see `close`): on slow file systems opening it by
         name cost more than the rest of a put."""
         if self._log_fd is None:
-            self._log_fd = _open_nofollow(self.log_path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
+            self._log_fd = open_nofollow(self.log_path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
         self._write_line(self._log_fd, f"{key}\n")
 
     @staticmethod
@@ -490,7 +470,7 @@ class Journal:
     @classmethod
     def _append(cls, path: Path, text: str) -> None:
         """Append one line to `path` in one write (O_APPEND, O_NOFOLLOW)."""
-        fd = _open_nofollow(path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
+        fd = open_nofollow(path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
         try:
             cls._write_line(fd, text)
         finally:
@@ -510,173 +490,3 @@ class Journal:
                 tmp.unlink()
                 removed += 1
         return removed
-
-
-# --- lock ---------------------------------------------------------------------------------
-
-# File descriptors of the locks this process holds. A child made by fork() inherits them,
-# and an inherited descriptor would keep the lock alive after this process dies; the child
-# therefore closes its copies (closing a copy does not release the parent's lock).
-_HELD_FDS: set[int] = set()
-
-
-def _close_inherited_lock_fds() -> None:
-    for fd in _HELD_FDS:
-        with contextlib.suppress(OSError):
-            os.close(fd)
-    _HELD_FDS.clear()
-
-
-os.register_at_fork(after_in_child=_close_inherited_lock_fds)
-
-_WAIT_FOR_HOLDER_INFO = 1.0  # [s] a new holder writes its PID right after locking
-
-
-class CampaignLocked(Exception):
-    """Another live process holds the lock of a campaign directory.
-
-    Attributes: `directory`, `pid` (of the holder, None if it could not be read) and
-    `started` (the holder's start time as ISO 8601 text, or None).
-    """
-
-    def __init__(self, directory: Path, pid: int | None, started: str | None) -> None:
-        self.directory = directory
-        self.pid = pid
-        self.started = started
-        who = f"PID {pid}" if pid is not None else "a process whose PID could not be read"
-        since = f", started {started}" if started else ""
-        super().__init__(
-            f"campaign directory {directory} is in use by another frictiondisk process "
-            f"({who}{since}); only one process may write to it at a time. Wait for it to "
-            "finish or stop it, then run again."
-        )
-
-
-def _read_holder(fd: int) -> tuple[int | None, str | None]:
-    """(pid, started) as written by the holder into the lock file, or (None, None)."""
-    try:
-        text = os.pread(fd, 4096, 0).decode("utf-8")
-        info = json.loads(text)
-        pid = info["pid"]
-        started = info.get("started")
-    except (OSError, ValueError, KeyError, TypeError, AttributeError):
-        return None, None
-    if not isinstance(pid, int) or isinstance(pid, bool):
-        return None, None
-    return pid, started if isinstance(started, str) else None
-
-
-def _try_flock(fd: int, operation: int) -> bool:
-    """flock(fd, operation | LOCK_NB): True if taken, False if another process holds it."""
-    try:
-        fcntl.flock(fd, operation | fcntl.LOCK_NB)
-    except BlockingIOError:
-        return False
-    except OSError as err:  # EWOULDBLOCK under another name on some platforms
-        if err.errno in (errno.EAGAIN, errno.EACCES):
-            return False
-        raise
-    return True
-
-
-class CampaignLock:
-    """Exclusive lock of a campaign directory: at most one writing process per DIR.
-
-    Use as a context manager (or `acquire()` / `release()`). Acquiring opens (creating it
-    if needed) `DIR/lock` and takes a non-blocking exclusive `flock`; if another process
-    holds it, `CampaignLocked` is raised, naming the DIR and the holder's PID. The holder
-    writes `{"pid": ..., "started": ...}` into the file after locking.
-
-    The kernel releases a flock when the last descriptor of the open file is closed, so the
-    lock dies with its process however it ends (exit, exception, SIGKILL): a killed run
-    never leaves a stuck lock, and the file's stale content does not matter. The file is
-    never deleted (deleting it would let two processes lock two different files). Children
-    made by fork() close their inherited copy of the descriptor and do not hold the lock.
-    """
-
-    def __init__(self, campaign_dir: str | os.PathLike[str]) -> None:
-        self.campaign_dir = Path(campaign_dir)
-        self.path = self.campaign_dir / "lock"
-        self._fd: int | None = None
-
-    @property
-    def held(self) -> bool:
-        """Whether this object holds the lock."""
-        return self._fd is not None
-
-    def acquire(self) -> CampaignLock:
-        """Take the lock or raise `CampaignLocked`; returns self."""
-        if self._fd is not None:
-            raise RuntimeError(f"the lock of {self.campaign_dir} is already held by this object")
-        self.campaign_dir.mkdir(parents=True, exist_ok=True)
-        fd = _open_nofollow(self.path, os.O_RDWR | os.O_CREAT)
-        try:
-            deadline = time.monotonic() + _WAIT_FOR_HOLDER_INFO
-            while not _try_flock(fd, fcntl.LOCK_EX):
-                pid, started = _read_holder(fd)
-                # No PID yet: a holder that has just locked, or a brief `holder()` probe;
-                # either resolves within moments, so try again before refusing.
-                if pid is not None or time.monotonic() > deadline:
-                    raise CampaignLocked(self.campaign_dir, pid, started)
-                time.sleep(0.02)
-            started = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
-            info = json.dumps({"pid": os.getpid(), "started": started}) + "\n"
-            os.ftruncate(fd, 0)
-            os.pwrite(fd, info.encode(), 0)
-            os.fsync(fd)
-        except BaseException:
-            os.close(fd)
-            raise
-        self._fd = fd
-        _HELD_FDS.add(fd)
-        return self
-
-    def release(self) -> None:
-        """Release the lock (no-op if not held)."""
-        fd, self._fd = self._fd, None
-        if fd is None:
-            return
-        _HELD_FDS.discard(fd)
-        try:
-            with contextlib.suppress(OSError):
-                os.ftruncate(fd, 0)  # while still locked: no one reads a stale PID
-            fcntl.flock(fd, fcntl.LOCK_UN)
-        finally:
-            os.close(fd)
-
-    def __enter__(self) -> CampaignLock:
-        return self.acquire()
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.release()
-
-    @staticmethod
-    def holder(campaign_dir: str | os.PathLike[str]) -> int | None:
-        """PID of the live process holding the lock of `campaign_dir`, or None if it is free.
-
-        Probes with a non-blocking shared flock (never creates the lock file). Returns -1 if
-        the lock is held but the holder's PID could not be read within a second.
-        """
-        try:
-            fd = _open_nofollow(Path(campaign_dir) / "lock", os.O_RDONLY)
-        except FileNotFoundError:
-            return None
-        try:
-            deadline = time.monotonic() + _WAIT_FOR_HOLDER_INFO
-            while True:
-                if _try_flock(fd, fcntl.LOCK_SH):
-                    fcntl.flock(fd, fcntl.LOCK_UN)
-                    return None
-                pid, _ = _read_holder(fd)
-                if pid is not None:
-                    return pid
-                if time.monotonic() > deadline:
-                    return -1
-                time.sleep(0.02)
-        finally:
-            os.close(fd)

@@ -4,7 +4,8 @@
 simulation starts, so a path that cannot be written fails at once, not after the work.
 `describe_os_error` turns an OSError into "PATH: cause", the cause in words (no space
 left on the device, read-only file system, not a directory, ...). `refuse_symlink` is the
-lstat check that keeps every read and write of a campaign directory inside it.
+lstat check that keeps every read and write of a campaign directory inside it, and
+`open_nofollow` / `read_nofollow` open a file without ever following a link.
 """
 
 from __future__ import annotations
@@ -21,6 +22,8 @@ __all__ = [
     "check_output_dir",
     "check_output_file",
     "describe_os_error",
+    "open_nofollow",
+    "read_nofollow",
     "refuse_symlink",
 ]
 
@@ -66,6 +69,23 @@ def refuse_symlink(path: str | os.PathLike[str]) -> Path:
     if path.is_symlink():
         raise SymlinkRefused(path)
     return path
+
+
+def open_nofollow(path: Path, flags: int, mode: int = 0o666) -> int:
+    """os.open with O_NOFOLLOW; a symbolic link raises SymlinkRefused naming `path`."""
+    try:
+        return os.open(path, flags | os.O_NOFOLLOW, mode)
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            raise SymlinkRefused(path) from None
+        raise
+
+
+def read_nofollow(path: Path) -> bytes:
+    """The bytes of the file `path`, opened with O_NOFOLLOW (see `open_nofollow`)."""
+    fd = open_nofollow(path, os.O_RDONLY)
+    with open(fd, "rb") as fh:
+        return fh.read()
 
 
 def _probe_writable(directory: Path) -> None:
