@@ -1,7 +1,7 @@
 """Convergence of mu* in the number of contacts N: the braked disk on a ring and on an annulus.
 
 Scene: disk, beta_b = 0.005 N m s/rad, co-rotating start (phidot0 = omega_m), x_ms = 0.1 m,
-default numerics (rodas4, rtol 1e-6: integrator error on mu* below 1e-6, config.py
+default numerics (rodas4, rtol 1e-6: integrator error on mu* below 1e-6, frictiondisk/model/scene.py
 NUMERICS_PRESETS), t_decide = 30 s; the layouts are the ring of radius 0.05 m (the
 paper's) and the clutch-like annulus 0.063 ... 0.087 m (campaigns/clutch_annulus.yaml).
 mu* is the LOWEST rising jump: the sticking set in mu need not be an interval (annulus,
