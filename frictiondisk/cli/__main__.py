@@ -1,5 +1,5 @@
 """`python -m frictiondisk.cli`: the command line."""
 
-from frictiondisk.cli.main import main
+from frictiondisk.cli.entry import run
 
-main()
+run()
