@@ -1,7 +1,8 @@
-"""What every integrator shares (rodas4 in simulate.py, scipy-radau in crosscheck.py): the
-initial state and the result builder, which classifies a finished run from its monitor
-state. Kept apart from the dispatcher `frictiondisk.simulation.simulate.simulate`, which imports the
-integrators, so that no integrator imports its own dispatcher.
+"""What every integrator shares (rodas4 in simulate.py, scipy-radau in radau.py): the
+initial state and the result builder, which classifies a finished run from its
+`KernelRun` (kernel/record.py). Kept apart from the dispatcher
+`frictiondisk.simulation.simulate.simulate`, which imports the integrators, so that no
+integrator imports its own dispatcher.
 """
 
 from __future__ import annotations
@@ -11,9 +12,10 @@ import math
 import numpy as np
 
 from frictiondisk.kernel import monitor as mon
+from frictiondisk.kernel.record import KernelRun
 from frictiondisk.outcome.classify import Revolutions, RunFacts, classify, revolution
 from frictiondisk.outcome.reserve import friction_reserve
-from frictiondisk.outcome.result import SimulationResult
+from frictiondisk.outcome.result import SimulationResult, Trajectory
 
 
 def initial_state(config) -> np.ndarray:
@@ -32,32 +34,26 @@ def initial_state(config) -> np.ndarray:
 
 def build_result(
     config,
-    status,
-    t_end,
-    y_end,
-    mf,
-    mi,
-    ring_all,
-    ring_any,
-    counters,
-    wall,
-    trajectory,
+    run: KernelRun,
+    wall: float,
+    trajectory: Trajectory | None,
     energy: dict[str, float] | None = None,
-    revolution_ring: tuple[np.ndarray, float] | None = None,
 ) -> SimulationResult:
-    """Classify a finished run from its monitor state (shared by every integrator).
-
-    energy: the fields of `energy_balance`; None (an integrator without the diagnostic)
-    leaves them NaN. revolution_ring: the kernel's revolution ring rv and the run's total
-    plastic slip [m]; None for an integrator without them, which then supports
-    stick_rule contacts only.
+    """Classify a finished run from its `KernelRun` (shared by every integrator): status,
+    t_end [s], final state, monitor state, counters and, when run.rv is not None, the
+    revolution ring and total plastic slip. An integrator without the ring supports
+    stick_rule contacts only. wall: run time [s]. energy: the fields of `energy_balance`;
+    None (an integrator without the diagnostic) leaves them NaN.
     """
     num = config.numerics
     rev = revolution(config.params.omega_m)
     window = num.window_revs * rev
-    frac_all, frac_any = mon.window_fractions(mf, mi, ring_all, ring_any, t_end, window)
+    t_end = run.t_end
+    mf, mi = run.mf, run.mi
+    frac_all, frac_any = mon.window_fractions(*run.monitor(), t_end, window)
+    ring = run.rv is not None
     facts = RunFacts(
-        status=status,
+        status=run.status,
         t_end=t_end,
         stuck_for=float(mon.stuck_for(mf, mi, t_end)),
         hold=rev,
@@ -68,17 +64,15 @@ def build_result(
         max_steps=num.max_steps,
         max_events=num.max_events,
         stick_rule=num.stick_rule,
-        revs=None
-        if revolution_ring is None
-        else _revolutions(config, mf, mi, revolution_ring[0], counters["budget_spent"]),
+        revs=_revolutions(config, run) if ring else None,
     )
     outcome, reason = classify(facts)
     revs = facts.revs
-    if outcome == "stick" and counters["n_steps"] == 0:
+    if outcome == "stick" and run.steps == 0:
         # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
         # itself (a revolution shorter than round-off); never report it (issue 14)
         outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
-    radius_end = math.hypot(y_end[0], y_end[1])
+    radius_end = math.hypot(run.y[0], run.y[1])
     size = math.nan
     a = math.nan
     if outcome == "stick":
@@ -99,23 +93,24 @@ def build_result(
         n_transitions=int(mi[mon.I_NTRANS]),
         stick_fraction=float(frac_all),
         t_end=t_end,
-        n_steps=counters["n_steps"],
-        n_rejected=counters["n_rejected"],
-        n_refused=counters["n_refused"],
+        n_steps=run.steps,
+        n_rejected=run.rejected,
+        n_refused=run.refused,
         cycle_converged=bool(mon.cycle_converged(mi)),
         wall_s=wall,
         method=num.method,
         trajectory=trajectory,
-        revolutions=None if revolution_ring is None else revolution_log(revolution_ring[0], mi),
-        slip_total=math.nan if revolution_ring is None else float(revolution_ring[1]),
+        revolutions=revolution_log(run.rv, mi) if ring else None,
+        slip_total=run.slip_total,
         reserve=friction_reserve(config, R1),
         **_revolution_measures(revs),
         **(energy or {}),
     )
 
 
-def _revolutions(config, mf, mi, rv, budget_spent: bool) -> Revolutions:
+def _revolutions(config, run: KernelRun) -> Revolutions:
     """The classifier's view of the revolution ring (NaN measures before one revolution)."""
+    mf, mi, rv = run.mf, run.mi, run.rv
     n = int(mi[mon.I_NREV])
     last = rv[(n - 1) % mon.REV_RING] if n > 0 else np.full(mon.N_RV, np.nan)
     return Revolutions(
@@ -128,7 +123,7 @@ def _revolutions(config, mf, mi, rv, budget_spent: bool) -> Revolutions:
         remaining=float(mf[mon.F_REMAIN]),
         limit=float(mf[mon.F_S_INF]),
         on_orbit=bool(n > 0 and last[mon.RV_ANY_STUCK] == 1.0),
-        settling=budget_spent,
+        settling=run.budget_spent,
         tol=float(mf[mon.F_SLIP_TOL]),
     )
 

@@ -4,8 +4,9 @@
 as the numba kernel, but shares with it only what must be shared:
 
 * the inputs: `initial_state` (state layout of kernel/model.py) and the config;
-* the bookkeeping: the kernel's monitor functions (kernel/monitor.py) on the same arrays,
-  and `run_common.build_result`, so both integrators are classified by the same rules.
+* the bookkeeping: the kernel's monitor functions (kernel/monitor.py) on the monitor
+  state of a `KernelRun` (kernel/record.py), and `common.build_result`, so both
+  integrators are classified by the same rules.
 
 Everything that could hide a bug is written again, from docs/model.md sections 2-4:
 the right-hand side, the switching functions (|k_i| - F_St,i in stick, minus beta_i eps in
@@ -46,6 +47,7 @@ from scipy.integrate import solve_ivp
 
 from frictiondisk.kernel import monitor as mon
 from frictiondisk.kernel import status as st
+from frictiondisk.kernel.record import KernelRun
 from frictiondisk.outcome.classify import revolution
 from frictiondisk.outcome.horizon import horizon_of
 from frictiondisk.outcome.result import SimulationResult, Trajectory
@@ -94,10 +96,8 @@ class _RadauRun:
         self.band = np.zeros(n, dtype=np.int8)
         # contacts whose band was cleared at the last event: their s sits at 0 to round-off
         self.cleared = np.zeros(n, dtype=bool)
-        self.mf = np.empty(mon.N_MF)
-        self.mi = np.empty(mon.N_MI, dtype=np.int64)
-        self.ring_all = np.empty((mon.RING, 2))
-        self.ring_any = np.empty((mon.RING, 2))
+        # the monitor state, counters and outcome, in the kernel's run-record type
+        self.out = KernelRun.allocate(np.zeros(model.n_states), self.modes, revolutions=False)
         self.n_steps = 0
         self.n_events = 0
         self.n_refused = 0
@@ -228,7 +228,7 @@ class _RadauRun:
         """Monitor and record the accepted steps of a segment (the last one up to its event)."""
         ts, ys = seg.t, seg.y
         for k in range(1, len(ts)):
-            mon.monitor_step(self.mf, self.mi, ys[k - 1], ys[k], ts[k] - ts[k - 1])
+            mon.monitor_step(self.out.mf, self.out.mi, ys[k - 1], ys[k], ts[k] - ts[k - 1])
         self.n_steps += len(ts) - 1
         if not self.record:
             return
@@ -315,17 +315,14 @@ class _RadauRun:
 
     def run(self, y: np.ndarray, modes: np.ndarray) -> tuple[int, float, np.ndarray]:
         """Integrate from t = 0 until a stopping rule fires: (status, t_end, y_end)."""
-        mf, mi = self.mf, self.mi
+        mf, mi = self.out.mf, self.out.mi
         num = self.num
         hold = self.hold
         self.modes[:] = modes
         self.band[:] = self.model.in_band(y, self.modes)
         t = 0.0
         mon.monitor_begin(
-            mf,
-            mi,
-            self.ring_all,
-            self.ring_any,
+            *self.out.monitor(),
             t,
             y,
             self.modes,
@@ -390,7 +387,7 @@ class _RadauRun:
                 t_last_event = t
                 n_sw += self._switch(t, y, seg)
             if n_sw > 0:
-                mon.monitor_switch(mf, mi, self.ring_all, self.ring_any, t, y, self.modes, n_sw)
+                mon.monitor_switch(*self.out.monitor(), t, y, self.modes, n_sw)
                 self.n_events += n_sw
                 self._rec(t, y)
 
@@ -416,24 +413,9 @@ def simulate_radau(
     run = _RadauRun(config, model, record, dt_out)
     status, t_end, y_end = run.run(y0, model.initial_modes(y0))
     wall = time.perf_counter() - wall0
-    counters = {
-        "n_steps": run.n_steps,
-        # solve_ivp does not report rejected steps (Radau's OdeSolver keeps no such
-        # counter), so this is 0 = unknown, not "none rejected".
-        "n_rejected": 0,
-        "n_refused": run.n_refused,
-    }
+    run.out.finish(status, t_end, y_end)
+    # solve_ivp does not report rejected steps (Radau's OdeSolver keeps no such counter),
+    # so n_rejected is 0 = unknown, not "none rejected".
+    run.out.set_counters(steps=run.n_steps, rejected=0, refused=run.n_refused)
     trajectory = run.trajectory() if record else None
-    return build_result(
-        config,
-        int(status),
-        float(t_end),
-        y_end,
-        run.mf,
-        run.mi,
-        run.ring_all,
-        run.ring_any,
-        counters,
-        wall,
-        trajectory,
-    )
+    return build_result(config, run.out, wall, trajectory)

@@ -1,4 +1,4 @@
-"""The one door from Python into the kernel: pack arrays, run, build the result."""
+"""The one door from Python into the kernel: pack a `KernelRun`, run it, build the result."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import numpy as np
 from frictiondisk.kernel import driver
 from frictiondisk.kernel import energy as ken
 from frictiondisk.kernel import model as km
-from frictiondisk.kernel import monitor as mon
+from frictiondisk.kernel.record import KernelRun
 from frictiondisk.model.limits import MAX_RECORD_ROWS, record_rows_limit
 from frictiondisk.outcome.classify import revolution
 from frictiondisk.outcome.horizon import horizon_of
@@ -94,7 +94,11 @@ def _simulate_numba(config, record: bool, dt_out: float, dense_lu: bool) -> Simu
     modes = initial_modes(p, pts, y0)
     rev = revolution(config.params.omega_m)
 
-    iopt = np.zeros(driver.N_IOPT, dtype=np.int64)
+    limit = record_rows_limit(y0.shape[0], pts.shape[0])
+    cap = record_capacity(horizon_of(config) + rev, dt_out, limit) if record else 1
+    run = KernelRun.allocate(y0, modes, cap, p, pts)
+
+    iopt = run.iopt
     iopt[driver.O_METHOD] = METHOD_CODES[num.method]
     iopt[driver.O_MAX_STEPS] = num.max_steps
     iopt[driver.O_MAX_EVENTS] = num.max_events
@@ -104,7 +108,7 @@ def _simulate_numba(config, record: bool, dt_out: float, dense_lu: bool) -> Simu
     iopt[driver.O_RECORD] = 1 if record else 0
     iopt[driver.O_STICK_RULE] = STICK_RULE_CODES[num.stick_rule]
     iopt[driver.O_DENSE_LU] = 1 if dense_lu else 0
-    fopt = np.zeros(driver.N_FOPT)
+    fopt = run.fopt
     fopt[driver.O_RTOL] = num.rtol
     fopt[driver.O_ATOL] = num.atol
     fopt[driver.O_DT] = num.dt
@@ -115,77 +119,22 @@ def _simulate_numba(config, record: bool, dt_out: float, dense_lu: bool) -> Simu
     fopt[driver.O_DT_OUT] = dt_out
     fopt[driver.O_BUDGET] = horizon_of(config) * num.horizon_budget
 
-    limit = record_rows_limit(y0.shape[0], pts.shape[0])
-    cap = record_capacity(horizon_of(config) + rev, dt_out, limit) if record else 1
-    rec_t = np.empty(cap)
-    rec_y = np.empty((cap, y0.shape[0]))
-    rec_m = np.empty((cap, pts.shape[0]), dtype=np.int8)
-    mf = np.empty(mon.N_MF)
-    mi = np.empty(mon.N_MI, dtype=np.int64)
-    ring_all = np.empty((mon.RING, 2))
-    ring_any = np.empty((mon.RING, 2))
-    rv = np.zeros((mon.REV_RING, mon.N_RV))
-    yrev = np.empty_like(y0)
-    out_i = np.zeros(driver.N_OUT_I, dtype=np.int64)
-    out_f = np.zeros(ken.N_OUT_F)
     energy_0 = float(ken.stored_energy(p, pts, y0))
-
     wall0 = time.perf_counter()
-    state = y0  # the kernel integrates in place: this holds the final state afterwards
-    status, t_end = driver.run(
-        p,
-        pts,
-        state,
-        modes,
-        iopt,
-        fopt,
-        rec_t,
-        rec_y,
-        rec_m,
-        mf,
-        mi,
-        ring_all,
-        ring_any,
-        rv,
-        yrev,
-        out_i,
-        out_f,
-    )
+    run.run()  # the kernel integrates run.y in place: it holds the final state afterwards
     wall = time.perf_counter() - wall0
     energy = energy_balance(
         energy_0,
-        float(ken.stored_energy(p, pts, state)),
-        float(out_f[ken.E_W_IN]),
-        float(out_f[ken.E_W_DISS]),
+        float(ken.stored_energy(p, pts, run.y)),
+        run.work_in,
+        run.work_dissipated,
     )
 
     trajectory = None
     if record:
-        k = int(out_i[driver.C_RECORDED])
-        truncated = bool(out_i[driver.C_TRUNCATED])
         nq = 3 if config.scene == "disk" else 2
-        trajectory = Trajectory.from_states(rec_t[:k], rec_y[:k], rec_m[:k], nq, truncated)
-    counters = {
-        "n_steps": int(out_i[driver.C_STEPS]),
-        "n_rejected": int(out_i[driver.C_REJECTED]),
-        "n_refused": int(out_i[driver.C_REFUSED]),
-        "budget_spent": bool(out_i[driver.C_BUDGET_SPENT]),
-    }
-    return build_result(
-        config,
-        int(status),
-        float(t_end),
-        state,
-        mf,
-        mi,
-        ring_all,
-        ring_any,
-        counters,
-        wall,
-        trajectory,
-        energy,
-        (rv, out_f[ken.E_SLIP]),
-    )
+        trajectory = Trajectory.from_states(*run.recorded_rows(), nq, run.truncated)
+    return build_result(config, run, wall, trajectory, energy)
 
 
 def energy_balance(
