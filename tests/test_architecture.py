@@ -150,7 +150,6 @@ def test_every_package_says_what_it_holds_in_two_lines(package):
     assert doc and len(doc.strip().splitlines()) == 2, package
 
 
-@pytest.mark.xfail(strict=True, reason="the last long modules are being split (issue 22)")
 def test_no_module_is_over_500_lines():
     long = {name: n for name, p in MODULES.items() if (n := len(p.read_text().splitlines())) > 500}
     assert not long, long

@@ -75,3 +75,35 @@ def test_show_defaults_is_wired_to_the_console_script():
         cwd=ROOT,
     ).stdout
     assert out.startswith("contact:")
+
+
+def test_reference_document_is_generated_from_the_schemas():
+    from frictiondisk.model.reference import reference_markdown
+
+    text = (ROOT / "docs" / "reference.md").read_text()
+    assert text == reference_markdown(), (
+        "docs/reference.md is out of date; regenerate it with: python -c "
+        '"from frictiondisk.model.reference import reference_markdown; '
+        "open('docs/reference.md', 'w').write(reference_markdown())\""
+    )
+    for key in ("`params.mu`", "`numerics.rtol`", "`find_jump.tol`", "`basin.target_se`"):
+        assert key in text
+
+
+def test_show_defaults_comments_every_key_with_unit_and_description():
+    out = CliRunner().invoke(main, ["show-defaults"]).output
+    assert "rtol: 1.0e-06  # relative tolerance [1]" in out
+    assert "  x_ms: 0.1  # axes offset: the slave's rest position is (x_ms, 0) [m]" in out
+    assert all("  # " in line for line in out.splitlines())
+
+
+@pytest.mark.parametrize("task", ["find_jump", "scan", "trajectory", "basin"])
+def test_show_defaults_prints_a_task_s_keys(task):
+    from frictiondisk.model.campaign_spec import TASKS
+
+    result = CliRunner().invoke(main, ["show-defaults", "--task", task])
+    assert result.exit_code == 0, result.output
+    assert result.output.startswith(f"{task}:")
+    for name in TASKS[task].model_fields:
+        assert f" {name}:" in result.output
+    assert "find_jump:" not in CliRunner().invoke(main, ["show-defaults"]).output

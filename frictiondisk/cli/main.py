@@ -249,7 +249,7 @@ def _interruptible(function, *args, **kwargs):
     worker.start()
     try:
         while worker.is_alive():
-            worker.join(0.05)
+            worker.join(0.01)  # the run ends within 10 ms of this wait
     except KeyboardInterrupt:
         click.echo("error: interrupted (Ctrl-C); nothing was written", err=True)
         sys.stdout.flush()
@@ -271,14 +271,22 @@ def _interruptible(function, *args, **kwargs):
     show_default=True,
     help="Which scene's defaults to print.",
 )
-def show_defaults(scene: str) -> None:
-    """Print the resolved default scene as YAML (every key, SI units; docs/model.md section 5).
+@click.option(
+    "--task",
+    type=click.Choice(["find_jump", "scan", "trajectory", "basin"]),
+    default=None,
+    help="Print the keys of this campaign task instead of the scene.",
+)
+def show_defaults(scene: str, task: str | None) -> None:
+    """Print the resolved default scene as YAML, every key with its description and unit
+    (SI; [1] = dimensionless) in a comment; docs/reference.md has the same as tables.
 
-    The output is a valid scene file: save it, edit a value, and `simulate` it.
+    The output is a valid scene file: save it, edit a value, and `simulate` it. With
+    --task, print a campaign task's keys and defaults instead.
     """
-    from frictiondisk.model.scene import scene_from_dict
+    from frictiondisk.model.reference import annotated_scene, annotated_task
 
-    click.echo(scene_from_dict({"scene": scene}).to_yaml().rstrip("\n"))
+    click.echo(annotated_task(task) if task else annotated_scene(scene))
 
 
 # Campaign commands live in frictiondisk/cli/campaign.py, `plot` in campaign/plot_cli.py,

@@ -7,24 +7,29 @@ unit alone ("1" = dimensionless); error messages read the bounds from the fields
 
 from __future__ import annotations
 
-import difflib
 import hashlib
 import json
 import math
-import re
-import reprlib
-import types
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from os import PathLike
-from typing import Any, Literal, Union, get_args, get_origin
+from typing import Any, Literal
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
-from pydantic.fields import FieldInfo
-from pydantic_core import ErrorDetails, PydanticCustomError
+from pydantic import BaseModel, Field, ValidationError, model_validator
+from pydantic_core import PydanticCustomError
 
 from frictiondisk.model import layouts
-from frictiondisk.model.yamlio import ConfigError, dump_yaml, load_yaml_file, load_yaml_text
+from frictiondisk.model.overrides import _DOTTED_KEY, MAX_KEY_PARTS, apply_overrides, parse_override
+from frictiondisk.model.schema import INT64_MAX, MODEL_CONFIG, extra_of, field_at, problems_of
+from frictiondisk.model.schema import field as _field
+from frictiondisk.model.schema import kind_of as _kind
+from frictiondisk.model.schema import requirement as _requirement
+from frictiondisk.model.schema import show as _show
+from frictiondisk.model.yamlio import ConfigError, dump_yaml, load_yaml_file
+
+# Kept importable from here (older imports): _DOTTED_KEY, MAX_KEY_PARTS, INT64_MAX, _kind,
+# _requirement, _show.
+_REEXPORTED = (_DOTTED_KEY, MAX_KEY_PARTS, INT64_MAX, _kind, _requirement, _show)
 
 __all__ = [
     "NUMERICS_PRESETS",
@@ -45,30 +50,17 @@ MAX_POINTS = 1000  # most contact points of a scene
 # kernel as int64. Lengths, speeds and the master speed are bounded far beyond any friction
 # disk, so that squared terms stay finite and one revolution stays longer than a step:
 # x_ms = omega_m = vx0 = 1e300 made a revolution 6e-300 s, "decided" stick after 0 steps.
-INT64_MAX = 2**63 - 1
 MAX_LENGTH = 1.0e3  # [m]
 MAX_SPEED = 1.0e4  # [m/s]
 MAX_OMEGA = 1.0e4  # [rad/s]
 MAX_HORIZON = 1.0e9  # [s] simulated time of one run, retries included
-MAX_KEY_PARTS = 8  # parts of a dotted --set key (the deepest scene key has 3)
 
-# strict: no "0.1" -> 0.1, no true -> 1.0, no 1.5 -> int; allow_inf_nan: reject inf/nan.
-_MODEL_CONFIG = ConfigDict(extra="forbid", frozen=True, strict=True, allow_inf_nan=False)
+_MODEL_CONFIG = MODEL_CONFIG
 
 
 def _layout_error(name: str, value: Any, message: str) -> None:
     """Reject contact.<name> (a layout rule): the message names the field and the rule."""
     raise PydanticCustomError("layout_rule", message, {"path": f"contact.{name}", "value": value})
-
-
-def _field(default: Any, unit: str | None, doc: str, **constraints: Any) -> Any:
-    """Field with default, unit ("1" = dimensionless, None = not a quantity) and bounds."""
-    return Field(
-        default,
-        description=f"{doc} [{unit}]" if unit else doc,
-        json_schema_extra={"unit": unit} if unit else None,
-        **constraints,
-    )
 
 
 class Stribeck(BaseModel):
@@ -433,7 +425,7 @@ class SceneConfig(BaseModel):
             implied = {f"numerics.{key}": value for key, value in NUMERICS_PRESETS[name].items()}
             overrides = {**implied, **overrides}
         origins = {key: f"override {key}" for key in overrides}
-        data = _apply(self.model_dump(), overrides.items(), "<overrides>")
+        data = apply_overrides(self.model_dump(), overrides.items(), "<overrides>")
         return _validate(data, "<overrides>", origins)
 
 
@@ -449,13 +441,13 @@ def scene_from_dict(
     pairs, problems = [], []
     for text in overrides:
         try:
-            pairs.append(_parse_override(text, source))
+            pairs.append(parse_override(text, source))
         except ConfigError as err:
             problems += err.problems
     if problems:
         raise ConfigError(problems, source)
     origins = {key: f"--set {text}" for (key, _), text in zip(pairs, overrides, strict=True)}
-    return _validate(_apply(data, pairs, source), source, origins)
+    return _validate(apply_overrides(data, pairs, source), source, origins)
 
 
 def load_scene(path: str | PathLike[str], overrides: Sequence[str] = ()) -> SceneConfig:
@@ -463,224 +455,23 @@ def load_scene(path: str | PathLike[str], overrides: Sequence[str] = ()) -> Scen
     return scene_from_dict(load_yaml_file(path), overrides, source=str(path))
 
 
-# --- overrides ------------------------------------------------------------------------
-
-_DOTTED_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*")
-
-
-def _parse_override(text: str, source: str) -> tuple[str, Any]:
-    """`"params.mu=0.13"` -> ("params.mu", 0.13); VALUE is read as strict YAML."""
-    key, sep, value = text.partition("=")
-    key = key.strip()
-    if key.count(".") >= MAX_KEY_PARTS:
-        raise ConfigError(
-            f"--set {_repr.repr(text)}: key has {key.count('.') + 1} dotted parts: "
-            f"allowed at most {MAX_KEY_PARTS} (scene keys have 2 or 3, e.g. params.mu)",
-            source,
-        )
-    if not sep or not _DOTTED_KEY.fullmatch(key):
-        raise ConfigError(
-            f"--set {text!r}: malformed override: expected KEY=VALUE with a dotted KEY, "
-            "e.g. params.mu=0.13",
-            source,
-        )
-    shown = text if len(text) <= 80 else text[:60] + "..."
-    return key, load_yaml_text(value, source=f"--set {shown}")
-
-
-def _apply(data: Any, pairs: Iterable[tuple[str, Any]], source: str) -> Any:
-    """Copy of `data` with each dotted key set to its value."""
-    for key, value in pairs:
-        if isinstance(key, str) and key.count(".") >= MAX_KEY_PARTS:
-            raise ConfigError(
-                f"{_repr.repr(key)}: override key has more than {MAX_KEY_PARTS} dotted parts",
-                source,
-            )
-        if not isinstance(key, str) or not _DOTTED_KEY.fullmatch(key):
-            raise ConfigError(
-                f"{key!r}: malformed override key: expected a dotted key, e.g. params.mu", source
-            )
-        data = _set_dotted(data, key.split("."), value, (), source)
-    return data
-
-
-def _set_dotted(
-    data: Any, keys: Sequence[str], value: Any, done: tuple[str, ...], source: str
-) -> dict[str, Any]:
-    """Copy of mapping `data` with data[k0][k1]... = value; a null section becomes {}."""
-    data = {} if data is None else data
-    if not isinstance(data, Mapping):
-        target = ".".join((*done, *keys))
-        raise ConfigError(
-            f"{_dotted(done)}: cannot set {target}: expected a mapping, "
-            f"got {_kind(data)} {_show(data)}",
-            source,
-        )
-    head, *rest = keys
-    out = dict(data)
-    out[head] = _set_dotted(out.get(head), rest, value, (*done, head), source) if rest else value
-    return out
-
-
-# --- error messages -------------------------------------------------------------------
-
-_BOUNDS = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
-_TYPE_NOUNS = {
-    "float_type": "a number",
-    "int_type": "an integer",
-    "bool_type": "a boolean",
-    "string_type": "a string",
-}
-_repr = reprlib.Repr()
-_repr.maxstring = _repr.maxother = 40
+# --- validation -------------------------------------------------------------------
 
 
 def _validate(data: Any, source: str, origins: Mapping[str, str]) -> SceneConfig:
     try:
         return SceneConfig.model_validate(data)
     except ValidationError as err:
-        problems = [_problem(error, origins) for error in err.errors(include_url=False)]
-        raise ConfigError(problems, source) from None
-
-
-def _problem(error: ErrorDetails, origins: Mapping[str, str]) -> str:
-    """One line `dotted.path: what is wrong; what is allowed` for one pydantic error."""
-    kind, loc, value = error["type"], error["loc"], error.get("input")
-    ctx = error.get("ctx") or {}
-    if kind == "scene_rule":
-        path = ctx["path"]
-        text = f"{_show(ctx['value'])} is not allowed for scene {ctx['scene']!r}: {error['msg']}"
-    elif kind == "layout_rule":
-        path = ctx["path"]
-        text = f"{_show(ctx['value'])} is not allowed: {error['msg']}"
-    elif kind in ("extra_forbidden", "invalid_key"):
-        path = _dotted(loc) if kind == "extra_forbidden" else _dotted(loc[:-1])
-        model = _model_at(loc[:-1])
-        under = f"under {_dotted(loc[:-1])}" if loc[:-1] else "at top level"
-        what = "unknown key" if kind == "extra_forbidden" else f"key {_show(value)} is not text"
-        text = f"{what}; allowed keys {under}: {', '.join(model.model_fields)}"
-        close = difflib.get_close_matches(str(loc[-1]), list(model.model_fields), n=1)
-        text += f" (did you mean {close[0]!r}?)" if close else ""
-    elif kind in ("model_type", "model_attributes_type", "dict_type"):
-        path = _dotted(loc)
-        keys = ", ".join(_model_at(loc).model_fields)
-        got = _kind(value) if value is None else f"{_kind(value)} {_show(value)}"
-        text = f"expected a mapping with keys {keys}; got {got}"
-    else:
-        path = _dotted(loc)
-        text = _field_problem(kind, value, _field_at(loc), error["msg"])
-    for key, origin in origins.items():
-        if path == key or path.startswith(key + "."):
-            text += f" (from {origin})"
-    return f"{path}: {text}"
-
-
-def _field_problem(kind: str, value: Any, field: FieldInfo | None, msg: str) -> str:
-    if field is None:
-        return f"{_show(value)}: {msg}"
-    must = f"must be {_requirement(field)}"
-    if kind == "missing":
-        return f"missing; {must}"
-    if kind == "finite_number" or kind == "literal_error":
-        return f"{_show(value)} is not allowed: {must}"
-    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
-        return f"{_show(value)} is out of range: must be {_bounds(field, value)}"
-    if value is None:
-        return f"missing value (null); {must}"
-    if kind in _TYPE_NOUNS:
-        number = kind in ("float_type", "int_type")
-        hint = " (write numbers without quotes)" if number and isinstance(value, str) else ""
-        return f"{_show(value)} is {_kind(value)}, not {_TYPE_NOUNS[kind]}: {must}{hint}"
-    return f"{_show(value)}: {msg}; {must}"
-
-
-def _requirement(field: FieldInfo) -> str:
-    """What a field accepts, e.g. "a finite number > 0 kg", "one of 'a', 'b', 'c'"."""
-    annotation = field.annotation
-    args = get_args(annotation) if get_origin(annotation) in (Union, types.UnionType) else ()
-    nullable = type(None) in args
-    base = next(a for a in args if a is not type(None)) if args else annotation
-    if get_origin(base) is list:
-        item = get_args(base)[0]
-        text = "a list of pairs [x, y]" if get_origin(item) is list else "a list of numbers"
-    elif get_origin(base) is Literal:
-        choices = [repr(choice) for choice in get_args(base)]
-        text = " or ".join(choices) if len(choices) == 2 else "one of " + ", ".join(choices)
-    else:
-        noun = {bool: "true or false", int: "an integer", float: "a finite number"}[base]
-        text = f"{noun} {_bounds(field)}".strip()
-    return f"null or {text}" if nullable else text
-
-
-def _bounds(field: FieldInfo, value: Any = None) -> str:
-    """The field's bounds and unit, e.g. "> 0 and < 1", ">= 0 rad/s"; "" if unbounded.
-
-    The int64 limit of integer fields is shown only to a `value` beyond it."""
-    beyond_int64 = isinstance(value, int) and value > INT64_MAX
-    parts = [
-        f"{symbol} {getattr(item, name)}"
-        for item in field.metadata
-        for name, symbol in _BOUNDS.items()
-        if getattr(item, name, None) is not None
-        and (getattr(item, name) != INT64_MAX or beyond_int64)
-    ]
-    extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
-    unit = extra.get("unit")
-    if not parts:
-        return ""
-    return " and ".join(parts) + (f" {unit}" if unit and unit != "1" else "")
-
-
-def _model_at(loc: tuple[int | str, ...]) -> type[BaseModel]:
-    """The model class that validates the mapping at `loc`."""
-    model: type[BaseModel] = SceneConfig
-    for part in loc:
-        model = model.model_fields[part].annotation
-    return model
-
-
-def _field_at(loc: tuple[int | str, ...]) -> FieldInfo | None:
-    try:
-        return _model_at(loc[:-1]).model_fields[loc[-1]]
-    except (KeyError, AttributeError, IndexError, TypeError):
-        return None
+        raise ConfigError(problems_of(err, SceneConfig, origins), source) from None
 
 
 def describe_key(dotted: str) -> tuple[str | None, str]:
     """Unit ("1" = dimensionless, None = not a quantity) and description of a scene key,
     e.g. "params.x_ms" -> ("m", "axes offset ... [m]"). KeyError for an unknown key."""
-    field = _field_at(tuple(dotted.split(".")))
+    field = field_at(SceneConfig, tuple(dotted.split(".")))
     if field is None:
         raise KeyError(dotted)
-    extra = field.json_schema_extra if isinstance(field.json_schema_extra, dict) else {}
-    return extra.get("unit"), field.description or dotted
-
-
-def _dotted(loc: tuple[int | str, ...]) -> str:
-    return ".".join(map(str, loc)) or "(top level)"
-
-
-def _show(value: Any) -> str:
-    """A value as the user wrote it: YAML words for true/false/null, else a short repr."""
-    if value is None or isinstance(value, bool):
-        return json.dumps(value)
-    return _repr.repr(value)
-
-
-def _kind(value: Any) -> str:
-    if value is None:
-        return "null"
-    kinds = {
-        bool: "a boolean",
-        int: "an integer",
-        float: "a float",
-        str: "a string",
-        list: "a list",
-        dict: "a mapping",
-    }
-    return next(
-        (text for cls, text in kinds.items() if isinstance(value, cls)), f"a {type(value).__name__}"
-    )
+    return extra_of(field).get("unit"), field.description or dotted
 
 
 def _sorted(value: Any) -> Any:

@@ -3,20 +3,24 @@ located jump is certified. Value objects only; the search itself lives in search
 
 from __future__ import annotations
 
-import dataclasses
 from typing import Any
+
+from pydantic import BaseModel
+
+from frictiondisk.model.schema import MODEL_CONFIG, field
 
 ROOT_FINDERS = ("itp", "bisect")
 
 
-@dataclasses.dataclass(frozen=True)
-class Certify:
+class Certify(BaseModel):
     """How a jump is certified: each level multiplies the decision horizon by `horizon`
     and rtol by `rtol`; `levels` is the strictest level a point may reach (0: off)."""
 
-    horizon: float = 4.0
-    rtol: float = 0.1
-    levels: int = 2
+    model_config = MODEL_CONFIG
+
+    horizon: float = field(4.0, "1", "factor on the decision horizon per level", gt=1)
+    rtol: float = field(0.1, "1", "factor on numerics.rtol per level", gt=0, le=1)
+    levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
 
     @property
     def enabled(self) -> bool:
