@@ -162,3 +162,20 @@ def test_remote_scheduler_with_a_killed_worker_gives_the_local_results(local_ref
     assert not errors, errors
     _identical(local_reference, out)
     assert max(Journal(out).computed_counts().values()) == 1
+
+
+def test_two_local_clusters_at_once_never_fight_over_a_port():
+    """Each local cluster's HTTP routes bind a free port: a second campaign started while
+    another runs (or any other Dask on port 8787) gets no 'Port 8787 is already in use'."""
+    import warnings
+
+    from frictiondisk.engine.cluster import start_client
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        first = start_client(1, None, False, False)
+        second = start_client(1, None, False, False)
+        for client, cluster in (first, second):
+            client.close()
+            cluster.close()
+    assert not [w for w in caught if "already in use" in str(w.message)]

@@ -42,8 +42,10 @@ def start_client(workers: int, scheduler: str | None, processes: bool, dashboard
             n_workers=workers,
             threads_per_worker=1,
             processes=processes,
-            # a free port: never clashes with another run; None: no dashboard
+            # None: no dashboard; the scheduler's own HTTP routes (health, metrics) still
+            # bind, to a free port, so that two campaigns at once never warn of port 8787
             dashboard_address=":0" if dashboard else None,
+            scheduler_kwargs={"dashboard_address": ":0"},
         )
     client = Client(cluster)
     if not processes:
