@@ -14,7 +14,9 @@ measured in the same run (warm starts are the current, coarse-to-fine ones in bo
 tol 1e-8 both run `numerics.preset: reference`: the default numerics resolve the pin's
 mu* to 5.8e-7 only (docs/accuracy.md). Runs per point = all runs of the campaign / its points, split
 into search, prescan and certification (runs.nc `role`). mu* of every point is compared
-between the two (they must agree to tol where both are certified or uncertified alike).
+between the two, and against a third run of the campaign as written but with
+`root_finder: bisect` (same prescan, same certification): where both certify a point,
+their mu* must agree to tol, which is the root finder's guarantee.
 
     python benchmarks/bench_runs.py                # all cases (about 2 minutes warm)
     python benchmarks/bench_runs.py --tol 1e-4     # one tolerance
@@ -36,6 +38,7 @@ import yaml
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.tasks import warm_up
 from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.store.cf import flag_meanings
 
 ROOT = Path(__file__).resolve().parent.parent
 DISK_LINE = {
@@ -58,19 +61,33 @@ TARGETS = {1e-4: "<= 6 (lines)", 1e-8: "<= 10"}
 REFERENCE_BELOW = 1e-6
 
 
-def variant(spec: dict, tol: float, before: bool) -> dict:
-    """The campaign dict at `tol`, as the baseline (`before`) or as written."""
+def variant(spec: dict, tol: float, before: bool, bisect_only: bool = False) -> dict:
+    """The campaign dict at `tol`, as the baseline (`before`) or as written;
+    `bisect_only`: as written except `root_finder: bisect` (the same certification and
+    prescan), the reference that mu* must agree with to tol."""
     spec = copy.deepcopy(spec)
     task = spec["find_jump"]
     task["tol"] = tol
     if tol < REFERENCE_BELOW:
         spec.setdefault("numerics", {})["preset"] = "reference"
-    if before:
+    if before or bisect_only:
         task["root_finder"] = "bisect"
+    if before:
         task["certify"] = False
         if "prescan" in task:
             task["prescan"]["stride"] = 1
     return spec
+
+
+def agreement(a: dict, b: dict, tol: float) -> str:
+    """max |mu* a - b| in units of tol over the points certified (or recertified) in both,
+    and how many points that is."""
+    good = ("certified", "recertified")
+    both = np.isin(a["certification"], good) & np.isin(b["certification"], good)
+    if not both.any():
+        return "no point certified in both"
+    gap = float(np.nanmax(np.abs(a["mu_star"][both] - b["mu_star"][both])))
+    return f"{gap / tol:.2f} tol over {int(both.sum())} of {both.size} points certified in both"
 
 
 def measure(spec: dict) -> dict:
@@ -84,7 +101,10 @@ def measure(spec: dict) -> dict:
             roles = runs["role"].values.astype(str)
         with xr.open_dataset(Path(tmp) / "results.nc") as results:
             mu_star = results["mu_star"].values.ravel().copy()
-            certification = results["certification"].values.ravel().copy()
+            meanings = flag_meanings(results["certification"])
+            certification = np.array(
+                [meanings[int(v)] for v in results["certification"].values.ravel()]
+            )
     points = mu_star.size
     return {
         "wall": wall,
@@ -120,6 +140,7 @@ def main(argv: list[str] | None = None) -> int:
             spec = CASES[name]()
             before = measure(variant(spec, tol, before=True))
             after = measure(variant(spec, tol, before=False))
+            bisect = measure(variant(spec, tol, before=False, bisect_only=True))
             gap = np.nanmax(np.abs(before["mu_star"] - after["mu_star"]))
             print(f"== {name} ({spec['name']}, {after['points']} points), tol {tol:g} ==")
             print(row("before", before))
@@ -129,6 +150,12 @@ def main(argv: list[str] | None = None) -> int:
                 f"  ratio   {after['per_point'] / before['per_point']:6.2f} runs, "
                 f"{after['wall'] / before['wall']:5.2f} wall   (target runs/point {target}); "
                 f"max |mu* after - before| = {gap:.2g} ({gap / tol:.2f} tol)",
+                flush=True,
+            )
+            print(
+                f"  agreement with plain bisection, both certified: max |mu* itp - bisect| = "
+                f"{agreement(after, bisect, tol)} (must be <= 1 tol); bisect took "
+                f"{bisect['per_point']:.1f} runs/point",
                 flush=True,
             )
     return 0
