@@ -1,11 +1,13 @@
 """Runs per mu*: the search with its friction-reserve root finder, adaptive prescan and
 certification against plain bisection over a dense prescan without certification.
 
-Three campaigns, each at tol 1e-4 and 1e-8, 2 workers:
+Six campaigns, each at tol 1e-4 and 1e-8, 2 workers:
 
 * the demo pin line (campaigns/demo_line.yaml, 5 points);
 * a co-rotating disk line, x_ms 0.06 ... 0.14 (5 points), bracket [0.05, 0.5];
-* a prescan campaign (campaigns/fig10_disk_x0.yaml, 11 points, 36 prescan values).
+* a prescan campaign (campaigns/fig10_disk_x0.yaml, 11 points, 36 prescan values);
+* the accuracy campaigns (campaigns/accuracy_{pin,disk,brake}.yaml, one cold point each),
+  for the agreement with plain bisection only.
 
 `after` is the campaign as written (find_jump defaults: root_finder itp, certification
 on, adaptive prescan). `before` is the same campaign with `root_finder: bisect`,
@@ -18,7 +20,7 @@ between the two, and against a third run of the campaign as written but with
 `root_finder: bisect` (same prescan, same certification): where both certify a point,
 their mu* must agree to tol, which is the root finder's guarantee.
 
-    python benchmarks/bench_runs.py                # all cases (about 2 minutes warm)
+    python benchmarks/bench_runs.py                # all cases (about 5 minutes warm)
     python benchmarks/bench_runs.py --tol 1e-4     # one tolerance
     python benchmarks/bench_runs.py --only demo    # one campaign
 """
@@ -54,6 +56,11 @@ CASES = {
     "demo": lambda: yaml.safe_load((ROOT / "campaigns/demo_line.yaml").read_text()),
     "disk": lambda: copy.deepcopy(DISK_LINE),
     "prescan": lambda: yaml.safe_load((ROOT / "campaigns/fig10_disk_x0.yaml").read_text()),
+    # one cold point each: checked for agreement with plain bisection, not for runs/point
+    **{
+        name: (lambda name=name: yaml.safe_load((ROOT / f"campaigns/{name}.yaml").read_text()))
+        for name in ("accuracy_pin", "accuracy_disk", "accuracy_brake")
+    },
 }
 TARGETS = {1e-4: "<= 6 (lines)", 1e-8: "<= 10"}
 # below this tol the default numerics (pin accuracy 5.8e-7, docs/accuracy.md) cannot
@@ -145,7 +152,9 @@ def main(argv: list[str] | None = None) -> int:
             print(f"== {name} ({spec['name']}, {after['points']} points), tol {tol:g} ==")
             print(row("before", before))
             print(row("after", after))
-            target = TARGETS[tol] if name != "prescan" else "<= 1/3 of before"
+            target = {"prescan": "<= 1/3 of before"}.get(name, TARGETS[tol])
+            if name.startswith("accuracy"):
+                target = "none: one cold point, checked for agreement"
             print(
                 f"  ratio   {after['per_point'] / before['per_point']:6.2f} runs, "
                 f"{after['wall'] / before['wall']:5.2f} wall   (target runs/point {target}); "

@@ -41,22 +41,7 @@ import numpy as np
 import yaml
 from pydantic import ValidationError
 
-from frictiondisk.model.axes import Linspace
 from frictiondisk.model.campaign_spec import (
-    DEFAULT_BASIN_BATCH,
-    DEFAULT_BASIN_SEED,
-    DEFAULT_CERTIFY,
-    DEFAULT_DT_OUT,
-    DEFAULT_HORIZON_FACTOR,
-    DEFAULT_LANES,
-    DEFAULT_LIMITS,
-    DEFAULT_MAX_RETRIES,
-    DEFAULT_ROOT_FINDER,
-    DEFAULT_SCAN_MODE,
-    DEFAULT_SPLIT,
-    DEFAULT_TOL,
-    MAX_BASIN_SAMPLES,
-    MAX_SPLIT,
     SCENE_KEYS,
     TASK_KEYS,
     Basin,
@@ -70,9 +55,7 @@ from frictiondisk.model.campaign_spec import (
 from frictiondisk.model.scene import ConfigError, SceneConfig, scene_from_dict
 from frictiondisk.model.schema import error_lines, problems_of
 from frictiondisk.model.schema import show as _show
-from frictiondisk.model.search_settings import OFF as CERTIFY_OFF
-from frictiondisk.model.search_settings import ROOT_FINDERS, Certify
-from frictiondisk.model.varied import INITIAL_STATE_KEYS, scene_value
+from frictiondisk.model.varied import scene_value
 from frictiondisk.model.yamlio import StrictDumper, load_yaml_text, read_text_file
 
 __all__ = [
@@ -89,37 +72,6 @@ __all__ = [
     "load_campaign",
 ]
 
-# The keys of each part of a file, from the schema (kept importable under their old names).
-TOP_KEYS = tuple(CampaignFile.model_fields)
-FIND_JUMP_KEYS = tuple(FindJump.model_fields)
-CERTIFY_KEYS = tuple(Certify.model_fields)
-SCAN_KEYS = tuple(Scan.model_fields)
-PRESCAN_KEYS = tuple(Prescan.model_fields)
-TRAJECTORY_KEYS = tuple(Trajectory.model_fields)
-TRAJECTORY_SHOW = ("whole", "cycle")
-LINSPACE_KEYS = tuple(Linspace.model_fields)
-BASIN_KEYS = tuple(Basin.model_fields)
-BASIN_SAMPLE_ONLY = BASIN_KEYS[:6]
-DISTRIBUTIONS = {"uniform": "low, high", "normal": "mean, sd"}
-_REEXPORTED = (
-    DEFAULT_BASIN_BATCH,
-    DEFAULT_BASIN_SEED,
-    DEFAULT_CERTIFY,
-    DEFAULT_DT_OUT,
-    DEFAULT_HORIZON_FACTOR,
-    DEFAULT_LANES,
-    DEFAULT_LIMITS,
-    DEFAULT_MAX_RETRIES,
-    DEFAULT_ROOT_FINDER,
-    DEFAULT_SCAN_MODE,
-    DEFAULT_SPLIT,
-    DEFAULT_TOL,
-    MAX_BASIN_SAMPLES,
-    MAX_SPLIT,
-    CERTIFY_OFF,
-    ROOT_FINDERS,
-    INITIAL_STATE_KEYS,
-)
 _MISSING: Any = object()  # a key not given at all (unlike a null value)
 
 
