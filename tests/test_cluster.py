@@ -169,13 +169,20 @@ def test_two_local_clusters_at_once_never_fight_over_a_port():
     another runs (or any other Dask on port 8787) gets no 'Port 8787 is already in use'."""
     import warnings
 
+    import dask
+
     from frictiondisk.engine.cluster import start_client
 
+    scheduler_before = dask.config.get("scheduler", None)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         first = start_client(1, None, False, False)
         second = start_client(1, None, False, False)
-        for client, cluster in (first, second):
+        for client, cluster in (second, first):  # last in, first out: as nested `with`s
             client.close()
             cluster.close()
     assert not [w for w in caught if "already in use" in str(w.message)]
+    # each client restores the default scheduler it found, so the last closed leaves it
+    # as it was (closed in another order, dask would keep "dask.distributed" with no
+    # client behind it, and xarray's netCDF writes would fail)
+    assert dask.config.get("scheduler", None) == scheduler_before
