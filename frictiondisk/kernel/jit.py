@@ -17,19 +17,20 @@ import pathlib
 
 import numba as nb
 
+KERNEL_SOURCES = pathlib.Path(__file__).resolve().parent
 
-def _kernel_cache_dir() -> str:
-    """A numba cache folder unique to the current kernel sources (under NUMBA_CACHE_DIR,
-    or under this package's __pycache__)."""
-    here = pathlib.Path(__file__).resolve().parent
+
+def kernel_cache_dir(sources: pathlib.Path = KERNEL_SOURCES) -> str:
+    """A numba cache folder unique to the kernel sources in `sources` (under
+    NUMBA_CACHE_DIR, or under that folder's __pycache__)."""
     digest = hashlib.sha256()
-    for source in sorted(here.glob("*.py")):
+    for source in sorted(sources.glob("*.py")):
         digest.update(source.name.encode())
         digest.update(source.read_bytes())
-    root = os.environ.get("NUMBA_CACHE_DIR") or str(here / "__pycache__")
+    root = os.environ.get("NUMBA_CACHE_DIR") or str(sources / "__pycache__")
     return os.path.join(root, f"kernel-{digest.hexdigest()[:16]}")
 
 
-nb.config.CACHE_DIR = _kernel_cache_dir()
+nb.config.CACHE_DIR = kernel_cache_dir()
 
 kernel_jit = nb.njit(cache=True, nogil=True, error_model="numpy")
