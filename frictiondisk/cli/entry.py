@@ -22,10 +22,8 @@ def run() -> None:
     try:
         main.main(prog_name="frictiondisk")
         code = 0
-    except SystemExit as stop:
+    except SystemExit as stop:  # click ends every command so, Ctrl-C included
         code = _exit_code(stop.code)
-    except KeyboardInterrupt:  # raised outside any command's own handler
-        code = 130
     logging.shutdown()
     for stream in (sys.stdout, sys.stderr):
         try:

@@ -289,8 +289,8 @@ def show_defaults(scene: str, task: str | None) -> None:
     click.echo(annotated_task(task) if task else annotated_scene(scene))
 
 
-# Campaign commands live in frictiondisk/cli/campaign.py, `plot` in campaign/plot_cli.py,
-# `accuracy` in accuracy/cli.py.
+# Campaign commands live in frictiondisk/cli/campaign.py, `plot` in cli/plot.py,
+# `accuracy` in cli/accuracy.py.
 def _add_campaign_commands() -> None:
     from frictiondisk.cli.accuracy import accuracy
     from frictiondisk.cli.campaign import resume, run, status

@@ -120,7 +120,8 @@ class KernelRun:
         return self
 
     def finish(self, status: int, t_end: float, y_end: np.ndarray) -> None:
-        """Set the outcome of a run integrated elsewhere: status, t_end [s], final state."""
+        """Set the outcome of a run integrated elsewhere: status, t_end [s], final state.
+        `modes` keeps its initial values: such an integrator tracks its own modes."""
         self.status, self.t_end = int(status), float(t_end)
         self.y = np.asarray(y_end, dtype=np.float64)
 
@@ -145,11 +146,6 @@ class KernelRun:
     def rejected(self) -> int:
         """Rejected steps (0 = unknown for scipy-Radau)."""
         return int(self.out_i[driver.C_REJECTED])
-
-    @property
-    def events(self) -> int:
-        """Contact mode switches counted against numerics.max_events."""
-        return int(self.out_i[driver.C_EVENTS])
 
     @property
     def refused(self) -> int:
