@@ -330,3 +330,48 @@ def test_fraction_figures_of_a_point_and_of_a_grid(along, gid):
     fig = plot_basin(ds)
     gids = {child.get_gid() for ax in fig.axes for child in ax.get_children()}
     assert gid in gids
+
+
+# --- rules the hand validation had (regressions of the pydantic schema) --------------------
+
+
+@pytest.mark.parametrize(
+    "dist, message",
+    [
+        (
+            {"uniform": None, "normal": [0.0, 1.0]},
+            "basin.sample.params.x0: 2 distributions given: must be {uniform: [low, high]} "
+            "with low < high, or {normal: [mean, sd]} with sd > 0",
+        ),
+        (
+            {"uniform": None},
+            "basin.sample.params.x0.uniform: expected a list [low, high]; got null: must be "
+            "{uniform: [low, high]}",
+        ),
+        (
+            {"normal": None},
+            "basin.sample.params.x0.normal: expected a list [mean, sd]; got null: must be "
+            "{uniform: [low, high]}",
+        ),
+        ({}, "basin.sample.params.x0: 0 distributions given: must be {uniform: [low, high]}"),
+    ],
+)
+def test_one_distribution_per_sampled_key(dist, message):
+    found = problems(basin(sample={"params.x0": dist}))
+    assert_problem(found, message)
+    if len(dist) == 2:  # the count first, then each key's own problem
+        assert found[0].startswith("basin.sample.params.x0: 2 distributions given"), found
+        assert found[1].startswith("basin.sample.params.x0.uniform: expected a list"), found
+
+
+@pytest.mark.parametrize(
+    "key, value", [("seed", -1), ("seed", "x"), ("batch", 0), ("sample", {"params.mu": 1})]
+)
+def test_a_key_not_used_with_a_map_is_reported_once(key, value):
+    found = problems(
+        {"name": "m", "scene": "pin", "basin": {"grid": {"params.x0": [0.0]}, key: value}}
+    )
+    assert found == [
+        f"basin.{key}: not used with basin.grid (a basin map runs each cell of the grid once, "
+        "at the base scene's parameters); remove it or drop grid"
+    ]

@@ -792,3 +792,87 @@ def test_a_bad_certify_names_its_field(certify, field):
         "find_jump": {"along": {"params.x_ms": [0.1]}, "certify": certify},
     }
     assert any(p.startswith(field) for p in problems(data)), problems(data)
+
+
+# --- rules the hand validation had (regressions of the pydantic schema) --------------------
+
+
+@pytest.mark.parametrize("task", [{}, None])
+def test_the_default_dt_out_must_fit_a_recording(task):
+    data = {"name": "o", "scene": "pin", "numerics": {"t_decide": 1e5}, "trajectory": task}
+    found = problems(data)
+    assert len(found) == 1, found
+    assert_problem(
+        found,
+        "trajectory.dt_out: 0.01 s is out of range:",
+        "would need 1e+07 rows",
+        "must be >= 0.0513 s (or shorten numerics.t_decide)",
+    )
+
+
+@pytest.mark.parametrize("bracket", [[0.05, 0.3], None])
+def test_a_null_prescan_is_refused(bracket):
+    data = find_jump(prescan=None, limits=[0.01, 1.0])
+    if bracket is None:  # no stand-in bracket may be checked against the limits
+        del data["find_jump"]["bracket"]
+    assert problems(data) == [
+        "find_jump.prescan: expected a mapping with keys mu, mode, stride; got null"
+    ]
+
+
+def test_a_bad_prescan_without_a_bracket_reports_only_the_prescan():
+    data = find_jump(prescan={"mu": [0.1]}, limits=[0.01, 1.0], tol=0.5)
+    del data["find_jump"]["bracket"]
+    assert problems(data) == ["find_jump.prescan.mu: one value given: give at least 2"]
+
+
+@pytest.mark.parametrize(
+    ("task", "message"),
+    [
+        ({"tol": 5}, "find_jump.tol: 5 is out of range: must be > 0 and < hi - lo = 0.25"),
+        (
+            {"limits": [0.1, 10.0]},
+            "find_jump.limits: [0.1, 10.0] does not contain the bracket [0.05, 0.3]: "
+            "must have limits[0] <= lo and hi <= limits[1]",
+        ),
+        (
+            {"horizon_factor": 1e5},
+            "find_jump.horizon_factor: 100000.0 is out of range: with max_retries 2 the last "
+            "retry would run",
+        ),
+    ],
+)
+def test_rules_across_find_jump_keys_are_reported_with_other_problems(task, message):
+    found = problems(find_jump(lanes=0, along={"params.nope": [1.0]}, **task))
+    assert [line.split(":")[0] for line in found] == [
+        message.split(":")[0],
+        "find_jump.lanes",
+        "find_jump.along.params.nope",
+    ]
+    assert_problem(found, message)
+    assert_problem(found, "find_jump.lanes: 0 is out of range: must be >= 1 and <= 64")
+    assert_problem(found, "find_jump.along.params.nope: unknown scene key")
+
+
+def test_rules_across_find_jump_keys_wait_for_the_keys_they_read():
+    # a bad bracket: neither tol nor limits is compared with it
+    found = problems(find_jump(bracket=[0.3, "x"], tol=5, limits=[0.1, 0.2]))
+    assert [line.split(":")[0] for line in found] == ["find_jump.bracket[1]"]
+
+
+@pytest.mark.parametrize(
+    ("stride", "message"),
+    [
+        ("2", "'2' is a string, not an integer: must be an integer >= 1 and <= 2"),
+        (None, "missing value (null); must be an integer >= 1 and <= 2"),
+        (1.0, "1.0 is a float, not an integer: must be an integer >= 1 and <= 2"),
+        (0, "0 is out of range: must be >= 1 and <= 2"),
+        (3, "3 is out of range: must be >= 1 and <= 2"),
+    ],
+)
+def test_prescan_stride_is_bounded_by_the_prescan_values(stride, message):
+    found = problems(find_jump(prescan={"mu": [0.1, 0.2, 0.3], "stride": stride}))
+    assert len(found) == 1, found
+    assert found[0].startswith(f"find_jump.prescan.stride: {message}"), found
+    prescan = {"mu": [0.1, 0.2, 0.3], "stride": 2}
+    assert campaign_from_dict(find_jump(prescan=prescan)).task.prescan.stride == 2

@@ -107,3 +107,28 @@ def test_show_defaults_prints_a_task_s_keys(task):
     for name in TASKS[task].model_fields:
         assert f" {name}:" in result.output
     assert "find_jump:" not in CliRunner().invoke(main, ["show-defaults"]).output
+
+
+@pytest.mark.parametrize(
+    "task, good",
+    [
+        ("find_jump", "demo_line"),
+        ("scan", "demo_scan"),
+        ("trajectory", "fig04_trajectory"),
+        ("basin", "basin_pin_x0"),
+    ],
+)
+def test_show_defaults_task_block_loads_once_its_commented_keys_are_filled(task, good):
+    """The printed block, pasted into a campaign with the keys it leaves commented out (the
+    required ones, and those without a default) taken from a known-good campaign, loads."""
+    from frictiondisk.model.campaign import campaign_from_dict
+
+    result = CliRunner().invoke(main, ["show-defaults", "--task", task])
+    assert result.exit_code == 0, result.output
+    block = yaml.safe_load(result.output)[task] or {}
+    data = yaml.safe_load((ROOT / "campaigns" / f"{good}.yaml").read_text())
+    filled = {**block, **{k: v for k, v in data[task].items() if k not in block}}
+    campaign = campaign_from_dict({**data, task: filled})
+    assert campaign.kind == task
+    for line in result.output.splitlines()[1:]:  # every key: a value or a commented-out key
+        assert line.startswith(("  # ", "    ")) or ": " in line, line

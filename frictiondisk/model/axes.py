@@ -1,5 +1,6 @@
 """Values of the scene keys a campaign varies (`along`, `grid`, `scan.mu`, ...): a list of
-numbers or `{start, stop, num}`, and pairs such as `[lo, hi]`; each varied key and value is
+numbers or `{start, stop, num}`, and pairs such as `[lo, hi]` (with find_jump's rules across
+its bracket, tol, limits and retries: `find_jump_problems`); each varied key and value is
 checked against the scene schema and, with the base scene in the validation context,
 against that scene (every value must give a valid scene)."""
 
@@ -21,7 +22,7 @@ from pydantic import (
 )
 
 from frictiondisk.model.schema import HERE, MODEL_CONFIG, field, kind_of, rule, show
-from frictiondisk.model.varied import key_problem, value_problems
+from frictiondisk.model.varied import key_problem, retry_problem, value_problems
 
 MAX_AXIS_VALUES = 10_000  # values of one varied key (each is validated as a scene)
 VALUES_MUST = "a list of numbers or a mapping with keys start, stop, num"
@@ -180,3 +181,24 @@ def _low_high(pair: tuple[float, float]) -> tuple[float, float]:
 
 Uniform = pair("low, high", DIST_MUST, float, _low_high)
 Normal = pair("mean, sd", DIST_MUST, float, _sd)
+
+
+def find_jump_problems(valid: Mapping[str, Any], base: Any) -> list[tuple[str, str]]:
+    """The rules across find_jump keys whose keys are all in `valid` (name -> valid value)."""
+    problems = []
+    lo, hi = valid.get("bracket") or (None, None)
+    tol, limits, prescan = valid.get("tol"), valid.get("limits"), valid.get("prescan")
+    if lo is not None and tol is not None and tol >= hi - lo:
+        width = f"< hi - lo = {hi - lo:.6g} (the bracket's width)"
+        problems.append(("tol", f"{show(tol)} is out of range: must be > 0 and {width}"))
+    if lo is not None and limits is not None and not (limits[0] <= lo and hi <= limits[1]):
+        must = "must have limits[0] <= lo and hi <= limits[1]"
+        text = f"does not contain the bracket {show([lo, hi])}: {must}"
+        problems.append(("limits", f"{show(list(limits))} {text}"))
+    retries, factor = valid.get("max_retries"), valid.get("horizon_factor")
+    if base is not None and retries and factor is not None and "prescan" in valid:
+        raw = isinstance(prescan, Mapping)  # valid, not yet validated
+        mode = prescan.get("mode", "decide") if raw else getattr(prescan, "mode", None)
+        text = retry_problem(base, {mode} - {None}, retries, factor)
+        problems += [("horizon_factor", text)] if text else []
+    return problems

@@ -8,13 +8,12 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any, ClassVar, Literal
 
-from pydantic import ValidationInfo, field_validator, model_validator
+from pydantic import ValidationError, ValidationInfo, field_validator, model_validator
 
 from frictiondisk.model.axes import (
     BRACKET_MUST,
     DIST_MUST,
     LIMITS_MUST,
-    MAX_AXIS_VALUES,
     VALUES_MUST,
     Axes,
     Bracket,
@@ -27,15 +26,11 @@ from frictiondisk.model.axes import (
     base_of,
     check_axes,
     check_mu,
+    find_jump_problems,
 )
-from frictiondisk.model.schema import Spec, canonical, field, merged, rule, show
+from frictiondisk.model.schema import Spec, canonical, field, joined, merged, rule, within
 from frictiondisk.model.search_settings import Certify
-from frictiondisk.model.varied import (
-    INITIAL_STATE_KEYS,
-    initial_state_problem,
-    retry_problem,
-    value_problems,
-)
+from frictiondisk.model.varied import INITIAL_STATE_KEYS, initial_state_problem, value_problems
 
 MAX_SPLIT = 64
 MAX_BASIN_SAMPLES = 10_000_000
@@ -78,9 +73,9 @@ class Prescan(Spec):
     stride: int = field(
         None,
         "1",
-        "run every stride-th value first, <= len(mu) - 1; null: frictiondisk.search.prescan",
+        "run every stride-th value first; not given: frictiondisk.search.prescan",
+        "an integer >= 1 and <= len(mu) - 1",
         ge=1,
-        le=MAX_AXIS_VALUES,
     )
 
     @field_validator("mu")
@@ -90,12 +85,12 @@ class Prescan(Spec):
             raise rule("one value given: give at least 2")
         return tuple(sorted(check_mu(values, info)))
 
-    @model_validator(mode="after")
-    def _stride(self) -> Prescan:
-        top = max(1, len(self.mu) - 1)
-        if self.stride is not None and self.stride > top:
-            raise rule(("stride", f"{self.stride} is out of range: must be >= 1 and <= {top}"))
-        return self
+    @field_validator("stride", mode="wrap")
+    @classmethod
+    def _stride(cls, value: Any, handler: Any, info: ValidationInfo) -> int:
+        """At most len(mu) - 1 (no upper bound while mu is invalid)."""
+        mu = info.data.get("mu")
+        return within(handler, value, int, ge=1, le=max(1, len(mu) - 1) if mu else None)
 
 
 class FindJump(Spec):
@@ -134,7 +129,7 @@ class FindJump(Spec):
     )
     lanes: int = field(DEFAULT_LANES, "1", "points of a row in flight at once", ge=1, le=64)
     along: Axes = field(..., None, "1 or 2 dotted scene keys to their values", along_must("1 or 2"))
-    prescan: Prescan | None = field(None, None, "values of mu run at every point first")
+    prescan: Prescan = field(None, None, "values of mu run at every point first")
     split: int = field(
         DEFAULT_SPLIT, "1", "parts per bisection round (split - 1 runs at once)", ge=2, le=MAX_SPLIT
     )
@@ -148,17 +143,33 @@ class FindJump(Spec):
         DEFAULT_ROOT_FINDER, None, "itp: interpolate on the friction reserve; bisect: halve"
     )
 
-    @model_validator(mode="before")
+    @model_validator(mode="wrap")
     @classmethod
-    def _bracket_from_prescan(cls, data: Any, info: ValidationInfo) -> Any:
-        """Without a bracket, a prescan's range of mu is the bracket."""
-        if isinstance(data, Mapping) and "bracket" not in data and "prescan" in data:
+    def _whole(cls, data: Any, handler: Any, info: ValidationInfo) -> Any:
+        """Without a bracket, a prescan's range of mu is the bracket. The rules across keys
+        (`find_jump_problems`) are checked whenever the keys they read are valid, also next to
+        the problems of other keys."""
+        if not isinstance(data, Mapping):
+            return handler(data)
+        bad = set()
+        if "bracket" not in data and "prescan" in data:
             try:
                 mu = Prescan.model_validate(data["prescan"], context=info.context).mu
-            except ValueError:  # reported by the prescan field; any bracket stands in
-                mu = DEFAULT_LIMITS
-            return {**data, "bracket": [min(mu), max(mu)]}
-        return data
+            except ValidationError:  # reported at prescan; a stand-in, not checked across
+                mu, bad = DEFAULT_LIMITS, {"bracket"}
+            data = {**data, "bracket": [min(mu), max(mu)]}
+        try:
+            spec = handler(data)
+        except ValidationError as err:
+            bad |= {error["loc"][0] for error in err.errors() if error["loc"]}
+            fields = cls.model_fields
+            valid = {name: data.get(name, fields[name].default) for name in fields.keys() - bad}
+            problems = find_jump_problems(valid, base_of(info))
+            raise joined(err, data, problems, list(cls.model_fields)) from None
+        problems = find_jump_problems(dict(spec), base_of(info))
+        if problems:
+            raise rule(*problems)
+        return spec
 
     @field_validator("certify", mode="before")
     @classmethod
@@ -171,25 +182,6 @@ class FindJump(Spec):
     def _along(cls, along: Axes, info: ValidationInfo) -> Axes:
         taken = {"params.mu": "params.mu is the bisected parameter; it cannot also be varied"}
         return check_axes(along, base_of(info), (1, 2), taken)
-
-    @model_validator(mode="after")
-    def _cross(self, info: ValidationInfo) -> FindJump:
-        lo, hi = self.bracket
-        problems: list[tuple[Any, str]] = []
-        if self.tol >= hi - lo:
-            width = f"< hi - lo = {hi - lo:.6g} (the bracket's width)"
-            problems.append(("tol", f"{show(self.tol)} is out of range: must be > 0 and {width}"))
-        if not (self.limits[0] <= lo and hi <= self.limits[1]):
-            must = "must have limits[0] <= lo and hi <= limits[1]"
-            text = f"does not contain the bracket {show(list(self.bracket))}: {must}"
-            problems.append(("limits", f"{show(list(self.limits))} {text}"))
-        base, modes = base_of(info), {self.prescan.mode} if self.prescan else set()
-        if base is not None and self.max_retries:
-            text = retry_problem(base, modes, self.max_retries, self.horizon_factor)
-            problems += [("horizon_factor", text)] if text else []
-        if problems:
-            raise rule(*problems)
-        return self
 
 
 # --- scan and trajectory ------------------------------------------------------------------
@@ -228,7 +220,8 @@ class Trajectory(Spec):
 
     kind: ClassVar[str] = "trajectory"
 
-    dt_out: float = field(DEFAULT_DT_OUT, "s", "recording interval", gt=0)
+    # validate_default: the default too must fit the base scene's recording capacity
+    dt_out: float = field(DEFAULT_DT_OUT, "s", "recording interval", gt=0, validate_default=True)
     show: Literal["whole", "cycle"] = field(
         "whole", None, "whole: transient and cycle; cycle: the last converged limit cycle"
     )
@@ -266,19 +259,19 @@ class Trajectory(Spec):
 class Distribution(Spec):
     """One sampled initial-state key: `uniform` on [a, b) or `normal` with mean a, sd b."""
 
-    uniform: Uniform | None = field(
+    uniform: Uniform = field(
         None, None, "uniform on [low, high), in the key's unit", "a list [low, high], low < high"
     )
-    normal: Normal | None = field(
-        None, None, "normal, in the key's unit", "a list [mean, sd] with sd > 0"
-    )
+    normal: Normal = field(None, None, "normal, in the key's unit", "a list [mean, sd] with sd > 0")
 
-    @model_validator(mode="after")
-    def _one(self) -> Distribution:
-        given = [name for name in ("uniform", "normal") if getattr(self, name) is not None]
-        if len(given) != 1:
-            raise rule(f"{len(given)} distributions given: must be {DIST_MUST}")
-        return self
+    @model_validator(mode="wrap")
+    @classmethod
+    def _one(cls, data: Any, handler: Any) -> Any:
+        """Exactly one key given (counted on the keys, also when a value is bad)."""
+        if not isinstance(data, Mapping) or not set(data) <= set(cls.model_fields):
+            return handler(data)  # unknown keys: reported as such
+        text = f"{len(data)} distributions given: must be {DIST_MUST}"
+        return merged(handler, data, [] if len(data) == 1 else [((), text)], list(cls.model_fields))
 
     @property
     def kind(self) -> str:
@@ -340,9 +333,9 @@ class Basin(Spec):
             return handler(data)
         given, problems = set(data), []
         if "grid" in given:
-            problems = [
-                (key, BASIN_TEXT["map"]) for key in cls.model_fields if key in given - {"grid"}
-            ]
+            unused = [key for key in cls.model_fields if key in given - {"grid"}]
+            problems = [(key, BASIN_TEXT["map"]) for key in unused]
+            data = {key: value for key, value in data.items() if key not in unused}  # once
         elif "sample" not in given:
             problems = [((), BASIN_TEXT["sample"])]
         elif {"samples", "target_se"} <= given:

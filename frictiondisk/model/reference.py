@@ -28,15 +28,17 @@ def annotated_scene(scene: str) -> str:
 
 
 def annotated_task(task: str) -> str:
-    """The keys of a campaign task as YAML with their defaults and descriptions; required
-    keys are commented out and marked `required`."""
+    """The keys of a campaign task as YAML with their defaults and descriptions; keys
+    without a default value (required, or not set: null or empty) are commented out and
+    marked `required` or `optional`, so that the block loads once the required are filled."""
     model = TASKS[task]
     lines = [f"{task}:  # {CampaignFile.model_fields[task].description}"]
     for name, info in model.model_fields.items():
         default = _default(info)
         note = f"  # {_doc(info)}"
-        if default is PydanticUndefined:
-            lines.append(f"  # {name}: (required){note}; allowed: {requirement(info)}")
+        if default is PydanticUndefined or default is None or default == {}:
+            what = "required" if default is PydanticUndefined else "optional"
+            lines.append(f"  # {name}: ({what}){note}; allowed: {requirement(info)}")
         elif _is_model(_strip(info.annotation)) and isinstance(default, BaseModel):
             lines.append(f"  {name}:{note}")
             lines += _annotated(type(default), default.model_dump(mode="json"), 4)

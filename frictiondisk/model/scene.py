@@ -19,17 +19,10 @@ from pydantic import BaseModel, Field, ValidationError, model_validator
 from pydantic_core import PydanticCustomError
 
 from frictiondisk.model import layouts
-from frictiondisk.model.overrides import _DOTTED_KEY, MAX_KEY_PARTS, apply_overrides, parse_override
+from frictiondisk.model.overrides import apply_overrides, parse_override
 from frictiondisk.model.schema import INT64_MAX, MODEL_CONFIG, extra_of, field_at, problems_of
 from frictiondisk.model.schema import field as _field
-from frictiondisk.model.schema import kind_of as _kind
-from frictiondisk.model.schema import requirement as _requirement
-from frictiondisk.model.schema import show as _show
 from frictiondisk.model.yamlio import ConfigError, dump_yaml, load_yaml_file
-
-# Kept importable from here (older imports): _DOTTED_KEY, MAX_KEY_PARTS, INT64_MAX, _kind,
-# _requirement, _show.
-_REEXPORTED = (_DOTTED_KEY, MAX_KEY_PARTS, INT64_MAX, _kind, _requirement, _show)
 
 __all__ = [
     "NUMERICS_PRESETS",
@@ -55,8 +48,6 @@ MAX_SPEED = 1.0e4  # [m/s]
 MAX_OMEGA = 1.0e4  # [rad/s]
 MAX_HORIZON = 1.0e9  # [s] simulated time of one run, retries included
 
-_MODEL_CONFIG = MODEL_CONFIG
-
 
 def _layout_error(name: str, value: Any, message: str) -> None:
     """Reject contact.<name> (a layout rule): the message names the field and the rule."""
@@ -66,7 +57,7 @@ def _layout_error(name: str, value: Any, message: str) -> None:
 class Stribeck(BaseModel):
     """Stribeck curve mu(v) = mu*[r + (1 - r)*exp(-(v/v_s)**delta)] (docs/model.md section 3)."""
 
-    model_config = _MODEL_CONFIG
+    model_config = MODEL_CONFIG
 
     r: float = _field(1.0, "1", "ratio mu_kinetic/mu_static; 1 is Coulomb friction", gt=0, le=1)
     v_s: float = _field(1.0e-3, "m/s", "Stribeck velocity", gt=0)
@@ -76,7 +67,7 @@ class Stribeck(BaseModel):
 class Params(BaseModel):
     """Physical parameters and initial state (paper symbols, docs/model.md sections 2 and 5)."""
 
-    model_config = _MODEL_CONFIG
+    model_config = MODEL_CONFIG
 
     mu: float = _field(0.13, "1", "static friction coefficient", gt=0)
     omega_m: float = _field(1.1, "rad/s", "angular velocity of the master disk", ge=0, le=MAX_OMEGA)
@@ -116,7 +107,7 @@ class Contact(BaseModel):
     """Regularized friction contact (docs/model.md section 3); the totals c, beta, F_n are
     spread over the points of `layout` by their weights (frictiondisk/model/layouts.py)."""
 
-    model_config = _MODEL_CONFIG
+    model_config = MODEL_CONFIG
 
     stiffness: float = _field(2.53e5, "N/m", "contact stiffness c", gt=0)
     damping: float | None = _field(
@@ -236,7 +227,7 @@ class Numerics(BaseModel):
     so equal numerics give equal content hashes and journal keys however they were written.
     """
 
-    model_config = _MODEL_CONFIG
+    model_config = MODEL_CONFIG
 
     method: Literal["rodas4", "rodas4-fixed", "scipy-radau", "coulomb"] = _field(
         "rodas4", None, "integration method"
@@ -303,7 +294,7 @@ class Numerics(BaseModel):
 class SceneConfig(BaseModel):
     """One validated scene: build it with `load_scene` or `scene_from_dict`."""
 
-    model_config = _MODEL_CONFIG
+    model_config = MODEL_CONFIG
 
     scene: Literal["pin", "disk"] = Field(
         description="pin: point mass on one contact; disk: slave disk on contact.points"

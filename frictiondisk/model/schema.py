@@ -15,7 +15,7 @@ import types
 from collections.abc import Mapping, Sequence
 from typing import Annotated, Any, Literal, Union, get_args, get_origin
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError
 from pydantic.fields import FieldInfo
 from pydantic_core import ErrorDetails, InitErrorDetails, PydanticCustomError
 
@@ -65,17 +65,35 @@ def rule(*problems: tuple[Any, str] | str) -> PydanticCustomError:
     return PydanticCustomError("rule", "rule", {"problems": pairs})
 
 
-def merged(handler: Any, data: Any, problems: Sequence[tuple[Any, str]]) -> Any:
-    """`handler(data)` (a wrap validator's), with `problems` reported next to its errors."""
-    extra = [InitErrorDetails(type=rule(*problems), loc=(), input=data)] if problems else []
+def merged(
+    handler: Any, data: Any, problems: Sequence[tuple[Any, str]], order: Sequence[str] = ()
+) -> Any:
+    """`handler(data)` (a wrap validator's), with `problems` reported next to its errors
+    (sorted as `joined` sorts them)."""
     try:
         out = handler(data)
     except ValidationError as err:
-        details = [_init_details(error) for error in err.errors(include_url=False)]
-        raise ValidationError.from_exception_data(err.title, [*details, *extra]) from None
-    if extra:
-        raise ValidationError.from_exception_data("rule", extra)
+        raise joined(err, data, problems, order) from None
+    if problems:
+        raise joined(None, data, problems)
     return out
+
+
+def joined(
+    err: ValidationError | None,
+    data: Any,
+    problems: Sequence[tuple[Any, str]],
+    order: Sequence[str] = (),
+) -> ValidationError:
+    """The errors of `err` (None: none) and `problems` (`(at, text)`) as one error; with
+    `order` (field names) sorted by the field each is under, unknown keys first."""
+    details = [_init_details(error) for error in err.errors(include_url=False)] if err else []
+    for at, text in problems:
+        at = at if isinstance(at, tuple) else (at,)
+        details.append(InitErrorDetails(type=rule(text), loc=at, input=data))
+    rank = {name: i for i, name in enumerate(order)}
+    details.sort(key=lambda detail: rank.get(detail["loc"][0], -1) if detail["loc"] else -1)
+    return ValidationError.from_exception_data(err.title if err else "rule", details)
 
 
 def _init_details(error: ErrorDetails) -> InitErrorDetails:
@@ -86,6 +104,19 @@ def _init_details(error: ErrorDetails) -> InitErrorDetails:
     if ctx is not None and not isinstance(kind, PydanticCustomError):
         details["ctx"] = ctx
     return details
+
+
+def within(handler: Any, value: Any, annotation: Any, **limits: Any) -> Any:
+    """`handler(value)` (a wrap field validator's) also within `limits` (ge=, le=, ...) known
+    only while validating, e.g. from another field; every problem states these limits."""
+    info = FieldInfo.from_annotated_attribute(annotation, Field(**limits))
+    try:
+        out = handler(value)
+        TypeAdapter(Annotated[annotation, Field(**limits)]).validate_python(out)
+    except ValidationError as err:
+        lines = [field_problem(e["type"], value, info, e["msg"]) for e in err.errors()]
+        raise rule(*lines) from None
+    return out
 
 
 # --- messages ---------------------------------------------------------------------------
@@ -147,14 +178,14 @@ def error_lines(
         text = f"expected a mapping with keys {', '.join(here.model_fields)}; got {got}"
     else:
         path = dotted(parts, brackets)
-        text = _field_problem(kind, value, info, error["msg"])
+        text = field_problem(kind, value, info, error["msg"])
     for key, origin in origins.items():
         if path == key or path.startswith(key + "."):
             text += f" (from {origin})"
     return [f"{path}: {text}"]
 
 
-def _field_problem(kind: str, value: Any, info: FieldInfo | None, msg: str) -> str:
+def field_problem(kind: str, value: Any, info: FieldInfo | None, msg: str) -> str:
     if info is None:
         return f"{show(value)}: {msg}"
     must = f"must be {requirement(info)}"
