@@ -43,9 +43,10 @@ def start_client(workers: int, scheduler: str | None, processes: bool, dashboard
             threads_per_worker=1,
             processes=processes,
             # None: no dashboard; the scheduler's own HTTP routes (health, metrics) still
-            # bind, to a free port, so that two campaigns at once never warn of port 8787
+            # bind, to a free port on loopback only, so that two campaigns at once never
+            # warn of port 8787 and nothing is served to the network unasked
             dashboard_address=":0" if dashboard else None,
-            scheduler_kwargs={"dashboard_address": ":0"},
+            scheduler_kwargs={"dashboard_address": ":0" if dashboard else "127.0.0.1:0"},
         )
     client = Client(cluster)
     if not processes:
