@@ -113,3 +113,29 @@ def test_a_stop_raised_inside_a_finalizer_still_stops_the_campaign_loop():
             runner._raise_if_stop_requested()
     runner._stop_requested.clear()
     assert signal.getsignal(signal.SIGTERM) is before
+
+
+@pytest.mark.parametrize(
+    ("stop", "code", "word"), [("Terminated", 143, "terminated"), ("KeyboardInterrupt", 130, "")]
+)
+def test_a_stop_outside_the_campaign_loop_keeps_the_documented_exit_code(
+    tmp_path, monkeypatch, stop, code, word
+):
+    """A trajectory campaign runs its one run outside the loop that turns a stop into
+    CampaignInterrupted; so does the set-up before it. Click alone would say 'Aborted!' and
+    exit 1 there."""
+    from frictiondisk.engine import runner
+    from frictiondisk.engine.signals import Terminated
+
+    raised = {"Terminated": Terminated, "KeyboardInterrupt": KeyboardInterrupt}[stop]
+
+    def stopped(*args, **kwargs):
+        raise raised()
+
+    monkeypatch.setattr(runner, "run_campaign", stopped)
+    spec = tmp_path / "c.yaml"
+    spec.write_text(CAMPAIGN)
+    result = CliRunner().invoke(main, ["run", str(spec), "-o", str(tmp_path / "out")])
+    assert result.exit_code == code, result.output
+    assert (word or "interrupted") in result.output
+    assert "Run the same command again" in result.output

@@ -67,7 +67,7 @@ def _execute(
     from frictiondisk.engine.directory import CampaignChanged
     from frictiondisk.engine.preflight import preflight
     from frictiondisk.engine.runner import run_campaign
-    from frictiondisk.engine.signals import CampaignInterrupted
+    from frictiondisk.engine.signals import CampaignInterrupted, Terminated
     from frictiondisk.model.scene import ConfigError
     from frictiondisk.store.lock import CampaignLocked
     from frictiondisk.store.paths import describe_os_error
@@ -92,6 +92,15 @@ def _execute(
         fail(str(exc), [], EXIT_LOCKED)
     except CampaignInterrupted as exc:
         fail(str(exc), [], exc.exit_code)
+    except KeyboardInterrupt as stop:  # outside the campaign loop: set-up, a trajectory run
+        terminated = isinstance(stop, Terminated)
+        fail(
+            f"{'terminated (SIGTERM)' if terminated else 'interrupted'} outside the campaign "
+            "loop (while setting up, or during a trajectory's one run); no finished run is "
+            "lost. Run the same command again to continue",
+            [],
+            143 if terminated else 130,
+        )
     except ConfigError as exc:
         fail(f"{out_dir}/campaign.yaml", list(exc.problems))
     except SchedulerFailed as exc:
