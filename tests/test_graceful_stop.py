@@ -139,3 +139,43 @@ def test_a_stop_outside_the_campaign_loop_keeps_the_documented_exit_code(
     assert result.exit_code == code, result.output
     assert (word or "interrupted") in result.output
     assert "Run the same command again" in result.output
+
+
+LONG_TRAJECTORY = """\
+name: long_trajectory
+scene: disk
+params: {mu: 0.05}
+contact: {points: 96}
+numerics: {mode: converge, t_max: 300000.0, cycle_tol: 1.0e-12}
+trajectory: {dt_out: 5.0, show: whole}
+"""
+
+
+def test_a_trajectory_run_stops_at_once_on_sigterm(tmp_path):
+    """A trajectory campaign's one run (minutes: a sliding disk that never converges) sits
+    in the numba kernel, which never returns to the interpreter; the run waits in another
+    thread, so the SIGTERM handler runs at once instead of when the run ends."""
+    spec = tmp_path / "t.yaml"
+    spec.write_text(LONG_TRAJECTORY)
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    t0 = time.time()  # campaign.yaml is written after the handlers are installed
+    while time.time() - t0 < 120 and proc.poll() is None and not (out / "campaign.yaml").exists():
+        time.sleep(0.02)
+    time.sleep(1.0)  # into the run
+    assert proc.poll() is None, "the trajectory finished before the signal"
+    proc.send_signal(signal.SIGTERM)
+    try:
+        _, err = proc.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        pytest.fail("SIGTERM did not stop the trajectory run within 30 s")
+    assert proc.returncode == 143, err
+    assert "terminated" in err and "Run the same command again" in err
+    assert not (out / "trajectory.nc").exists()  # nothing half-written

@@ -12,7 +12,6 @@ import json
 import math
 import os
 import sys
-import threading
 from pathlib import Path
 from typing import Any
 
@@ -231,25 +230,12 @@ def _os_errors_reported():
 
 
 def _interruptible(function, *args, **kwargs):
-    """`function(*args, **kwargs)` in a daemon thread, so Ctrl-C stops the command at once.
+    """`function(*args, **kwargs)`, stopped at once by Ctrl-C (exit 130) even while its run
+    sits in the numba kernel (frictiondisk.engine.signals.wait_interruptibly)."""
+    from frictiondisk.engine.signals import wait_interruptibly
 
-    The numba kernel releases the GIL (kernel/jit.py: nogil) but never returns to the
-    interpreter, so a SIGINT would wait for the whole run; the main thread waits here in
-    short slices instead and gets the KeyboardInterrupt, and the daemon thread dies with
-    the process (exit 130)."""
-    outcome: dict[str, Any] = {}
-
-    def target() -> None:
-        try:
-            outcome["value"] = function(*args, **kwargs)
-        except BaseException as exc:  # handed to the main thread
-            outcome["error"] = exc
-
-    worker = threading.Thread(target=target, name="frictiondisk-simulate", daemon=True)
-    worker.start()
     try:
-        while worker.is_alive():
-            worker.join(0.01)  # the run ends within 10 ms of this wait
+        return wait_interruptibly(function, *args, **kwargs)
     except KeyboardInterrupt:
         click.echo("error: interrupted (Ctrl-C); nothing was written", err=True)
         sys.stdout.flush()
@@ -257,9 +243,6 @@ def _interruptible(function, *args, **kwargs):
         # No interpreter shutdown: it takes seconds (numba, llvmlite) and nothing is left
         # to save, since outputs are written after the run.
         os._exit(130)
-    if "error" in outcome:
-        raise outcome["error"]
-    return outcome["value"]
 
 
 @main.command("show-defaults")

@@ -47,6 +47,7 @@ from frictiondisk.engine.signals import (
     _raise_if_stop_requested,
     _stop_requested,
     request_stop,
+    wait_interruptibly,
 )
 from frictiondisk.model.campaign import Campaign
 from frictiondisk.store.journal import CampaignLock, Journal
@@ -137,7 +138,7 @@ def _run_trajectory(campaign: Campaign, out_dir: Path) -> RunSummary:
     from frictiondisk.engine.orbit import run_trajectory
 
     t0 = time.perf_counter()
-    done = run_trajectory(campaign, out_dir, RESULTS_FILE)
+    done = wait_interruptibly(run_trajectory, campaign, out_dir, RESULTS_FILE)
     wall = time.perf_counter() - t0
     write_status(
         out_dir,

@@ -1,7 +1,14 @@
 """How a campaign is stopped: Ctrl-C or SIGTERM, noted by the signal handler and raised
-by the campaign loop (Terminated, request_stop), and the exception that reports it."""
+by the campaign loop (Terminated, request_stop), the exception that reports it, and a
+wait that lets a stop interrupt a run in a numba kernel (wait_interruptibly)."""
 
 from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+T = TypeVar("T")
 
 
 class CampaignInterrupted(Exception):
@@ -30,3 +37,27 @@ def request_stop(stop: type[KeyboardInterrupt]) -> None:
 def _raise_if_stop_requested() -> None:
     if _stop_requested:
         raise _stop_requested[-1]()
+
+
+def wait_interruptibly(function: Callable[..., T], *args: Any, **kwargs: Any) -> T:
+    """`function(*args, **kwargs)` in a daemon thread while this (the main) thread waits in
+    10 ms slices, so that a Ctrl-C or SIGTERM handler runs at once and its exception leaves
+    from here. A numba kernel releases the GIL but never returns to the interpreter, and
+    the main thread only runs signal handlers between bytecodes: a kernel called directly
+    would delay a stop until its run ends. On a stop the thread is left running; it dies
+    with the process."""
+    outcome: dict[str, Any] = {}
+
+    def target() -> None:
+        try:
+            outcome["value"] = function(*args, **kwargs)
+        except BaseException as exc:  # handed to the waiting thread
+            outcome["error"] = exc
+
+    worker = threading.Thread(target=target, name="frictiondisk-run", daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.01)
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome["value"]
