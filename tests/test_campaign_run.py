@@ -21,7 +21,8 @@ from conftest import coulomb_mu_star
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.model.campaign import campaign_from_text
-from frictiondisk.store.journal import CampaignLock, Journal
+from frictiondisk.store.journal import Journal
+from frictiondisk.store.lock import CampaignLock
 
 PIN_LINE = """\
 name: pin_line

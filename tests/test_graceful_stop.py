@@ -97,7 +97,7 @@ def test_a_stop_raised_inside_a_finalizer_still_stops_the_campaign_loop():
     import os
 
     from frictiondisk.cli.campaign import _signals_stop_the_campaign
-    from frictiondisk.engine import runner
+    from frictiondisk.engine import signals
 
     class SignalledWhileFinalized:
         def __del__(self):
@@ -109,9 +109,9 @@ def test_a_stop_raised_inside_a_finalizer_still_stops_the_campaign_loop():
         obj = SignalledWhileFinalized()
         del obj
         gc.collect()
-        with pytest.raises(runner.Terminated):
-            runner._raise_if_stop_requested()
-    runner._stop_requested.clear()
+        with pytest.raises(signals.Terminated):
+            signals._raise_if_stop_requested()
+    signals._stop_requested.clear()
     assert signal.getsignal(signal.SIGTERM) is before
 
 

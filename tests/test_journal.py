@@ -25,13 +25,8 @@ from frictiondisk.store.files import (
     atomic_write_text,
     netcdf_is_valid,
 )
-from frictiondisk.store.journal import (
-    CampaignLock,
-    CampaignLocked,
-    Journal,
-    kernel_version,
-    run_key,
-)
+from frictiondisk.store.journal import Journal, kernel_version, run_key
+from frictiondisk.store.lock import CampaignLock, CampaignLocked
 
 RESULT = {"outcome": "stick_slip", "t_stick": None, "x_amplitude": 0.0123456789, "n_events": 42}
 _CANONICAL: dict[str, dict] = {}  # key -> the canonical scene it was made from
@@ -269,7 +264,7 @@ def test_truncated_last_log_line_is_ignored_and_next_put_still_logged(tmp_path):
 _HOLDER_SCRIPT = textwrap.dedent(
     """
     import sys, time
-    from frictiondisk.store.journal import CampaignLock
+    from frictiondisk.store.lock import CampaignLock
     with CampaignLock(sys.argv[1]):
         print("locked", flush=True)
         time.sleep(60)

@@ -32,7 +32,7 @@ def _load(path: Path, out_dir: Path):
     it is missing or does not load completely (e.g. truncated)."""
     import xarray as xr
 
-    from frictiondisk.engine.runner import CAMPAIGN_FILE
+    from frictiondisk.engine.directory import CAMPAIGN_FILE
 
     remedy = f"rebuild it from the journal: frictiondisk resume {out_dir}"
     if not path.is_file():
@@ -114,8 +114,8 @@ def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None, boundary=N
     a message to `note`, a callable taking text, if given). Raises CampaignFileError
     naming the file if one is missing, damaged or cannot be drawn. `boundary`: a find_jump
     campaign directory whose mu* contour is drawn on a basin map."""
+    from frictiondisk.engine.directory import RESULTS_FILE, RUNS_FILE
     from frictiondisk.engine.orbit import TRAJECTORY_FILE
-    from frictiondisk.engine.runner import RESULTS_FILE, RUNS_FILE
     from frictiondisk.figures.campaign import plot_campaign
     from frictiondisk.figures.orbit import plot_trajectory
 

@@ -10,9 +10,8 @@ and canonical form: a hand-edited campaign.yaml is refused), journal/ (one file 
 status.json (progress, rewritten while running), results.nc, runs.nc, lock. None of these
 may be a symbolic link (issue 14): the driver refuses to start rather than follow one.
 
-This module runs a campaign (run_campaign) and re-exports the names other modules import
-from it; the work is in directory.py (DIR), driver.py (the campaign loop), cluster.py
-(Dask) and signals.py (Ctrl-C and SIGTERM).
+This module runs a campaign (run_campaign); the work is in directory.py (DIR),
+driver.py (the campaign loop), cluster.py (Dask) and signals.py (Ctrl-C and SIGTERM).
 """
 
 from __future__ import annotations
@@ -21,22 +20,10 @@ import contextlib
 import time
 from pathlib import Path
 
-from frictiondisk.engine.cluster import (
-    WORKER_WAIT,
-    SchedulerFailed,
-    _send_without_batching_delay,
-    measure_task_overhead,
-    task_sizing,
-)
+from frictiondisk.engine.cluster import WORKER_WAIT, SchedulerFailed
 from frictiondisk.engine.directory import (
-    CAMPAIGN_FILE,
-    RECORD_FILE,
     RESULTS_FILE,
-    RUNS_FILE,
-    STATUS_FILE,
-    CampaignChanged,
     prepare_directory,
-    record_differences,
     refuse_links,
     write_status,
 )
@@ -44,38 +31,12 @@ from frictiondisk.engine.driver import RunSummary, _Driver
 from frictiondisk.engine.signals import (
     CampaignInterrupted,
     Terminated,
-    _raise_if_stop_requested,
     _stop_requested,
-    request_stop,
     wait_interruptibly,
 )
 from frictiondisk.model.campaign import Campaign
-from frictiondisk.store.journal import CampaignLock, Journal
-
-# Imported from here by the CLI, the package root, tests and benchmarks.
-__all__ = [
-    "CAMPAIGN_FILE",
-    "RECORD_FILE",
-    "RESULTS_FILE",
-    "RUNS_FILE",
-    "STATUS_FILE",
-    "WORKER_WAIT",
-    "CampaignChanged",
-    "CampaignInterrupted",
-    "RunSummary",
-    "SchedulerFailed",
-    "Terminated",
-    "_raise_if_stop_requested",
-    "_send_without_batching_delay",
-    "_stop_requested",
-    "measure_task_overhead",
-    "prepare_directory",
-    "record_differences",
-    "request_stop",
-    "run_campaign",
-    "task_sizing",
-    "write_status",
-]
+from frictiondisk.store.journal import Journal
+from frictiondisk.store.lock import CampaignLock
 
 
 def run_campaign(

@@ -19,7 +19,7 @@ undetermined red. A grid has no room for the mu of each run; its cells show thei
 
 Every figure carries a caption line (campaign, task, tolerance, numerics, versions).
 
-This module dispatches (`plot_campaign`) and re-exports the public names; each family is
+This module dispatches (`plot_campaign`) and names the public figure API (`__all__`); each family is
 drawn in its own module: kind.py (`figure_kind`), jump_line.py, jump_grid.py, scan.py and
 size.py (``jump_sizes``), with what they share in shared.py. Like
 `frictiondisk.figures.plotting`, none of them selects a backend, touches pyplot, imports
@@ -33,37 +33,10 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from frictiondisk.figures.jump_grid import plot_jump_grid
-from frictiondisk.figures.jump_line import RUNS_VIEW, plot_jump_line  # noqa: F401  (re-exported)
+from frictiondisk.figures.jump_line import plot_jump_line
 from frictiondisk.figures.kind import FIGURE_KINDS, figure_kind
 from frictiondisk.figures.scan import plot_scan_family, plot_scan_mu
-from frictiondisk.figures.shared import (  # noqa: F401  (re-exported)
-    A_LABEL,
-    CAPTION_FONT_PT,
-    CAPTION_SEP,
-    FAIL_COLOR,
-    LINE_COLOR,
-    LIST_WIDTH,
-    MAX_LISTED,
-    MU_LABEL,
-    MU_STAR_LABEL,
-    NON_MONOTONE_COLOR,
-    NOTE_FONT_PT,
-    OUTCOME_LABEL,
-    OUTCOME_STYLE,
-    REGION_FONT_PT,
-    RUG_Y,
-    SIZE_LABEL,
-    SLIDE_GREY,
-    _caption_parts,
-    _fmt,
-    _unit_text,
-    _value_text,
-    _wrap_parts,
-    axis_label,
-    caption_text,
-    new_figure,
-    scene_title,
-)
+from frictiondisk.figures.shared import MU_LABEL, axis_label, caption_text
 from frictiondisk.figures.style import styled
 
 __all__ = [

@@ -37,14 +37,11 @@ from pathlib import Path
 from typing import Any
 
 from frictiondisk.store.files import TEMP_SUFFIX, atomic_write_bytes, fsync_directory
-from frictiondisk.store.lock import CampaignLock, CampaignLocked  # re-exported: see __all__
 from frictiondisk.store.paths import SymlinkRefused, open_nofollow, read_nofollow, refuse_symlink
 from frictiondisk.version import NUMERICS_VERSION
 
 __all__ = [
     "ENTRY_VERSION",
-    "CampaignLock",
-    "CampaignLocked",
     "Journal",
     "kernel_version",
     "run_key",
