@@ -1,4 +1,4 @@
-"""Campaign commands: `run`, `resume`, `status` (thin; the work is in runner.py).
+"""Campaign commands: `run`, `resume`, `status` (thin; the work is in frictiondisk/engine/).
 
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
 path that cannot be written (named, with the cause), a symbolic link in DIR, an
@@ -128,36 +128,27 @@ def _execute(
     click.echo(f"results: {summary.results}")
     label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
     click.echo(f"{label} {summary.runs}")
-    _echo_uncertain(summary.results)
-    _echo_basin(summary.results)
+    _echo_closing(summary.results)
 
 
-def _echo_uncertain(results_path: Path) -> None:
-    """A find_jump with uncertain points: one line naming them. Not an error (exit 0): the
-    best bracket of each is kept in results.nc, flagged `uncertain`."""
+def _echo_closing(results_path: Path) -> None:
+    """The closing lines of a finished campaign, read from results.nc once: a find_jump
+    with uncertain points names them (not an error, exit 0: the best bracket of each is
+    kept, flagged `uncertain`); a basin campaign prints its fractions with their 95 %
+    intervals, one line per point."""
     import xarray as xr
 
+    from frictiondisk.store.basin_datasets import summary_lines
     from frictiondisk.store.table import closing_lines
 
     if results_path.name != "results.nc" or not results_path.is_file():
         return
     with xr.open_dataset(results_path) as results:
         lines = closing_lines(results)
+        if results.attrs.get("task") == "basin":
+            lines += summary_lines(results.load())
     for line in lines:
         click.echo(line)
-
-
-def _echo_basin(results_path: Path) -> None:
-    """A basin campaign: its fractions with their 95 % intervals, one line per point."""
-    import xarray as xr
-
-    with xr.open_dataset(results_path) as results:
-        if results.attrs.get("task") != "basin":
-            return
-        from frictiondisk.store.basin_datasets import summary_lines
-
-        for line in summary_lines(results.load()):
-            click.echo(line)
 
 
 _workers = click.option(
