@@ -20,3 +20,12 @@ def coulomb_mu_star(
     """The pin's Coulomb oracle: the least mu at which a sticking circle of `radius` [m]
     holds, mu F_n = c_s x_ms + g radius (other parameters as `g_factor`)."""
     return (c_s * x_ms + g_factor(c_s=c_s, **kw) * radius) / F_n
+
+
+def pytest_configure(config) -> None:
+    """The tests' subprocesses never meet a warm server (`frictiondisk serve`) left
+    running by the developer: they look for one in a fresh private directory."""
+    import os
+    import tempfile
+
+    os.environ["FRICTIONDISK_SERVER_DIR"] = tempfile.mkdtemp(prefix="frictiondisk-test-servers-")

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from frictiondisk.cli.entry import _exit_code
+from frictiondisk.cli.run_and_exit import exit_code as _exit_code
 from frictiondisk.version import __version__
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -1,43 +1,37 @@
-"""The console script (`frictiondisk`, `python -m frictiondisk.cli`): run one command,
-then leave without the interpreter's teardown.
-
-Tearing down numba, llvmlite and Dask's modules took 0.12 s after a warm `simulate` of
-0.58 s (benchmarks/bench_startup.py). Nothing is lost by skipping it: every command
-closes what it writes (atomic files, the journal, the Dask cluster) before it returns,
-and the process exit releases the campaign lock. Tests that call `main` in-process
-(click's CliRunner) do not come through here.
-"""
+"""The console script (`frictiondisk`, `python -m frictiondisk.cli`): run one command in
+this process (cli/run_and_exit.py), or hand a `run` or `resume` to the warm server of this
+environment if one is up (`frictiondisk serve`, cli/warm_server.py), which starts it in
+about a quarter of the time."""
 
 from __future__ import annotations
 
-import logging
 import os
 import sys
+from typing import NoReturn
+
+from frictiondisk.cli.run_and_exit import exit_now, run_and_exit
+
+SERVED_COMMANDS = ("run", "resume")  # the commands whose start-up a warm server saves
 
 
-def run() -> None:
-    """Run the click command line and exit with its code, skipping interpreter teardown."""
-    from frictiondisk.cli.main import main
-
-    try:
-        main.main(prog_name="frictiondisk")
-        code = 0
-    except SystemExit as stop:  # click ends every command so, Ctrl-C included
-        code = _exit_code(stop.code)
-    logging.shutdown()
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except (OSError, ValueError):  # a closed pipe (| head): nothing left to say
-            pass
-    os._exit(code)
-
-
-def _exit_code(code: object) -> int:
-    """SystemExit's code as a process exit status: None is 0, text is printed and 1."""
+def run() -> NoReturn:
+    """Run the command line here, or in the warm server (then exit with its code)."""
+    args = sys.argv[1:]
+    code = _through_warm_server(args)
     if code is None:
-        return 0
-    if isinstance(code, int):
-        return code
-    print(code, file=sys.stderr)
-    return 1
+        from frictiondisk.cli.main import main
+
+        run_and_exit(main, args)
+    exit_now(code)
+
+
+def _through_warm_server(args: list[str]) -> int | None:
+    if not args or args[0] not in SERVED_COMMANDS or os.name != "posix":
+        return None
+    from frictiondisk.cli.warm_protocol import NO_SERVER_ENV
+
+    if os.environ.get(NO_SERVER_ENV):
+        return None
+    from frictiondisk.cli.warm_client import hand_over
+
+    return hand_over(args)

@@ -1,0 +1,257 @@
+"""The warm server (`frictiondisk serve`, cli/warm_server.py): a `run` handed to it gives
+the same files as one run on its own, with the same exit codes, output and signals; a
+client of another environment never reaches it; it stops when idle or asked."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import signal
+import stat
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+from frictiondisk.cli.warm_protocol import (
+    NO_SERVER_ENV,
+    SERVER_DIR_ENV,
+    UnsafeServerDir,
+    environment_key,
+    private_dir,
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+SHORT = """\
+name: warm
+scene: pin
+find_jump:
+  bracket: [0.05, 0.3]
+  tol: 1.0e-3
+  along: {params.x_ms: [0.08, 0.12]}
+"""
+LONG = """\
+name: warm_long
+scene: pin
+find_jump:
+  bracket: [0.05, 0.3]
+  tol: 1.0e-8
+  lanes: 1
+  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 24}}
+"""
+
+
+def _cli(*args, env, **kwargs) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "frictiondisk.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        timeout=600,
+        **kwargs,
+    )
+
+
+def _served(log: Path) -> list[str]:
+    """The commands the server's log says it ran."""
+    lines = log.read_text().splitlines() if log.exists() else []
+    started = [line for line in lines if re.search(r": pid \d+: ", line)]
+    return [
+        line.split(": ", 2)[2] for line in started if not re.search(r": exit -?\d+ after ", line)
+    ]
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """(environment with the server's directory, its log): a detached server, stopped
+    after the module."""
+    directory = tmp_path_factory.mktemp("servers")
+    os.chmod(directory, 0o700)
+    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
+    env.pop(NO_SERVER_ENV, None)
+    started = _cli("serve", "--detach", "--idle-timeout", "300", env=env)
+    assert started.returncode == 0, started.stderr
+    pid = int(started.stdout.split("(pid ")[1].split(")")[0])
+    log = Path(started.stdout.strip().split("log: ")[1])
+    yield env, log
+    stopped = _cli("serve", "--stop", env=env)
+    assert stopped.returncode == 0, stopped.stderr
+    _wait_gone(pid)
+
+
+def _wait_gone(pid: int, timeout: float = 60.0) -> None:
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return
+        time.sleep(0.05)
+    raise AssertionError(f"process {pid} still runs after {timeout} s")
+
+
+def _open(path: Path) -> xr.Dataset:
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def test_a_served_run_writes_what_a_run_on_its_own_writes(server, tmp_path):
+    env, log = server
+    spec = tmp_path / "c.yaml"
+    spec.write_text(SHORT)
+    served = _cli("run", str(spec), "-o", str(tmp_path / "served"), env=env)
+    alone = _cli("run", str(spec), "-o", str(tmp_path / "alone"), env={**env, NO_SERVER_ENV: "1"})
+    assert served.returncode == alone.returncode == 0, served.stderr + alone.stderr
+    commands = _served(log)
+    assert f"run {spec} -o {tmp_path / 'served'}" in commands
+    assert not any("alone" in command for command in commands)
+    # the summary reaches the client's own stdout through the descriptors it passed
+    assert "done: 2 points (0 failed)" in served.stdout
+    for name in ("results.nc", "runs.nc"):
+        a, b = _open(tmp_path / "served" / name), _open(tmp_path / "alone" / name)
+        drop = [v for v in a.variables if v == "wall_s"]  # measured, never equal
+        xr.testing.assert_identical(a.drop_vars(drop), b.drop_vars(drop))
+
+
+def test_exit_codes_and_errors_arrive_from_the_server(server, tmp_path):
+    env, log = server
+    missing = _cli("run", str(tmp_path / "missing.yaml"), "-o", str(tmp_path / "o"), env=env)
+    assert missing.returncode == 2
+    assert "missing.yaml" in missing.stderr
+    assert any("missing.yaml" in command for command in _served(log))
+    # relative paths are the client's: it runs in the client's directory
+    (tmp_path / "c.yaml").write_text(SHORT)
+    relative = subprocess.run(
+        [sys.executable, "-m", "frictiondisk.cli", "run", "c.yaml", "-o", "out"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+        timeout=600,
+    )
+    assert relative.returncode == 0, relative.stderr
+    assert (tmp_path / "out" / "results.nc").exists()
+
+
+def _start_long(env: dict, spec: Path, out: Path) -> subprocess.Popen:
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=ROOT,
+        env=env,
+    )
+    t0 = time.time()
+    while time.time() - t0 < 120 and proc.poll() is None and _points_done(out) < 2:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the campaign finished before the signal"
+    return proc
+
+
+def _points_done(out: Path) -> int:
+    try:
+        return json.loads((out / "status.json").read_text()).get("points_done", 0)
+    except (OSError, ValueError):
+        return 0
+
+
+@pytest.mark.parametrize(
+    ("sig", "code", "word"),
+    [(signal.SIGTERM, 143, "terminated"), (signal.SIGINT, 130, "interrupted")],
+)
+def test_a_signal_to_the_client_stops_the_served_campaign_gracefully(
+    server, tmp_path, sig, code, word
+):
+    env, _ = server
+    spec = tmp_path / "long.yaml"
+    spec.write_text(LONG)
+    out = tmp_path / "stopped"
+    proc = _start_long(env, spec, out)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == code, err
+    assert word in err and "frictiondisk resume" in err
+    with xr.open_dataset(out / "results.nc") as part:
+        assert part.attrs["partial"] == 1
+        assert part.attrs["points_done"] >= 2
+
+
+def test_a_client_that_dies_stops_its_campaign_gracefully(server, tmp_path):
+    env, log = server
+    spec = tmp_path / "long.yaml"
+    spec.write_text(LONG)
+    out = tmp_path / "orphan"
+    proc = _start_long(env, spec, out)
+    proc.kill()  # SIGKILL: the client cannot forward anything
+    proc.communicate(timeout=60)
+    t0 = time.time()
+    while time.time() - t0 < 60:
+        status = json.loads((out / "status.json").read_text())
+        if status["state"] != "running":
+            break
+        time.sleep(0.05)
+    assert status["state"] == "interrupted"
+    with xr.open_dataset(out / "results.nc") as part:
+        assert part.attrs["partial"] == 1
+    assert "its client went away; sending SIGTERM" in log.read_text()
+
+
+def test_another_environment_never_reaches_the_server(server, tmp_path):
+    env, log = server
+    spec = tmp_path / "c.yaml"
+    spec.write_text(SHORT)
+    other = {**env, "NUMBA_OPT": "2"}  # numba reads it at import: not what the server has
+    done = _cli("run", str(spec), "-o", str(tmp_path / "other"), env=other)
+    assert done.returncode == 0, done.stderr
+    assert not any("other" in command for command in _served(log))
+
+
+def test_the_key_follows_variables_read_at_import_and_nothing_else(monkeypatch):
+    base = environment_key()
+    monkeypatch.setenv("FRICTIONDISK_UNRELATED_TO_IMPORTS", "1")
+    with_frictiondisk = environment_key()
+    monkeypatch.setenv("SOME_UNRELATED_VARIABLE", "1")
+    assert environment_key() == with_frictiondisk != base
+    monkeypatch.setenv("DASK_DISTRIBUTED__WORKER__DAEMON", "False")
+    assert environment_key() != with_frictiondisk
+    monkeypatch.setenv(NO_SERVER_ENV, "1")  # says whether to use one, not which
+    monkeypatch.setenv(SERVER_DIR_ENV, "/elsewhere")
+    assert environment_key() == environment_key()
+
+
+def test_a_socket_directory_others_may_enter_is_refused(tmp_path, monkeypatch):
+    shared = tmp_path / "shared"
+    shared.mkdir(mode=0o755)
+    os.chmod(shared, 0o755)
+    monkeypatch.setenv(SERVER_DIR_ENV, str(shared))
+    with pytest.raises(UnsafeServerDir, match="0755"):
+        private_dir(create=False)
+    link = tmp_path / "link"
+    link.symlink_to(shared)
+    monkeypatch.setenv(SERVER_DIR_ENV, str(link))
+    with pytest.raises(UnsafeServerDir, match="symbolic link"):
+        private_dir(create=False)
+    done = _cli("serve", env={**os.environ, SERVER_DIR_ENV: str(shared)})
+    assert done.returncode == 2
+    assert str(shared) in done.stderr and "chmod 700" in done.stderr
+
+
+def test_an_idle_server_stops_and_removes_its_socket(tmp_path):
+    directory = tmp_path / "idle"
+    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
+    started = _cli("serve", "--detach", "--idle-timeout", "1", env=env)
+    assert started.returncode == 0, started.stderr
+    assert stat.S_IMODE(os.stat(directory).st_mode) == 0o700
+    pid = int(started.stdout.split("(pid ")[1].split(")")[0])
+    _wait_gone(pid, timeout=30)
+    assert not list(directory.glob("*.sock"))
+    assert "idle for 1 s; stopping" in next(directory.glob("*.log")).read_text()
+    nothing = _cli("serve", "--stop", env=env)
+    assert nothing.returncode == 0
+    assert "no server serves this environment" in nothing.stdout
