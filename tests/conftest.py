@@ -1,4 +1,5 @@
-"""Shared test helpers: the Coulomb oracle of the pin (docs/model.md section 6)."""
+"""Shared test helpers: the Coulomb oracle of the pin (docs/model.md section 6), and a
+campaign subprocess that a test stops with a real signal."""
 
 from __future__ import annotations
 
@@ -29,3 +30,47 @@ def pytest_configure(config) -> None:
     import tempfile
 
     os.environ["FRICTIONDISK_SERVER_DIR"] = tempfile.mkdtemp(prefix="frictiondisk-test-servers-")
+
+
+# 24 points at tol 1e-8: long enough (about 5 s) to be stopped after its second point
+LONG_CAMPAIGN = """\
+name: stop_line
+scene: pin
+find_jump:
+  bracket: [0.05, 0.3]
+  tol: 1.0e-8
+  lanes: 1
+  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 24}}
+"""
+
+
+def points_done(out) -> int:
+    """points_done in out/status.json (0 while there is none)."""
+    import json
+
+    try:
+        return json.loads((out / "status.json").read_text()).get("points_done", 0)
+    except (OSError, ValueError):
+        return 0
+
+
+def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None):
+    """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
+    returned once `points` points are done; fails if it ended before."""
+    import subprocess
+    import sys
+    import time
+
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        cwd=cwd,
+    )
+    t0 = time.time()
+    while time.time() - t0 < 120 and proc.poll() is None and points_done(out) < points:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the campaign finished before the signal"
+    return proc

@@ -2,7 +2,6 @@
 points in a partial results.nc that `status` prints, and a resume that ends exactly where
 an uninterrupted run does."""
 
-import json
 import signal
 import subprocess
 import sys
@@ -12,25 +11,11 @@ import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
+from conftest import LONG_CAMPAIGN, start_campaign_until
 
 from frictiondisk.cli import main
 
-CAMPAIGN = """\
-name: stop_line
-scene: pin
-find_jump:
-  bracket: [0.05, 0.3]
-  tol: 1.0e-8
-  lanes: 1
-  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 24}}
-"""
-
-
-def _points_done(out):
-    try:
-        return json.loads((out / "status.json").read_text()).get("points_done", 0)
-    except (OSError, ValueError):
-        return 0
+CAMPAIGN = LONG_CAMPAIGN
 
 
 @pytest.fixture(scope="module")
@@ -52,16 +37,7 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
 ):
     spec, whole = reference
     out = tmp_path / "stopped"
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    t0 = time.time()
-    while time.time() - t0 < 120 and proc.poll() is None and _points_done(out) < 2:
-        time.sleep(0.02)
-    assert proc.poll() is None, "the campaign finished before the signal"
+    proc = start_campaign_until(spec, out)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == code, err

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 import xarray as xr
+from conftest import LONG_CAMPAIGN, start_campaign_until
 
 from frictiondisk.cli.warm_protocol import (
     NO_SERVER_ENV,
@@ -33,15 +34,6 @@ find_jump:
   bracket: [0.05, 0.3]
   tol: 1.0e-3
   along: {params.x_ms: [0.08, 0.12]}
-"""
-LONG = """\
-name: warm_long
-scene: pin
-find_jump:
-  bracket: [0.05, 0.3]
-  tol: 1.0e-8
-  lanes: 1
-  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 24}}
 """
 
 
@@ -138,29 +130,6 @@ def test_exit_codes_and_errors_arrive_from_the_server(server, tmp_path):
     assert (tmp_path / "out" / "results.nc").exists()
 
 
-def _start_long(env: dict, spec: Path, out: Path) -> subprocess.Popen:
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        cwd=ROOT,
-        env=env,
-    )
-    t0 = time.time()
-    while time.time() - t0 < 120 and proc.poll() is None and _points_done(out) < 2:
-        time.sleep(0.02)
-    assert proc.poll() is None, "the campaign finished before the signal"
-    return proc
-
-
-def _points_done(out: Path) -> int:
-    try:
-        return json.loads((out / "status.json").read_text()).get("points_done", 0)
-    except (OSError, ValueError):
-        return 0
-
-
 @pytest.mark.parametrize(
     ("sig", "code", "word"),
     [(signal.SIGTERM, 143, "terminated"), (signal.SIGINT, 130, "interrupted")],
@@ -170,9 +139,9 @@ def test_a_signal_to_the_client_stops_the_served_campaign_gracefully(
 ):
     env, _ = server
     spec = tmp_path / "long.yaml"
-    spec.write_text(LONG)
+    spec.write_text(LONG_CAMPAIGN)
     out = tmp_path / "stopped"
-    proc = _start_long(env, spec, out)
+    proc = start_campaign_until(spec, out, env=env, cwd=ROOT)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == code, err
@@ -185,9 +154,9 @@ def test_a_signal_to_the_client_stops_the_served_campaign_gracefully(
 def test_a_client_that_dies_stops_its_campaign_gracefully(server, tmp_path):
     env, log = server
     spec = tmp_path / "long.yaml"
-    spec.write_text(LONG)
+    spec.write_text(LONG_CAMPAIGN)
     out = tmp_path / "orphan"
-    proc = _start_long(env, spec, out)
+    proc = start_campaign_until(spec, out, env=env, cwd=ROOT)
     proc.kill()  # SIGKILL: the client cannot forward anything
     proc.communicate(timeout=60)
     t0 = time.time()
