@@ -2,6 +2,7 @@
 points in a partial results.nc that `status` prints, and a resume that ends exactly where
 an uninterrupted run does."""
 
+import json
 import signal
 import subprocess
 import sys
@@ -11,7 +12,7 @@ import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import LONG_CAMPAIGN, start_campaign_until
+from conftest import LONG_CAMPAIGN, points_done, start_campaign_until
 
 from frictiondisk.cli import main
 
@@ -30,7 +31,11 @@ def reference(tmp_path_factory):
 
 @pytest.mark.parametrize(
     ("sig", "code", "word"),
-    [(signal.SIGTERM, 143, "terminated"), (signal.SIGINT, 130, "interrupted")],
+    [
+        (signal.SIGTERM, 143, "terminated"),
+        (signal.SIGINT, 130, "interrupted"),
+        (signal.SIGHUP, 129, "hung up"),
+    ],
 )
 def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
     reference, tmp_path, sig, code, word
@@ -155,3 +160,35 @@ def test_a_trajectory_run_stops_at_once_on_sigterm(tmp_path):
     assert proc.returncode == 143, err
     assert "terminated" in err and "Run the same command again" in err
     assert not (out / "trajectory.nc").exists()  # nothing half-written
+
+
+def test_a_closed_terminal_stops_the_campaign_gracefully(reference, tmp_path):
+    """The real thing behind SIGHUP: the campaign's terminal goes away, so besides the
+    signal every later write to it fails (EIO). Progress and messages are lost; the
+    finished points are not."""
+    import os
+    import pty
+    import select
+
+    spec, _ = reference
+    out = tmp_path / "hung_up"
+    pid, terminal = pty.fork()
+    if pid == 0:  # the child: its controlling terminal is the pty
+        os.execv(
+            sys.executable,
+            [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        )
+    t0 = time.time()
+    while time.time() - t0 < 120 and points_done(out) < 2:
+        if select.select([terminal], [], [], 0.02)[0]:
+            try:
+                os.read(terminal, 65536)  # keep the terminal drained, as a terminal does
+            except OSError:
+                break
+    os.close(terminal)  # the terminal closes: the kernel hangs up its session
+    _, status = os.waitpid(pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 129
+    with xr.open_dataset(out / "results.nc") as part:
+        assert part.attrs["partial"] == 1
+        assert part.attrs["points_done"] >= 2
+    assert json.loads((out / "status.json").read_text())["state"] == "interrupted"

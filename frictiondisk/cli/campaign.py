@@ -3,9 +3,9 @@
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
 path that cannot be written (named, with the cause), a symbolic link in DIR, an
 unreachable scheduler or a campaign over its size limits; 3 DIR is in use by another run,
-130 interrupted (Ctrl-C), 143 terminated (SIGTERM). A stop journals the runs in flight
-that finish within 30 s and writes results.nc with the finished points, marked partial;
-resume continues.
+130 interrupted (Ctrl-C), 143 terminated (SIGTERM), 129 hung up (SIGHUP: the terminal
+closed). A stop journals the runs in flight that finish within 30 s and writes results.nc
+with the finished points, marked partial; resume continues.
 """
 
 from __future__ import annotations
@@ -25,10 +25,10 @@ EXIT_LOCKED = 3
 
 @contextlib.contextmanager
 def _signals_stop_the_campaign():
-    """Ctrl-C (SIGINT) and SIGTERM (a batch scheduler, `kill`, a closed terminal) stop a
-    campaign alike: runs journaled, partial results. Each handler notes the stop before
+    """Ctrl-C (SIGINT), SIGTERM (a batch scheduler, `kill`) and SIGHUP (a closed
+    terminal) stop a campaign alike: runs journaled, partial results. Each handler notes the stop before
     raising it, so that a raise lost in a finalizer still stops the campaign loop."""
-    from frictiondisk.engine.signals import Terminated, request_stop
+    from frictiondisk.engine.signals import HungUp, Terminated, request_stop
 
     def stopper(stop):
         def handler(signum, frame):
@@ -38,11 +38,13 @@ def _signals_stop_the_campaign():
         return handler
 
     wanted = {signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated}
+    if hasattr(signal, "SIGHUP"):
+        wanted[signal.SIGHUP] = HungUp
     previous = {}
     try:
         for signum, stop in wanted.items():
-            if signum == signal.SIGINT and signal.getsignal(signum) is signal.SIG_IGN:
-                continue  # started with Ctrl-C ignored (nohup, a background job)
+            if signum != signal.SIGTERM and signal.getsignal(signum) is signal.SIG_IGN:
+                continue  # ignored when we started (nohup, a background job): stays so
             previous[signum] = signal.signal(signum, stopper(stop))
     except ValueError:  # not the main thread (an embedding application): leave it alone
         pass
@@ -67,7 +69,7 @@ def _execute(
     from frictiondisk.engine.directory import CampaignChanged
     from frictiondisk.engine.preflight import preflight
     from frictiondisk.engine.runner import run_campaign
-    from frictiondisk.engine.signals import CampaignInterrupted, Terminated
+    from frictiondisk.engine.signals import CampaignInterrupted, describe_stop
     from frictiondisk.model.scene import ConfigError
     from frictiondisk.store.lock import CampaignLocked
     from frictiondisk.store.paths import describe_os_error
@@ -93,13 +95,12 @@ def _execute(
     except CampaignInterrupted as exc:
         fail(str(exc), [], exc.exit_code)
     except KeyboardInterrupt as stop:  # outside the campaign loop: set-up, a trajectory run
-        terminated = isinstance(stop, Terminated)
+        what, code = describe_stop(stop)
         fail(
-            f"{'terminated (SIGTERM)' if terminated else 'interrupted'} outside the campaign "
-            "loop (while setting up, or during a trajectory's one run); no finished run is "
-            "lost. Run the same command again to continue",
+            f"{what} outside the campaign loop (while setting up, or during a trajectory's "
+            "one run); no finished run is lost. Run the same command again to continue",
             [],
-            143 if terminated else 130,
+            code,
         )
     except ConfigError as exc:
         fail(f"{out_dir}/campaign.yaml", list(exc.problems))

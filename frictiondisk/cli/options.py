@@ -12,10 +12,14 @@ EXIT_USAGE = 2  # bad command line, bad scene or campaign file, unreadable resul
 
 def fail(header: str, lines: list[str], code: int = EXIT_USAGE) -> NoReturn:
     """Report `error: header` and one indented line per problem on stderr, then exit with
-    `code` (no traceback)."""
-    click.echo(f"error: {header}", err=True)
-    for line in lines:
-        click.echo(f"  {line}", err=True)
+    `code` (no traceback). A stderr that is gone (a closed terminal: EIO; a closed pipe)
+    changes nothing but the report."""
+    try:
+        click.echo(f"error: {header}", err=True)
+        for line in lines:
+            click.echo(f"  {line}", err=True)
+    except OSError:
+        pass
     raise SystemExit(code)
 
 

@@ -140,7 +140,7 @@ class _Driver:
             if self._bar is not None:
                 self._bar.n = self._points_done()
                 self._bar.set_postfix(runs=self.runs_done(), in_flight=0, refresh=False)
-                self._bar.close()
+                _on_stderr(self._bar.close)
 
     def _loop(self, client) -> None:
         from distributed import as_completed
@@ -226,7 +226,8 @@ class _Driver:
         if not self.in_flight:
             return
         self._draining = True
-        print(
+        _on_stderr(
+            print,
             f"\nstopping: journaling the runs of {len(self.in_flight)} tasks in flight, for at "
             f"most {DRAIN_TIMEOUT_S:.0f} s (Ctrl-C again to drop them)",
             file=sys.stderr,
@@ -282,8 +283,12 @@ class _Driver:
             return
         from frictiondisk.engine.progress import progress_bar
 
-        self._bar = progress_bar(
-            len(self.planner.points), self.campaign.name, "point", initial=self._points_done()
+        self._bar = _on_stderr(
+            progress_bar,
+            len(self.planner.points),
+            self.campaign.name,
+            "point",
+            initial=self._points_done(),
         )
 
     def interrupted(self) -> None:
@@ -303,7 +308,7 @@ class _Driver:
             self._bar.set_postfix(
                 runs=self.runs_done(), in_flight=len(self.in_flight), refresh=False
             )
-            self._bar.refresh()
+            _on_stderr(self._bar.refresh)
         if now - self._last_status >= STATUS_EVERY:
             self._write_status(state="running")
             self._last_status = now
@@ -377,6 +382,16 @@ class _Driver:
             moved_aside=list(self.journal.corrupt_reasons),
             task_overhead_s=self.task_overhead_s,
         )
+
+
+def _on_stderr(action, *args, **kwargs):
+    """action(*args, **kwargs), which writes progress or a notice on stderr; None if
+    stderr is gone (a closed terminal: EIO; a closed pipe: EPIPE). Losing them must never
+    stop a campaign or its graceful stop."""
+    try:
+        return action(*args, **kwargs)
+    except OSError:
+        return None
 
 
 @dataclasses.dataclass(frozen=True)

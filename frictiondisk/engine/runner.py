@@ -30,8 +30,8 @@ from frictiondisk.engine.directory import (
 from frictiondisk.engine.driver import RunSummary, _Driver
 from frictiondisk.engine.signals import (
     CampaignInterrupted,
-    Terminated,
     _stop_requested,
+    describe_stop,
     wait_interruptibly,
 )
 from frictiondisk.model.campaign import Campaign
@@ -77,8 +77,7 @@ def run_campaign(
         except KeyboardInterrupt as stop:
             _stop_requested.clear()
             driver.interrupted()
-            terminated = isinstance(stop, Terminated)
-            what = "terminated (SIGTERM)" if terminated else "interrupted"
+            what, code = describe_stop(stop)
             written = driver.write_partial()
             raise CampaignInterrupted(
                 f"{what}; {driver.runs_done()} finished runs are in the journal"
@@ -88,7 +87,7 @@ def run_campaign(
                     else ""
                 )
                 + f". Continue with: frictiondisk resume {out_dir}",
-                143 if terminated else 130,
+                code,
             ) from None
         finally:
             driver.journal.close()

@@ -1,4 +1,4 @@
-"""How a campaign is stopped: Ctrl-C or SIGTERM, noted by the signal handler and raised
+"""How a campaign is stopped: Ctrl-C, SIGTERM or SIGHUP, noted by the signal handler and raised
 by the campaign loop (Terminated, request_stop), the exception that reports it, and a
 wait that lets a stop interrupt a run in a numba kernel (wait_interruptibly)."""
 
@@ -13,7 +13,8 @@ T = TypeVar("T")
 
 class CampaignInterrupted(Exception):
     """Stopped by Ctrl-C or SIGTERM; the journal holds every finished run and results.nc
-    the finished points (marked partial). `exit_code`: 130 (Ctrl-C) or 143 (SIGTERM)."""
+    the finished points (marked partial). `exit_code`: 130 (Ctrl-C), 143 (SIGTERM) or
+    129 (SIGHUP)."""
 
     def __init__(self, message: str, exit_code: int = 130):
         super().__init__(message)
@@ -22,6 +23,23 @@ class CampaignInterrupted(Exception):
 
 class Terminated(KeyboardInterrupt):
     """SIGTERM, raised in the main thread so that it stops a campaign like Ctrl-C."""
+
+    what = "terminated (SIGTERM)"
+    exit_code = 143
+
+
+class HungUp(Terminated):
+    """SIGHUP (the terminal closed): stops a campaign like SIGTERM."""
+
+    what = "hung up (SIGHUP: the terminal closed)"
+    exit_code = 129
+
+
+def describe_stop(stop: KeyboardInterrupt) -> tuple[str, int]:
+    """(what stopped us, the exit code): Ctrl-C 130, SIGTERM 143, SIGHUP 129."""
+    if isinstance(stop, Terminated):
+        return stop.what, stop.exit_code
+    return "interrupted", 130
 
 
 _stop_requested: list[type[KeyboardInterrupt]] = []
