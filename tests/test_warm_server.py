@@ -8,6 +8,7 @@ import json
 import os
 import re
 import signal
+import socket
 import stat
 import subprocess
 import sys
@@ -24,7 +25,10 @@ from frictiondisk.cli.warm_protocol import (
     UnsafeServerDir,
     environment_key,
     private_dir,
+    receive_message,
+    send_message,
 )
+from frictiondisk.cli.warm_server import answers
 
 ROOT = Path(__file__).resolve().parents[1]
 SHORT = """\
@@ -132,7 +136,11 @@ def test_exit_codes_and_errors_arrive_from_the_server(server, tmp_path):
 
 @pytest.mark.parametrize(
     ("sig", "code", "word"),
-    [(signal.SIGTERM, 143, "terminated"), (signal.SIGINT, 130, "interrupted")],
+    [
+        (signal.SIGTERM, 143, "terminated"),
+        (signal.SIGINT, 130, "interrupted"),
+        (signal.SIGHUP, 129, "hung up"),
+    ],
 )
 def test_a_signal_to_the_client_stops_the_served_campaign_gracefully(
     server, tmp_path, sig, code, word
@@ -179,6 +187,7 @@ def test_another_environment_never_reaches_the_server(server, tmp_path):
     done = _cli("run", str(spec), "-o", str(tmp_path / "other"), env=other)
     assert done.returncode == 0, done.stderr
     assert not any("other" in command for command in _served(log))
+    _assert_still_serving(env, log, tmp_path)
 
 
 def test_the_key_follows_variables_read_at_import_and_nothing_else(monkeypatch):
@@ -224,3 +233,178 @@ def test_an_idle_server_stops_and_removes_its_socket(tmp_path):
     nothing = _cli("serve", "--stop", env=env)
     assert nothing.returncode == 0
     assert "no server serves this environment" in nothing.stdout
+
+
+# ---- clients that misbehave: found by review, each failed before its fix -------------
+
+
+def _server_pid(log: Path) -> int:
+    return int(answers(log.with_suffix(".sock"))["pong"])
+
+
+def _open_fds(pid: int) -> int:
+    return len(os.listdir(f"/proc/{pid}/fd"))
+
+
+def _raw_client(log: Path) -> socket.socket:
+    conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    conn.settimeout(60)
+    conn.connect(str(log.with_suffix(".sock")))
+    return conn
+
+
+def _request(args: list[str], env: dict) -> dict:
+    return {"argv": args, "cwd": str(ROOT), "env": env, "umask": 0o022, "ignored_signals": []}
+
+
+def _devnull_fds() -> list[int]:
+    return [os.open(os.devnull, os.O_RDWR) for _ in range(3)]
+
+
+@pytest.mark.skipif(not Path("/proc/self/fd").exists(), reason="counts /proc/PID/fd")
+def test_bad_requests_leave_no_descriptor_behind(server):
+    env, log = server
+    pid = _server_pid(log)
+    t0 = time.monotonic()  # commands of earlier tests hold a connection each
+    while answers(log.with_suffix(".sock"))["running"] and time.monotonic() - t0 < 60:
+        time.sleep(0.05)
+    before = _open_fds(pid)
+    for payload in (b"\x00\x00\x00\x04[1] ", b"\x00\x00\x00\x05{bad}", b"\xff\xff\xff\xff"):
+        fds = _devnull_fds()
+        with _raw_client(log) as conn:
+            socket.send_fds(conn, [payload], fds)
+            conn.recv(1)  # the server closes a bad request at once
+        for fd in fds:
+            os.close(fd)
+    _server_pid(log)  # answered after all of them
+    t0 = time.monotonic()  # it closes the ping's connection just after its answer
+    while _open_fds(pid) != before and time.monotonic() - t0 < 5:
+        time.sleep(0.05)
+    assert _open_fds(pid) == before
+
+
+def test_a_silent_client_delays_nobody(server, tmp_path):
+    """A client that sends its request a byte a second (or never) holds up no other."""
+    import threading
+
+    env, log = server
+    spec = tmp_path / "c.yaml"
+    spec.write_text(SHORT)
+    stop = threading.Event()
+
+    def dribble(conn: socket.socket) -> None:
+        conn.send((1000).to_bytes(4, "big"))  # a request of 1000 bytes, sent over 30 s
+        for _ in range(30):
+            if stop.wait(1.0):
+                return
+            conn.send(b" ")
+
+    with _raw_client(log) as slow:
+        dribbler = threading.Thread(target=dribble, args=(slow,), daemon=True)
+        dribbler.start()
+        done = _cli("run", str(spec), "-o", str(tmp_path / "o"), env=env)
+        still_dribbling = dribbler.is_alive()
+        stop.set()
+        dribbler.join()
+    assert done.returncode == 0, done.stderr
+    assert f"run {spec} -o {tmp_path / 'o'}" in _served(log)
+    assert still_dribbling  # it was served while the slow one was still sending
+
+
+def test_a_client_gone_before_its_answer_does_not_stop_the_server(server, tmp_path):
+    env, log = server
+    spec = tmp_path / "c.yaml"
+    spec.write_text(SHORT)
+    fds = _devnull_fds()
+    with _raw_client(log) as conn:
+        send_message(conn, _request(["run", str(spec), "-o", str(tmp_path / "gone")], env), fds)
+    for fd in fds:
+        os.close(fd)
+    done = _cli("run", str(spec), "-o", str(tmp_path / "next"), env=env)
+    assert done.returncode == 0, done.stderr
+    assert f"run {spec} -o {tmp_path / 'next'}" in _served(log)
+    assert "Traceback" not in log.read_text()
+
+
+def test_a_sigterm_at_once_after_the_pid_is_not_lost(server, tmp_path):
+    """The command's pid reaches the client before the forked copy has the client's
+    signal handlers: a signal in between must wait for them, not meet the server's."""
+    env, log = server
+    spec = tmp_path / "long.yaml"
+    spec.write_text(LONG_CAMPAIGN)
+    fds = _devnull_fds()
+    with _raw_client(log) as conn:
+        send_message(conn, _request(["run", str(spec), "-o", str(tmp_path / "o")], env), fds)
+        reply, _ = receive_message(conn)
+        os.kill(reply["pid"], signal.SIGTERM)
+        for fd in fds:
+            os.close(fd)
+        ended, _ = receive_message(conn)
+    # stopped by it: gracefully (143) once the campaign's handlers are in, else killed by
+    # it (-15) as a process of its own would be during its start-up; never run to the end
+    assert ended["exit"] in (143, -signal.SIGTERM)
+
+
+def test_ctrl_z_suspends_the_served_campaign_too(server, tmp_path):
+    env, log = server
+    spec = tmp_path / "long.yaml"
+    spec.write_text(LONG_CAMPAIGN)
+    out = tmp_path / "suspended"
+    proc = start_campaign_until(spec, out, env=env, cwd=ROOT)
+    child = int(re.findall(rf"pid (\d+): run {re.escape(str(spec))}", log.read_text())[-1])
+    proc.send_signal(signal.SIGTSTP)
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 30 and _state(child) != "T":
+        time.sleep(0.02)
+    assert _state(child) == "T"  # stopped with its client
+    proc.send_signal(signal.SIGCONT)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    with xr.open_dataset(out / "results.nc") as ds:
+        assert "partial" not in ds.attrs
+
+
+def _state(pid: int) -> str:
+    """The state letter of /proc/PID/stat (T: stopped), '' once the process is gone."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return ""
+
+
+def test_a_client_with_other_process_limits_is_not_served(server, tmp_path):
+    """A forked copy would keep the server's nice, affinity, limits and cgroup."""
+    env, log = server
+    spec = tmp_path / "c.yaml"
+    spec.write_text(SHORT)
+    done = subprocess.run(
+        [
+            "nice",
+            "-n",
+            "3",
+            sys.executable,
+            "-m",
+            "frictiondisk.cli",
+            "run",
+            str(spec),
+            "-o",
+            str(tmp_path / "nice"),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stderr
+    assert not any("nice" in command for command in _served(log))
+    _assert_still_serving(env, log, tmp_path)
+
+
+def _assert_still_serving(env: dict, log: Path, tmp_path: Path) -> None:
+    """The control of a 'not served' check: the server does serve this environment."""
+    spec = tmp_path / "control.yaml"
+    spec.write_text(SHORT)
+    done = _cli("run", str(spec), "-o", str(tmp_path / "control"), env=env)
+    assert done.returncode == 0, done.stderr
+    assert f"run {spec} -o {tmp_path / 'control'}" in _served(log)

@@ -28,6 +28,8 @@ def run() -> NoReturn:
 def _through_warm_server(args: list[str]) -> int | None:
     if not args or args[0] not in SERVED_COMMANDS or os.name != "posix":
         return None
+    if "--help" in args or "-h" in args:
+        return None  # faster here than a fork
     from frictiondisk.cli.warm_protocol import NO_SERVER_ENV
 
     if os.environ.get(NO_SERVER_ENV):

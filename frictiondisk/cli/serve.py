@@ -25,12 +25,14 @@ def serve(idle_timeout: float, detach: bool, stop_it: bool) -> None:
 
     The server imports Dask, xarray and netCDF4 and loads the compiled kernel once. It
     runs each later `run` or `resume` of yours in a forked copy of itself, with your
-    directory, environment, terminal and signals (Ctrl-C and SIGTERM stop a campaign as
-    usual); the results are the same as without it. It serves one exact environment
-    (these sources, this Python and its packages, NUMBA_*, DASK_* and PYTHON*
-    variables); a command from any other runs on its own, as does any command with
-    FRICTIONDISK_NO_SERVER=1. Its socket lives in $XDG_RUNTIME_DIR/frictiondisk
-    (or $FRICTIONDISK_SERVER_DIR). Commands still running when it stops finish first.
+    directory, environment, terminal and umask; the command you typed passes its signals
+    on (Ctrl-C and SIGTERM stop a campaign as usual, Ctrl-Z suspends it) and exits with
+    its code. The results are the same as without it. It serves one exact environment
+    (these sources, this Python and its packages, NUMBA_*, DASK_* and PYTHON* variables,
+    Dask's configuration, CPU affinity, nice, limits and cgroup); a command from any
+    other runs on its own, as does any command with FRICTIONDISK_NO_SERVER=1. Its socket
+    lives in $XDG_RUNTIME_DIR/frictiondisk (or $FRICTIONDISK_SERVER_DIR). Commands still
+    running when it stops finish first.
     """
     from frictiondisk.cli.warm_protocol import UnsafeServerDir, private_dir, socket_path
     from frictiondisk.cli.warm_server import ServerError

@@ -12,24 +12,28 @@ import tempfile
 import traceback
 
 from frictiondisk.cli.run_and_exit import run_and_exit
-from frictiondisk.cli.warm_protocol import FORWARDED_SIGNALS
+from frictiondisk.cli.warm_protocol import MIRRORED_SIGNALS
 
 
-def fork_command(request: dict, fds: list[int], sockets: list, selector, group) -> int:
-    """Fork; the child becomes the client's command line of the click `group` and never
-    returns."""
+def fork_command(request: dict, fds: list[int], to_close: list, group) -> int:
+    """Fork; the child closes `to_close` (the server's sockets, selector and lock), becomes
+    the client's command line of the click `group` and never returns."""
     for stream in (sys.stdout, sys.stderr):
         stream.flush()
+    # A signal the client forwards as soon as it has our pid must not reach the server's
+    # handlers still installed in the child: blocked until the client's dispositions are.
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, MIRRORED_SIGNALS)
     pid = os.fork()
     if pid:
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
         return pid
     code = 1  # as Python exits on an exception no command caught
     try:
         os.setpgid(0, 0)  # a Ctrl-C meant for the server's terminal is not for it
-        selector.close()
-        for sock in sockets:
-            sock.close()
+        for thing in to_close:
+            thing.close()
         adopt_client(request, fds)
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)  # pending signals arrive now
         run_and_exit(group, request["argv"])
     except KeyboardInterrupt:
         code = 130
@@ -47,7 +51,7 @@ def adopt_client(request: dict, fds: list[int]) -> None:
         os.close(fd)
     fds.clear()
     ignored = set(request.get("ignored_signals", []))
-    for signum in (*FORWARDED_SIGNALS, signal.SIGCHLD):
+    for signum in (*MIRRORED_SIGNALS, signal.SIGCHLD):
         if int(signum) in ignored:
             signal.signal(signum, signal.SIG_IGN)
         elif signum == signal.SIGINT:
@@ -59,14 +63,30 @@ def adopt_client(request: dict, fds: list[int]) -> None:
     os.environ.clear()
     os.environ.update(request["env"])
     tempfile.tempdir = None  # chosen anew from the client's TMPDIR
-    encoding = sys.stdout.encoding
-    sys.stdin = io.TextIOWrapper(io.FileIO(0, "r", closefd=False), encoding=encoding)
-    sys.stdout = io.TextIOWrapper(
-        io.FileIO(1, "w", closefd=False), encoding=encoding, line_buffering=os.isatty(1)
-    )
-    sys.stderr = io.TextIOWrapper(
-        io.FileIO(2, "w", closefd=False),
-        encoding=encoding,
-        errors="backslashreplace",
-        line_buffering=True,
+    unbuffered = bool(request.get("unbuffered"))
+    sys.stdin = _standard_stream(0, sys.stdin, unbuffered)
+    sys.stdout = _standard_stream(1, sys.stdout, unbuffered)
+    sys.stderr = _standard_stream(2, sys.stderr, unbuffered)
+
+
+def _standard_stream(fd: int, old: io.TextIOWrapper, unbuffered: bool) -> io.TextIOWrapper:
+    """A text stream on `fd` built as Python builds its standard streams at start-up: the
+    same encoding and error handler (the server's: the key includes the locale), buffered
+    unless the client's were not (-u, PYTHONUNBUFFERED), line-buffered on a terminal and
+    always for stderr."""
+    reading = fd == 0
+    unbuffered = unbuffered and not reading
+    raw = io.FileIO(fd, "r" if reading else "w", closefd=False)
+    if unbuffered:
+        binary = raw
+    elif reading:
+        binary = io.BufferedReader(raw)
+    else:
+        binary = io.BufferedWriter(raw)
+    return io.TextIOWrapper(
+        binary,
+        encoding=old.encoding,
+        errors=old.errors,
+        line_buffering=not unbuffered and (fd == 2 or raw.isatty()),
+        write_through=unbuffered,
     )

@@ -1,9 +1,11 @@
 """Where a warm server (`frictiondisk serve`) listens, and how a client talks to it.
 
-A server holds one exact environment warm: this package's sources, the Python, what is
-installed, and the environment variables read at import time (NUMBA_*, DASK_*,
-PYTHON*, the locale). Its socket is named by a hash of all of these, so a client whose
-environment differs finds no server and runs the command itself, with identical results.
+A server holds one exact environment warm: this package's sources, the Python and its
+flags, what is installed, what is read at import time (the NUMBA_*, DASK_*, PYTHON* and
+locale variables, HOME, Dask's YAML configuration, numba's .numba_config.yaml) and what a
+forked copy keeps of its parent (CPU affinity, nice, resource limits, cgroup). Its socket
+is named by a hash of all of these, so a client whose environment differs finds no server
+and runs the command itself, with identical results.
 
 Messages are JSON objects behind a 4-byte big-endian length. The client's first message
 carries its stdin, stdout and stderr as SCM_RIGHTS file descriptors.
@@ -24,10 +26,17 @@ from pathlib import Path
 SERVER_DIR_ENV = "FRICTIONDISK_SERVER_DIR"  # where sockets live (default below)
 NO_SERVER_ENV = "FRICTIONDISK_NO_SERVER"  # set (non-empty): never hand a command over
 _ENV_READ_AT_IMPORT = ("NUMBA_", "DASK_", "PYTHON", "LC_", "FRICTIONDISK_")
-_ENV_EXACT = ("LANG", "LANGUAGE")
-FORWARDED_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)  # client -> command
+_ENV_EXACT = ("LANG", "LANGUAGE", "HOME", "XDG_CONFIG_HOME")  # HOME: ~/.config/dask
+# Signals whose disposition (ignored or not) a command takes from its client, and which
+# the client passes on (Ctrl-Z, SIGTSTP, stops both; cli/warm_client.py)
+MIRRORED_SIGNALS = tuple(
+    getattr(signal, name)
+    for name in ("SIGINT", "SIGTERM", "SIGHUP", "SIGQUIT", "SIGUSR1", "SIGUSR2", "SIGTSTP")
+    if hasattr(signal, name)
+)
 _HEADER = struct.Struct(">I")
-MAX_MESSAGE = 1 << 20  # [bytes]
+MAX_MESSAGE = 8 << 20  # [bytes] an environment may hold up to ARG_MAX (2 MiB on Linux)
+RECEIVE_CHUNK = 1 << 16  # [bytes]
 
 
 class UnsafeServerDir(Exception):
@@ -90,7 +99,54 @@ def environment_key() -> str:
             continue
         if name.startswith(_ENV_READ_AT_IMPORT) or name in _ENV_EXACT:
             digest.update(f"{name}={os.environ[name]}\0".encode())
+    digest.update(repr((sys.flags, sys.warnoptions, sys._xoptions)).encode())
+    for config in _config_files():  # read at import: a change shows in mtime and size
+        try:
+            info = os.stat(config)
+            digest.update(f"{config}:{info.st_mtime_ns}:{info.st_size}\0".encode())
+        except OSError:
+            pass
+    digest.update(_process_attributes().encode())
     return digest.hexdigest()[:16]
+
+
+def _config_files() -> list[str]:
+    """Dask's YAML configuration (where dask.config looks) and numba's
+    .numba_config.yaml in the working directory."""
+    import site
+
+    folders = [
+        os.environ.get("DASK_ROOT_CONFIG", "/etc/dask"),
+        os.path.join(sys.prefix, "etc", "dask"),
+        *[os.path.join(prefix, "etc", "dask") for prefix in site.PREFIXES],
+        os.path.join(os.path.expanduser("~"), ".config", "dask"),
+    ]
+    if os.environ.get("DASK_CONFIG"):
+        folders.append(os.environ["DASK_CONFIG"])
+    files = [os.path.abspath(".numba_config.yaml")]
+    for folder in folders:
+        try:
+            files += sorted(os.path.join(folder, name) for name in os.listdir(folder))
+        except OSError:  # absent, or a file (DASK_CONFIG may name one)
+            files.append(folder)
+    return files
+
+
+def _process_attributes() -> str:
+    """What a forked copy would keep of the server's process rather than the client's:
+    CPU affinity, nice, resource limits and cgroup (a batch job's limits and accounting)."""
+    import resource
+
+    parts: list = [os.getpriority(os.PRIO_PROCESS, 0)]
+    if hasattr(os, "sched_getaffinity"):
+        parts.append(sorted(os.sched_getaffinity(0)))
+    limits = sorted(name for name in dir(resource) if name.startswith("RLIMIT_"))
+    parts += [(name, resource.getrlimit(getattr(resource, name))) for name in limits]
+    try:
+        parts.append(Path("/proc/self/cgroup").read_text())
+    except OSError:
+        pass
+    return repr(parts)
 
 
 def socket_path(directory: Path) -> Path:
@@ -108,30 +164,53 @@ def send_message(conn: socket.socket, message: dict, fds: list[int] | None = Non
         conn.sendall(framed)
 
 
+class MessageBuffer:
+    """One message's bytes, and the file descriptors that came with them, as they arrive."""
+
+    def __init__(self) -> None:
+        self.data = bytearray()
+        self.fds: list[int] = []
+
+    def receive(self, conn: socket.socket, max_fds: int) -> bool:
+        """Read what `conn` has; False if the peer closed the connection."""
+        chunk, fds, _, _ = socket.recv_fds(conn, RECEIVE_CHUNK, max(max_fds, 1))
+        self.fds += fds
+        if len(self.fds) > max_fds:
+            raise ValueError(f"{len(self.fds)} file descriptors (at most {max_fds})")
+        self.data += chunk
+        return bool(chunk)
+
+    def message(self) -> dict | None:
+        """The message once complete, else None. ValueError if malformed or oversized."""
+        if len(self.data) < _HEADER.size:
+            return None
+        (length,) = _HEADER.unpack_from(self.data)
+        if length > MAX_MESSAGE:
+            raise ValueError(f"message of {length} bytes (at most {MAX_MESSAGE})")
+        if len(self.data) < _HEADER.size + length:
+            return None
+        message = json.loads(bytes(self.data[_HEADER.size : _HEADER.size + length]))
+        if not isinstance(message, dict):
+            raise ValueError("a message must be a JSON object")
+        return message
+
+    def close_fds(self) -> None:
+        for fd in self.fds:
+            os.close(fd)
+        self.fds.clear()
+
+
 def receive_message(conn: socket.socket, max_fds: int = 0) -> tuple[dict | None, list[int]]:
-    """(message, file descriptors received with it); (None, []) if the peer closed the
-    connection first. ValueError on a malformed or oversized message."""
-    if max_fds:
-        chunk, fds, _, _ = socket.recv_fds(conn, MAX_MESSAGE, max_fds)
-    else:
-        chunk, fds = conn.recv(MAX_MESSAGE), []
-    if not chunk:
-        return None, fds
-    buffer = bytearray(chunk)
-    while len(buffer) < _HEADER.size:
-        more = conn.recv(MAX_MESSAGE)
-        if not more:
-            return None, fds
-        buffer += more
-    (length,) = _HEADER.unpack_from(buffer)
-    if length > MAX_MESSAGE:
-        raise ValueError(f"message of {length} bytes (at most {MAX_MESSAGE})")
-    while len(buffer) < _HEADER.size + length:
-        more = conn.recv(MAX_MESSAGE)
-        if not more:
-            return None, fds
-        buffer += more
-    message = json.loads(bytes(buffer[_HEADER.size : _HEADER.size + length]))
-    if not isinstance(message, dict):
-        raise ValueError("a message must be a JSON object")
-    return message, fds
+    """Block until one message arrives: (message, file descriptors received with it);
+    (None, []) if the peer closed the connection first. ValueError on a malformed or
+    oversized message; the descriptors are closed on any error."""
+    buffer = MessageBuffer()
+    try:
+        while (message := buffer.message()) is None:
+            if not buffer.receive(conn, max_fds):
+                buffer.close_fds()
+                return None, []
+    except BaseException:
+        buffer.close_fds()
+        raise
+    return message, buffer.fds

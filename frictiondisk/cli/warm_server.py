@@ -10,7 +10,8 @@ file descriptors), directory, environment and umask, and sits in a process group
 own: the client forwards its signals to it, and the server sends a SIGTERM (a graceful
 stop, as from a batch scheduler) if the client goes away.
 
-The server forks only while it is the process's one thread, since a fork copies no other
+Requests are read without blocking, so a slow or silent client delays nobody. The
+server forks only while it is the process's one thread, since a fork copies no other
 thread. It ends after `idle_timeout_s` without a command, on SIGTERM, SIGINT or SIGHUP,
 or when asked (`serve --stop`); commands still running then finish first.
 """
@@ -30,7 +31,7 @@ from pathlib import Path
 
 from frictiondisk.cli.warm_child import fork_command
 from frictiondisk.cli.warm_protocol import (
-    FORWARDED_SIGNALS,
+    MessageBuffer,
     private_dir,
     receive_message,
     send_message,
@@ -38,7 +39,8 @@ from frictiondisk.cli.warm_protocol import (
 )
 
 POLL_S = 0.05  # [s] between checks for finished commands and stop requests
-REQUEST_TIMEOUT_S = 5.0  # [s] for a client to send its request once connected
+REQUEST_TIMEOUT_S = 5.0  # [s] for a client to send its whole request once connected
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 
 class ServerError(Exception):
@@ -47,10 +49,19 @@ class ServerError(Exception):
 
 @dataclass
 class _Command:
-    conn: socket.socket
+    """A forked command; `conn` to its client, None once the client went away."""
+
+    conn: socket.socket | None
     args: list[str]
     started: float = field(default_factory=time.perf_counter)
-    client_gone: bool = False
+
+
+@dataclass
+class _Request:
+    """A connection whose request is still arriving (read without blocking)."""
+
+    buffer: MessageBuffer
+    deadline: float  # [monotonic s]
 
 
 def preload() -> float:
@@ -97,12 +108,12 @@ def serve(idle_timeout_s: float, group, log=None) -> int:
     one line per event (default: stderr)."""
     log = log or (lambda text: print(f"frictiondisk serve: {text}", file=sys.stderr, flush=True))
     path = socket_path(private_dir(create=True))
-    with _ServerLock(path.with_suffix(".lock")):
+    with _ServerLock(path.with_suffix(".lock")) as lock:
         preload_s = preload()
         others = [t.name for t in threading.enumerate() if t is not threading.main_thread()]
         if others:
             raise ServerError(f"threads {others} run after preloading; forking would lose them")
-        server = _Server(path, group, log)
+        server = _Server(path, group, log, lock.file)
         log(
             f"ready at {path} (pid {os.getpid()}, preloaded in {preload_s:.2f} s); `run` and "
             f"`resume` in this environment start here. Stops after {idle_timeout_s:g} s "
@@ -141,20 +152,24 @@ class _ServerLock:
 
 
 class _Server:
-    """The listening socket, the commands running and their clients' connections."""
+    """The listening socket, the requests arriving, the commands running and their
+    clients' connections."""
 
-    def __init__(self, path: Path, group, log) -> None:
+    def __init__(self, path: Path, group, log, lock_file) -> None:
         self.path = path
         self.group = group
         self.log = log
+        self.lock_file = lock_file  # closed in every command: it must not outlive us
         self.listener = _bind(path)
+        self.listener.setblocking(False)
         self.inode = os.stat(path).st_ino
         self.selector = selectors.DefaultSelector()
         self.selector.register(self.listener, selectors.EVENT_READ)
+        self.requests: dict[socket.socket, _Request] = {}
         self.commands: dict[int, _Command] = {}  # pid -> its client
         self.served = 0
         self.stop_requested = False
-        for signum in FORWARDED_SIGNALS:
+        for signum in STOP_SIGNALS:
             signal.signal(signum, self._stop_on_signal)
 
     def _stop_on_signal(self, signum, frame) -> None:
@@ -166,9 +181,12 @@ class _Server:
             for key, _ in self.selector.select(timeout=POLL_S):
                 if key.fileobj is self.listener:
                     self._accept()
+                elif key.fileobj in self.requests:
+                    self._read_request(key.fileobj)
                 else:
-                    self._client_readable(key.fileobj)
-            if self._reap():
+                    self._client_gone(key.fileobj, key.data)
+            self._expire_requests()
+            if self._reap() or self.requests:
                 idle_since = time.monotonic()
             if self.stop_requested and self.listener.fileno() >= 0:
                 self._stop_listening()
@@ -183,6 +201,8 @@ class _Server:
     def close(self) -> None:
         if self.listener.fileno() >= 0:
             self._stop_listening()
+        for conn in list(self.requests):
+            self._drop_request(conn)
         self.selector.close()
 
     def _stop_listening(self) -> None:
@@ -196,53 +216,93 @@ class _Server:
             pass
 
     def _accept(self) -> None:
-        """Answer one client: a ping, a stop, or a command (forked)."""
-        conn, _ = self.listener.accept()
-        conn.settimeout(REQUEST_TIMEOUT_S)
-        fds: list[int] = []
         try:
-            request, fds = receive_message(conn, max_fds=3)
-            if request is None or not _same_user(conn):
-                conn.close()
-            elif request.get("ping"):
+            conn, _ = self.listener.accept()
+        except BlockingIOError:
+            return
+        if not _same_user(conn):
+            conn.close()
+            return
+        conn.setblocking(False)
+        self.requests[conn] = _Request(MessageBuffer(), time.monotonic() + REQUEST_TIMEOUT_S)
+        self.selector.register(conn, selectors.EVENT_READ)
+
+    def _read_request(self, conn: socket.socket) -> None:
+        """Take what a client sent; answer once its request is whole: a ping, a stop, or
+        a command (forked)."""
+        pending = self.requests[conn]
+        try:
+            if not pending.buffer.receive(conn, max_fds=3):
+                self._drop_request(conn)
+                return
+            request = pending.buffer.message()
+        except BlockingIOError:
+            return
+        except (OSError, ValueError) as exc:
+            self.log(f"a client's request failed: {exc!r}")
+            self._drop_request(conn)
+            return
+        if request is None:
+            return  # more to come
+        fds = pending.buffer.fds
+        self.selector.unregister(conn)
+        del self.requests[conn]
+        gave_up = _peer_closed(conn)  # while the socket does not block
+        conn.settimeout(REQUEST_TIMEOUT_S)
+        try:
+            if request.get("ping"):
                 send_message(conn, {"pong": os.getpid(), "running": len(self.commands)})
-                conn.close()
             elif request.get("stop"):
                 self.stop_requested = True
                 send_message(conn, {"stopping": len(self.commands)})
-                conn.close()
             elif _valid_command(request, fds):
-                self._start(conn, request, fds)
+                if not gave_up:
+                    self._start(conn, request, fds)
+                    return
             else:
                 send_message(conn, {"error": "malformed request"})
-                conn.close()
-        except (OSError, ValueError) as exc:
-            self.log(f"a client's request failed: {exc!r}")
-            conn.close()
+        except OSError as exc:
+            self.log(f"a client went away before its answer: {exc!r}")
         finally:
-            for fd in fds:
-                os.close(fd)  # a command has its own copies
+            pending.buffer.close_fds()  # a command has its own copies
+        conn.close()
+
+    def _drop_request(self, conn: socket.socket) -> None:
+        pending = self.requests.pop(conn)
+        pending.buffer.close_fds()
+        self.selector.unregister(conn)
+        conn.close()
+
+    def _expire_requests(self) -> None:
+        now = time.monotonic()
+        for conn in [c for c, pending in self.requests.items() if pending.deadline < now]:
+            self.log(f"a client sent no whole request within {REQUEST_TIMEOUT_S:g} s")
+            self._drop_request(conn)
 
     def _start(self, conn: socket.socket, request: dict, fds: list[int]) -> None:
-        others = [command.conn for command in self.commands.values()]
-        sockets = [self.listener, conn, *others]
-        pid = fork_command(request, fds, sockets, self.selector, self.group)
-        self.commands[pid] = _Command(conn, list(request["argv"]))
+        to_close = [self.listener, conn, self.selector, self.lock_file, *self.requests]
+        to_close += [command.conn for command in self.commands.values() if command.conn]
+        pid = fork_command(request, fds, to_close, self.group)
+        command = _Command(conn, list(request["argv"]))
+        self.commands[pid] = command
         self.served += 1
-        conn.settimeout(None)
-        send_message(conn, {"pid": pid})
-        self.selector.register(conn, selectors.EVENT_READ, pid)
         self.log(f"pid {pid}: {' '.join(request['argv'])}")
+        try:
+            send_message(conn, {"pid": pid})
+        except OSError:
+            self._client_gone(conn, pid)
+            return
+        conn.settimeout(None)
+        self.selector.register(conn, selectors.EVENT_READ, pid)
 
-    def _client_readable(self, conn: socket.socket) -> None:
+    def _client_gone(self, conn: socket.socket, pid: int) -> None:
         """A client sends nothing after its request: readable means it went away (or
         broke the protocol). Its command gets SIGTERM, a graceful stop."""
-        pid = self.selector.get_key(conn).data
-        self.selector.unregister(conn)
-        command = self.commands.get(pid)
-        if command is None or command.client_gone:
-            return
-        command.client_gone = True
+        command = self.commands[pid]
+        if conn.fileno() >= 0 and self.selector.get_map().get(conn) is not None:
+            self.selector.unregister(conn)
+        conn.close()
+        command.conn = None
         self.log(f"pid {pid}: its client went away; sending SIGTERM")
         try:
             os.kill(pid, signal.SIGTERM)
@@ -266,13 +326,13 @@ class _Server:
             code = os.waitstatus_to_exitcode(status)
             took = time.perf_counter() - command.started
             self.log(f"pid {pid}: exit {code} after {took:.2f} s")
-            if not command.client_gone:
+            if command.conn is not None:
                 self.selector.unregister(command.conn)
                 try:
                     send_message(command.conn, {"exit": code})
                 except OSError:
                     pass
-            command.conn.close()
+                command.conn.close()
         return finished
 
 
@@ -305,6 +365,17 @@ def _same_user(conn: socket.socket) -> bool:
     return uid == os.getuid()
 
 
+def _peer_closed(conn: socket.socket) -> bool:
+    """Whether the client closed its end after its request (it gave up waiting); `conn`
+    must be non-blocking (with a timeout, Python would wait for data first)."""
+    try:
+        return conn.recv(1, socket.MSG_PEEK) == b""
+    except BlockingIOError:
+        return False
+    except OSError:
+        return True
+
+
 def _valid_command(request: dict, fds: list[int]) -> bool:
     argv = request.get("argv")
     return (
@@ -313,6 +384,7 @@ def _valid_command(request: dict, fds: list[int]) -> bool:
         and all(isinstance(a, str) for a in argv)
         and isinstance(request.get("cwd"), str)
         and isinstance(request.get("env"), dict)
+        and all(isinstance(v, str) for v in request.get("env", {}).values())
         and isinstance(request.get("umask"), int)
         and isinstance(request.get("ignored_signals", []), list)
     )
@@ -321,7 +393,7 @@ def _valid_command(request: dict, fds: list[int]) -> bool:
 def detach(idle_timeout_s: float, ready_timeout_s: float) -> tuple[int, Path, Path]:
     """Start `frictiondisk serve` in the background (its own session; its log in the
     socket directory) and wait until it answers; returns (pid, socket, log), those of the
-    server already running if there is one.
+    server already running (or starting beside it) if there is one.
     ServerError if it exits first or does not answer within `ready_timeout_s` [s]."""
     import subprocess
 
@@ -349,9 +421,9 @@ def detach(idle_timeout_s: float, ready_timeout_s: float) -> tuple[int, Path, Pa
     deadline = time.monotonic() + ready_timeout_s
     while time.monotonic() < deadline:
         reply = answers(path)
-        if reply is not None and reply.get("pong") == process.pid:
-            return process.pid, path, log_path
-        if process.poll() is not None:
+        if reply is not None and "pong" in reply:  # ours, or one started beside it
+            return int(reply["pong"]), path, log_path
+        if process.poll() is not None and not _lock_held(path.with_suffix(".lock")):
             tail = log_path.read_text(errors="replace").strip().splitlines()[-5:]
             raise ServerError(
                 f"the server exited with code {process.returncode}: " + " | ".join(tail)
@@ -359,3 +431,12 @@ def detach(idle_timeout_s: float, ready_timeout_s: float) -> tuple[int, Path, Pa
         time.sleep(0.05)
     process.terminate()
     raise ServerError(f"the server did not answer within {ready_timeout_s:g} s (log: {log_path})")
+
+
+def _lock_held(path: Path) -> bool:
+    """Whether a server holds (starts or serves with) the lock at `path`."""
+    try:
+        with _ServerLock(path):
+            return False
+    except ServerError:
+        return True
