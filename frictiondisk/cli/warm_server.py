@@ -2,7 +2,7 @@
 compiled kernel once, then run each `run` or `resume` handed over by a client
 (cli/warm_client.py) in a forked copy of this process.
 
-A cold `run` spends about 1.2 s before and around its first run on these imports, on
+A cold `run` spends 1.2-1.6 s before and around its first run on these imports, on
 numba loading the kernel and on xarray importing dask.array (docs/benchmarks.md). A
 forked child inherits all of it and starts its own Dask cluster, so it pays only that
 cluster and its own work. The child takes the client's stdin/stdout/stderr (passed as
