@@ -19,6 +19,7 @@ import pytest
 import xarray as xr
 from conftest import LONG_CAMPAIGN, start_campaign_until
 
+from frictiondisk.cli.warm_control import answers
 from frictiondisk.cli.warm_protocol import (
     NO_SERVER_ENV,
     SERVER_DIR_ENV,
@@ -28,7 +29,6 @@ from frictiondisk.cli.warm_protocol import (
     receive_message,
     send_message,
 )
-from frictiondisk.cli.warm_server import answers
 
 ROOT = Path(__file__).resolve().parents[1]
 SHORT = """\

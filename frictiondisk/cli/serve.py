@@ -1,5 +1,5 @@
 """`frictiondisk serve`: keep this environment warm for `run` and `resume`
-(the machinery is in cli/warm_server.py)."""
+(the server is cli/warm_server.py; --detach and --stop are cli/warm_control.py)."""
 
 from __future__ import annotations
 
@@ -34,9 +34,9 @@ def serve(idle_timeout: float, detach: bool, stop_it: bool) -> None:
     lives in $XDG_RUNTIME_DIR/frictiondisk (or $FRICTIONDISK_SERVER_DIR). Commands still
     running when it stops finish first.
     """
+    from frictiondisk.cli.warm_control import ServerError
+    from frictiondisk.cli.warm_control import detach as start_detached
     from frictiondisk.cli.warm_protocol import UnsafeServerDir, private_dir, socket_path
-    from frictiondisk.cli.warm_server import ServerError
-    from frictiondisk.cli.warm_server import detach as start_detached
     from frictiondisk.cli.warm_server import serve as serve_here
 
     try:
@@ -55,19 +55,11 @@ def serve(idle_timeout: float, detach: bool, stop_it: bool) -> None:
 
 
 def _stop(path) -> None:
-    from frictiondisk.cli.warm_protocol import receive_message, send_message
-    from frictiondisk.cli.warm_server import answers
+    from frictiondisk.cli.warm_control import request_stop
 
-    if answers(path) is None:
+    running = request_stop(path)
+    if running is None:
         click.echo("no server serves this environment")
-        return
-    import socket
-
-    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as conn:
-        conn.connect(str(path))
-        send_message(conn, {"stop": True})
-        reply, _ = receive_message(conn)
-    running = (reply or {}).get("stopping", 0)
-    click.echo(
-        "stopping the server" + (f" once its {running} running command(s) end" if running else "")
-    )
+    else:
+        ending = f" once its {running} running command(s) end" if running else ""
+        click.echo(f"stopping the server{ending}")

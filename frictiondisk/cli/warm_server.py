@@ -30,10 +30,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from frictiondisk.cli.warm_child import fork_command
+from frictiondisk.cli.warm_control import ServerError, ServerLock
 from frictiondisk.cli.warm_protocol import (
     MessageBuffer,
     private_dir,
-    receive_message,
     send_message,
     socket_path,
 )
@@ -41,10 +41,6 @@ from frictiondisk.cli.warm_protocol import (
 POLL_S = 0.05  # [s] between checks for finished commands and stop requests
 REQUEST_TIMEOUT_S = 5.0  # [s] for a client to send its whole request once connected
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
-
-
-class ServerError(Exception):
-    """The server cannot start (another one serves this environment, or unsafe state)."""
 
 
 @dataclass
@@ -87,28 +83,13 @@ def preload() -> float:
     return time.perf_counter() - t0
 
 
-def answers(path: Path) -> dict | None:
-    """The reply of the server at `path` to a ping, or None if none listens there."""
-    conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-    conn.settimeout(REQUEST_TIMEOUT_S)
-    try:
-        conn.connect(str(path))
-        send_message(conn, {"ping": True})
-        reply, _ = receive_message(conn)
-        return reply
-    except (OSError, ValueError):
-        return None
-    finally:
-        conn.close()
-
-
 def serve(idle_timeout_s: float, group, log=None) -> int:
     """Serve this environment's commands of the click `group` until idle for
     `idle_timeout_s` [s] or stopped; returns the number of commands run. `log(text)` gets
     one line per event (default: stderr)."""
     log = log or (lambda text: print(f"frictiondisk serve: {text}", file=sys.stderr, flush=True))
     path = socket_path(private_dir(create=True))
-    with _ServerLock(path.with_suffix(".lock")) as lock:
+    with ServerLock(path.with_suffix(".lock")) as lock:
         preload_s = preload()
         others = [t.name for t in threading.enumerate() if t is not threading.main_thread()]
         if others:
@@ -125,30 +106,6 @@ def serve(idle_timeout_s: float, group, log=None) -> int:
             server.close()
         log(f"stopped after {server.served} command(s)")
         return server.served
-
-
-class _ServerLock:
-    """An exclusive lock on `path` while one server of this environment starts and runs;
-    ServerError if another holds it."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-
-    def __enter__(self) -> _ServerLock:
-        import fcntl
-
-        self.file = open(self.path, "a")  # noqa: SIM115  held until __exit__
-        try:
-            fcntl.flock(self.file, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            self.file.close()
-            raise ServerError(
-                f"a server of this environment is starting or running ({self.path})"
-            ) from None
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.file.close()
 
 
 class _Server:
@@ -388,55 +345,3 @@ def _valid_command(request: dict, fds: list[int]) -> bool:
         and isinstance(request.get("umask"), int)
         and isinstance(request.get("ignored_signals", []), list)
     )
-
-
-def detach(idle_timeout_s: float, ready_timeout_s: float) -> tuple[int, Path, Path]:
-    """Start `frictiondisk serve` in the background (its own session; its log in the
-    socket directory) and wait until it answers; returns (pid, socket, log), those of the
-    server already running (or starting beside it) if there is one.
-    ServerError if it exits first or does not answer within `ready_timeout_s` [s]."""
-    import subprocess
-
-    directory = private_dir(create=True)
-    path = socket_path(directory)
-    log_path = path.with_suffix(".log")
-    running = answers(path)
-    if running is not None and "pong" in running:
-        return int(running["pong"]), path, log_path
-    with open(log_path, "ab") as log_file:
-        process = subprocess.Popen(
-            [
-                sys.executable,
-                "-m",
-                "frictiondisk.cli",
-                "serve",
-                "--idle-timeout",
-                f"{idle_timeout_s:g}",
-            ],
-            stdin=subprocess.DEVNULL,
-            stdout=log_file,
-            stderr=log_file,
-            start_new_session=True,
-        )
-    deadline = time.monotonic() + ready_timeout_s
-    while time.monotonic() < deadline:
-        reply = answers(path)
-        if reply is not None and "pong" in reply:  # ours, or one started beside it
-            return int(reply["pong"]), path, log_path
-        if process.poll() is not None and not _lock_held(path.with_suffix(".lock")):
-            tail = log_path.read_text(errors="replace").strip().splitlines()[-5:]
-            raise ServerError(
-                f"the server exited with code {process.returncode}: " + " | ".join(tail)
-            )
-        time.sleep(0.05)
-    process.terminate()
-    raise ServerError(f"the server did not answer within {ready_timeout_s:g} s (log: {log_path})")
-
-
-def _lock_held(path: Path) -> bool:
-    """Whether a server holds (starts or serves with) the lock at `path`."""
-    try:
-        with _ServerLock(path):
-            return False
-    except ServerError:
-        return True
