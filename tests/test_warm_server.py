@@ -408,3 +408,129 @@ def _assert_still_serving(env: dict, log: Path, tmp_path: Path) -> None:
     done = _cli("run", str(spec), "-o", str(tmp_path / "control"), env=env)
     assert done.returncode == 0, done.stderr
     assert f"run {spec} -o {tmp_path / 'control'}" in _served(log)
+
+
+def test_a_request_nested_too_deeply_is_refused_not_fatal(server):
+    env, log = server
+    deep = b"[" * 200_000
+    fds = _devnull_fds()
+    with _raw_client(log) as conn:
+        socket.send_fds(conn, [len(deep).to_bytes(4, "big")], fds)
+        conn.sendall(deep)
+        assert conn.recv(1) == b""  # dropped
+    for fd in fds:
+        os.close(fd)
+    assert answers(log.with_suffix(".sock")) is not None  # and still serving
+
+
+def test_a_command_gets_none_of_another_clients_descriptors(server, tmp_path):
+    env, log = server
+    read_end, write_end = os.pipe()
+    spec = tmp_path / "long.yaml"
+    spec.write_text(LONG_CAMPAIGN)
+    with _raw_client(log) as pending:  # a request still arriving, with its descriptors
+        socket.send_fds(pending, [b"\x00\x00"], [write_end] * 3)
+        proc = start_campaign_until(spec, tmp_path / "o", env=env, cwd=ROOT)
+        child = int(re.findall(rf"pid (\d+): run {re.escape(str(spec))}", log.read_text())[-1])
+        links = {os.readlink(f"/proc/{child}/fd/{fd}") for fd in os.listdir(f"/proc/{child}/fd")}
+        assert f"pipe:[{os.fstat(write_end).st_ino}]" not in links
+        assert os.getsid(child) == child  # a session of its own, not the server's
+        proc.terminate()
+        proc.communicate(timeout=120)
+    os.close(read_end)
+    os.close(write_end)
+
+
+def test_a_suspended_command_whose_client_dies_still_stops(server, tmp_path):
+    env, log = server
+    spec = tmp_path / "long.yaml"
+    spec.write_text(LONG_CAMPAIGN)
+    out = tmp_path / "suspended"
+    proc = start_campaign_until(spec, out, env=env, cwd=ROOT)
+    child = int(re.findall(rf"pid (\d+): run {re.escape(str(spec))}", log.read_text())[-1])
+    proc.send_signal(signal.SIGTSTP)
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 30 and _state(child) != "T":
+        time.sleep(0.02)
+    proc.kill()
+    proc.communicate(timeout=60)
+    _wait_gone(child)  # stopped forever before the fix, holding the campaign's lock
+    assert json.loads((out / "status.json").read_text())["state"] == "interrupted"
+
+
+def test_a_failed_fork_leaves_the_signal_mask_as_it_was(monkeypatch):
+    from frictiondisk.cli import warm_child
+
+    def no_fork():
+        raise BlockingIOError(11, "Resource temporarily unavailable")
+
+    monkeypatch.setattr(warm_child.os, "fork", no_fork)
+    before = signal.pthread_sigmask(signal.SIG_BLOCK, [])
+    with pytest.raises(OSError):
+        warm_child.fork_command({}, [], [], [], None)
+    assert signal.pthread_sigmask(signal.SIG_BLOCK, []) == before
+
+
+def test_writing_into_a_folder_on_the_path_keeps_the_key(monkeypatch, tmp_path):
+    """PYTHONPATH=. and a campaign written below it: the server must stay reachable."""
+    import site
+
+    monkeypatch.setattr(sys, "path", [*sys.path, str(tmp_path)])
+    before = environment_key()
+    (tmp_path / "out").mkdir()
+    assert environment_key() == before
+    monkeypatch.setattr(site, "getsitepackages", lambda: [str(tmp_path)])
+    installed = environment_key()
+    (tmp_path / "new_package").mkdir()  # an install into site-packages
+    assert environment_key() != installed
+
+
+def test_a_stopping_server_starts_nothing_new_and_lets_a_new_one_start(tmp_path):
+    directory = tmp_path / "servers"
+    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
+    env.pop(NO_SERVER_ENV, None)
+    first = _cli("serve", "--detach", "--idle-timeout", "300", env=env)
+    assert first.returncode == 0, first.stderr
+    first_pid = int(first.stdout.split("(pid ")[1].split(")")[0])
+    log = Path(first.stdout.strip().split("log: ")[1])
+    spec = tmp_path / "long.yaml"
+    spec.write_text(LONG_CAMPAIGN.replace("num: 24", "num: 96"))  # outlives the steps below
+    proc = start_campaign_until(spec, tmp_path / "long", env=env, cwd=ROOT)
+    try:
+        stopping = _cli("serve", "--stop", env=env)
+        assert "once its 1 running command(s) end" in stopping.stdout
+        (tmp_path / "c.yaml").write_text(SHORT)
+        alone = _cli("run", str(tmp_path / "c.yaml"), "-o", str(tmp_path / "o"), env=env)
+        assert alone.returncode == 0, alone.stderr  # ran by itself
+        assert not any(str(tmp_path / "o") in command for command in _served(log))
+        second = _cli("serve", "--detach", "--idle-timeout", "300", env=env)
+        assert second.returncode == 0, second.stderr
+        assert proc.poll() is None  # the old server's command still runs
+        assert int(second.stdout.split("(pid ")[1].split(")")[0]) != first_pid
+    finally:
+        proc.terminate()
+        proc.communicate(timeout=120)
+        _cli("serve", "--stop", env=env)
+    _wait_gone(first_pid)
+
+
+def test_detach_starts_the_package_it_runs_not_one_in_the_working_directory(tmp_path):
+    shadow = tmp_path / "shadow"
+    (shadow / "frictiondisk").mkdir(parents=True)
+    (shadow / "frictiondisk" / "__init__.py").write_text("raise ImportError('a shadow')\n")
+    directory = tmp_path / "servers"
+    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
+    env.pop(NO_SERVER_ENV, None)
+    script = Path(sys.executable).parent / "frictiondisk"  # finds the installed package
+    started = subprocess.run(
+        [str(script), "serve", "--detach", "--idle-timeout", "60"],
+        capture_output=True,
+        text=True,
+        cwd=shadow,
+        env=env,
+        timeout=600,
+    )
+    assert started.returncode == 0, started.stderr
+    pid = int(started.stdout.split("(pid ")[1].split(")")[0])
+    subprocess.run([str(script), "serve", "--stop"], cwd=shadow, env=env, timeout=60)
+    _wait_gone(pid)

@@ -15,23 +15,34 @@ from frictiondisk.cli.run_and_exit import run_and_exit
 from frictiondisk.cli.warm_protocol import MIRRORED_SIGNALS
 
 
-def fork_command(request: dict, fds: list[int], to_close: list, group) -> int:
-    """Fork; the child closes `to_close` (the server's sockets, selector and lock), becomes
-    the client's command line of the click `group` and never returns."""
+def fork_command(
+    request: dict, fds: list[int], to_close: list, fds_to_close: list[int], group
+) -> int:
+    """Fork (OSError if it cannot); the child closes `to_close` (the server's sockets,
+    selector and lock) and `fds_to_close` (other clients' descriptors), becomes the
+    client's command line of the click `group` and never returns."""
     for stream in (sys.stdout, sys.stderr):
         stream.flush()
     # A signal the client forwards as soon as it has our pid must not reach the server's
     # handlers still installed in the child: blocked until the client's dispositions are.
     blocked = signal.pthread_sigmask(signal.SIG_BLOCK, MIRRORED_SIGNALS)
-    pid = os.fork()
+    try:
+        pid = os.fork()
+    except BaseException:
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+        raise
     if pid:
         signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
         return pid
     code = 1  # as Python exits on an exception no command caught
     try:
-        os.setpgid(0, 0)  # a Ctrl-C meant for the server's terminal is not for it
+        # a session of its own: no Ctrl-C of the server's terminal, and never a
+        # background job of it (stty tostop would stop its first write)
+        os.setsid()
         for thing in to_close:
             thing.close()
+        for fd in fds_to_close:
+            os.close(fd)
         adopt_client(request, fds)
         signal.pthread_sigmask(signal.SIG_SETMASK, blocked)  # pending signals arrive now
         run_and_exit(group, request["argv"])

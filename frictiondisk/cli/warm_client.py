@@ -57,8 +57,13 @@ def hand_over(args: list[str]) -> int | None:
             return None  # closing the connection tells the server not to start it
         except (OSError, ValueError):
             return None
-        if not reply or "pid" not in reply:
-            return None  # refused (stopping, malformed): nothing runs
+        if not reply or "pid" not in reply:  # refused: nothing runs there
+            if reply and reply.get("error") not in (None, "stopping"):
+                print(
+                    f"frictiondisk: the warm server: {reply['error']}; running here",
+                    file=sys.stderr,
+                )
+            return None
         pid = int(reply["pid"])
         conn.settimeout(None)
         _pass_signals_on(pid, ignored)

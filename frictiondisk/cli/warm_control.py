@@ -102,6 +102,9 @@ def detach(idle_timeout_s: float, ready_timeout_s: float) -> tuple[int, Path, Pa
             stdout=log_file,
             stderr=log_file,
             start_new_session=True,
+            # `-m` puts the working directory first on the path: start where it finds the
+            # package this process runs, not another checkout in the user's directory
+            cwd=Path(__file__).resolve().parents[2],
         )
     deadline = time.monotonic() + ready_timeout_s
     while time.monotonic() < deadline:

@@ -1,9 +1,10 @@
 """Where a warm server (`frictiondisk serve`) listens, and how a client talks to it.
 
 A server holds one exact environment warm: this package's sources, the Python and its
-flags, what is installed, what is read at import time (the NUMBA_*, DASK_*, PYTHON* and
-locale variables, HOME, Dask's YAML configuration, numba's .numba_config.yaml) and what a
-forked copy keeps of its parent (CPU affinity, nice, resource limits, cgroup). Its socket
+flags, what is installed, what is read at import time (the NUMBA_*, DASK_*, PYTHON*,
+locale, LD_*, OMP_*, MKL_* and OPENBLAS_* variables, HOME, Dask's YAML configuration,
+numba's .numba_config.yaml) and what a forked copy keeps of its parent (CPU affinity,
+nice, resource limits, cgroup). Its socket
 is named by a hash of all of these, so a client whose environment differs finds no server
 and runs the command itself, with identical results.
 
@@ -25,7 +26,12 @@ from pathlib import Path
 
 SERVER_DIR_ENV = "FRICTIONDISK_SERVER_DIR"  # where sockets live (default below)
 NO_SERVER_ENV = "FRICTIONDISK_NO_SERVER"  # set (non-empty): never hand a command over
-_ENV_READ_AT_IMPORT = ("NUMBA_", "DASK_", "PYTHON", "LC_", "FRICTIONDISK_")
+# read at import or when a library loads: numba, Dask, Python, the locale, the loader and
+# the BLAS/OpenMP thread pools
+_ENV_READ_AT_IMPORT = (
+    *("NUMBA_", "DASK_", "PYTHON", "LC_", "FRICTIONDISK_"),
+    *("LD_", "OMP_", "MKL_", "OPENBLAS_"),
+)
 _ENV_EXACT = ("LANG", "LANGUAGE", "HOME", "XDG_CONFIG_HOME")  # HOME: ~/.config/dask
 # Signals whose disposition (ignored or not) a command takes from its client, and which
 # the client passes on (Ctrl-Z, SIGTSTP, stops both; cli/warm_client.py)
@@ -87,13 +93,18 @@ def environment_key() -> str:
         digest.update(str(source.relative_to(package)).encode() + b"\0")
         digest.update(source.read_bytes())
     # sys.path[0] is the script's folder or the working directory: the package's own
-    # location, hashed above, is what counts. An install or upgrade changes the mtime
-    # of its site-packages folder.
+    # location, hashed above, is what counts. An install or upgrade changes the mtime of
+    # its site-packages folder; other folders on the path count by name only, since a
+    # campaign writing into one (PYTHONPATH=.) must not change the key.
+    import site
+
+    site_folders = {*site.getsitepackages(), site.getusersitepackages()}
     for entry in sys.path[1:]:
         try:
-            digest.update(f"{entry}:{os.stat(entry).st_mtime_ns}\0".encode())
+            stamp = os.stat(entry).st_mtime_ns if entry in site_folders else "folder"
         except OSError:
-            digest.update(f"{entry}:absent\0".encode())
+            stamp = "absent"
+        digest.update(f"{entry}:{stamp}\0".encode())
     for name in sorted(os.environ):
         if name in (SERVER_DIR_ENV, NO_SERVER_ENV):
             continue
@@ -189,7 +200,10 @@ class MessageBuffer:
             raise ValueError(f"message of {length} bytes (at most {MAX_MESSAGE})")
         if len(self.data) < _HEADER.size + length:
             return None
-        message = json.loads(bytes(self.data[_HEADER.size : _HEADER.size + length]))
+        try:
+            message = json.loads(bytes(self.data[_HEADER.size : _HEADER.size + length]))
+        except RecursionError:  # nested deeper than the parser's stack
+            raise ValueError("a message nested too deeply") from None
         if not isinstance(message, dict):
             raise ValueError("a message must be a JSON object")
         return message

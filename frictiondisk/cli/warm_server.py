@@ -116,7 +116,7 @@ class _Server:
         self.path = path
         self.group = group
         self.log = log
-        self.lock_file = lock_file  # closed in every command: it must not outlive us
+        self.lock_file = lock_file  # closed in every command, and when we stop listening
         self.listener = _bind(path)
         self.listener.setblocking(False)
         self.inode = os.stat(path).st_ino
@@ -163,9 +163,11 @@ class _Server:
         self.selector.close()
 
     def _stop_listening(self) -> None:
-        """No new client reaches us: they run their commands themselves."""
+        """No new client reaches us: they run their commands themselves, and a new server
+        may start while our last commands finish."""
         self.selector.unregister(self.listener)
         self.listener.close()
+        self.lock_file.close()
         try:
             if os.stat(self.path).st_ino == self.inode:  # not a later server's socket
                 self.path.unlink()
@@ -212,9 +214,10 @@ class _Server:
             elif request.get("stop"):
                 self.stop_requested = True
                 send_message(conn, {"stopping": len(self.commands)})
+            elif self.stop_requested:  # the client runs it itself
+                send_message(conn, {"error": "stopping"})
             elif _valid_command(request, fds):
-                if not gave_up:
-                    self._start(conn, request, fds)
+                if not gave_up and self._start(conn, request, fds):
                     return
             else:
                 send_message(conn, {"error": "malformed request"})
@@ -236,10 +239,17 @@ class _Server:
             self.log(f"a client sent no whole request within {REQUEST_TIMEOUT_S:g} s")
             self._drop_request(conn)
 
-    def _start(self, conn: socket.socket, request: dict, fds: list[int]) -> None:
+    def _start(self, conn: socket.socket, request: dict, fds: list[int]) -> bool:
+        """Fork the command; False (the client told) if the fork failed."""
         to_close = [self.listener, conn, self.selector, self.lock_file, *self.requests]
         to_close += [command.conn for command in self.commands.values() if command.conn]
-        pid = fork_command(request, fds, to_close, self.group)
+        others = [fd for pending in self.requests.values() for fd in pending.buffer.fds]
+        try:
+            pid = fork_command(request, fds, to_close, others, self.group)
+        except OSError as exc:  # EAGAIN at a process limit, ENOMEM
+            self.log(f"cannot fork a command: {exc!r}")
+            send_message(conn, {"error": f"cannot fork: {exc.strerror}"})
+            return False
         command = _Command(conn, list(request["argv"]))
         self.commands[pid] = command
         self.served += 1
@@ -248,9 +258,10 @@ class _Server:
             send_message(conn, {"pid": pid})
         except OSError:
             self._client_gone(conn, pid)
-            return
+            return True
         conn.settimeout(None)
         self.selector.register(conn, selectors.EVENT_READ, pid)
+        return True
 
     def _client_gone(self, conn: socket.socket, pid: int) -> None:
         """A client sends nothing after its request: readable means it went away (or
@@ -263,6 +274,7 @@ class _Server:
         self.log(f"pid {pid}: its client went away; sending SIGTERM")
         try:
             os.kill(pid, signal.SIGTERM)
+            os.kill(pid, signal.SIGCONT)  # a command suspended with its client (Ctrl-Z)
         except ProcessLookupError:
             pass
 
