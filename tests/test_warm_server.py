@@ -353,11 +353,11 @@ def test_ctrl_z_suspends_the_served_campaign_too(server, tmp_path):
     proc = start_campaign_until(spec, out, env=env, cwd=ROOT)
     child = int(re.findall(rf"pid (\d+): run {re.escape(str(spec))}", log.read_text())[-1])
     proc.send_signal(signal.SIGTSTP)
-    t0 = time.monotonic()
-    while time.monotonic() - t0 < 30 and _state(child) != "T":
+    t0 = time.monotonic()  # the client stops the command, then itself
+    while time.monotonic() - t0 < 30 and (_state(child), _state(proc.pid)) != ("T", "T"):
         time.sleep(0.02)
     assert _state(child) == "T"  # stopped with its client
-    proc.send_signal(signal.SIGCONT)
+    proc.send_signal(signal.SIGCONT)  # as `fg` does once the shell saw the client stop
     _, err = proc.communicate(timeout=300)
     assert proc.returncode == 0, err
     with xr.open_dataset(out / "results.nc") as ds:

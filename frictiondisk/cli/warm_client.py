@@ -89,6 +89,8 @@ def _pass_signals_on(pid: int, ignored: list[int]) -> None:
     if tstp is not None and int(tstp) not in ignored:
 
         def suspend(signum, frame) -> None:
+            # A SIGCONT sent before we stop ourselves below is lost (we stop after it);
+            # a shell's `fg` or `bg` comes only once it has seen us stop.
             _forward(pid, signal.SIGSTOP)
             signal.signal(tstp, signal.SIG_DFL)
             os.kill(os.getpid(), tstp)  # we stop here, as the shell expects
