@@ -494,7 +494,7 @@ def test_a_stopping_server_starts_nothing_new_and_lets_a_new_one_start(tmp_path)
     first_pid = int(first.stdout.split("(pid ")[1].split(")")[0])
     log = Path(first.stdout.strip().split("log: ")[1])
     spec = tmp_path / "long.yaml"
-    spec.write_text(LONG_CAMPAIGN.replace("num: 24", "num: 96"))  # outlives the steps below
+    spec.write_text(LONG_CAMPAIGN.replace("num: 24", "num: 400"))  # outlives the steps below
     proc = start_campaign_until(spec, tmp_path / "long", env=env, cwd=ROOT)
     try:
         stopping = _cli("serve", "--stop", env=env)
