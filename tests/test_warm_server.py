@@ -345,18 +345,30 @@ def test_a_sigterm_at_once_after_the_pid_is_not_lost(server, tmp_path):
     assert ended["exit"] in (143, -signal.SIGTERM)
 
 
-def test_ctrl_z_suspends_the_served_campaign_too(server, tmp_path):
+def _served_long_campaign(server, tmp_path: Path, name: str):
+    """A long campaign handed to the server, past its second point: (its client, the
+    command's pid, its folder)."""
     env, log = server
     spec = tmp_path / "long.yaml"
     spec.write_text(LONG_CAMPAIGN)
-    out = tmp_path / "suspended"
+    out = tmp_path / name
     proc = start_campaign_until(spec, out, env=env, cwd=ROOT)
     child = int(re.findall(rf"pid (\d+): run {re.escape(str(spec))}", log.read_text())[-1])
+    return proc, child, out
+
+
+def _suspend(proc: subprocess.Popen, child: int) -> None:
+    """Ctrl-Z to the client; returns once it has stopped the command, then itself."""
     proc.send_signal(signal.SIGTSTP)
-    t0 = time.monotonic()  # the client stops the command, then itself
+    t0 = time.monotonic()
     while time.monotonic() - t0 < 30 and (_state(child), _state(proc.pid)) != ("T", "T"):
         time.sleep(0.02)
     assert _state(child) == "T"  # stopped with its client
+
+
+def test_ctrl_z_suspends_the_served_campaign_too(server, tmp_path):
+    proc, child, out = _served_long_campaign(server, tmp_path, "suspended")
+    _suspend(proc, child)
     proc.send_signal(signal.SIGCONT)  # as `fg` does once the shell saw the client stop
     _, err = proc.communicate(timeout=300)
     assert proc.returncode == 0, err
@@ -426,12 +438,9 @@ def test_a_request_nested_too_deeply_is_refused_not_fatal(server):
 def test_a_command_gets_none_of_another_clients_descriptors(server, tmp_path):
     env, log = server
     read_end, write_end = os.pipe()
-    spec = tmp_path / "long.yaml"
-    spec.write_text(LONG_CAMPAIGN)
     with _raw_client(log) as pending:  # a request still arriving, with its descriptors
         socket.send_fds(pending, [b"\x00\x00"], [write_end] * 3)
-        proc = start_campaign_until(spec, tmp_path / "o", env=env, cwd=ROOT)
-        child = int(re.findall(rf"pid (\d+): run {re.escape(str(spec))}", log.read_text())[-1])
+        proc, child, _ = _served_long_campaign(server, tmp_path, "o")
         links = {os.readlink(f"/proc/{child}/fd/{fd}") for fd in os.listdir(f"/proc/{child}/fd")}
         assert f"pipe:[{os.fstat(write_end).st_ino}]" not in links
         assert os.getsid(child) == child  # a session of its own, not the server's
@@ -442,16 +451,8 @@ def test_a_command_gets_none_of_another_clients_descriptors(server, tmp_path):
 
 
 def test_a_suspended_command_whose_client_dies_still_stops(server, tmp_path):
-    env, log = server
-    spec = tmp_path / "long.yaml"
-    spec.write_text(LONG_CAMPAIGN)
-    out = tmp_path / "suspended"
-    proc = start_campaign_until(spec, out, env=env, cwd=ROOT)
-    child = int(re.findall(rf"pid (\d+): run {re.escape(str(spec))}", log.read_text())[-1])
-    proc.send_signal(signal.SIGTSTP)
-    t0 = time.monotonic()
-    while time.monotonic() - t0 < 30 and _state(child) != "T":
-        time.sleep(0.02)
+    proc, child, out = _served_long_campaign(server, tmp_path, "suspended")
+    _suspend(proc, child)
     proc.kill()
     proc.communicate(timeout=60)
     _wait_gone(child)  # stopped forever before the fix, holding the campaign's lock
