@@ -120,7 +120,7 @@ class _Driver:
         try:  # from here on the client (and a local cluster) is always closed
             if self.serve_dashboard or self.scheduled:
                 self.dashboard = dashboard_link(client)
-                print(f"Dask dashboard: {self.dashboard}", file=sys.stderr)
+                _on_stderr(print, f"Dask dashboard: {self.dashboard}", file=sys.stderr)
             if self.scheduled:
                 self._await_a_worker(client)  # the overhead probe below needs one
             self.worker_threads = max(1, sum(client.nthreads().values()))
