@@ -193,7 +193,8 @@ class _Driver:
             return None
         now = time.monotonic()
         if alone_since is None:
-            print(
+            _on_stderr(
+                print,
                 f"warning: no worker is alive at the scheduler; waiting up to "
                 f"{self.worker_wait:g} s for one (--worker-wait)",
                 file=sys.stderr,
@@ -335,7 +336,7 @@ class _Driver:
             ds.attrs.update(partial=1, points_done=done, points_total=len(self.planner.points))
             atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
         except Exception as exc:  # noqa: BLE001  a side file: never stop the campaign for it
-            print(f"warning: partial results not written: {exc!r}", file=sys.stderr)
+            _on_stderr(print, f"warning: partial results not written: {exc!r}", file=sys.stderr)
             return 0
         return done
 
