@@ -45,28 +45,16 @@ def hand_over(args: list[str]) -> int | None:
             "ignored_signals": ignored,
             "unbuffered": bool(getattr(sys.stdout, "write_through", False)),  # -u
         }
+        # held back until they can go to the command (or, if none starts, to us)
+        held = signal.pthread_sigmask(signal.SIG_BLOCK, (*_PASSED_ON, *MIRRORED_SIGNALS))
         try:
-            send_message(conn, request, [0, 1, 2])
-            reply, _ = receive_message(conn)
-        except TimeoutError:
-            print(
-                f"frictiondisk: the warm server did not answer within "
-                f"{HANDSHAKE_TIMEOUT_S:g} s; running here",
-                file=sys.stderr,
-            )
-            return None  # closing the connection tells the server not to start it
-        except (OSError, ValueError):
-            return None
-        if not reply or "pid" not in reply:  # refused: nothing runs there
-            if reply and reply.get("error") not in (None, "stopping"):
-                print(
-                    f"frictiondisk: the warm server: {reply['error']}; running here",
-                    file=sys.stderr,
-                )
-            return None
-        pid = int(reply["pid"])
-        conn.settimeout(None)
-        _pass_signals_on(pid, ignored)
+            pid = _start_command(conn, request)
+            if pid is None:
+                return None
+            conn.settimeout(None)
+            _pass_signals_on(pid, ignored)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)  # what came meanwhile goes on
         try:
             reply, _ = receive_message(conn)
         except (OSError, ValueError):
@@ -74,6 +62,28 @@ def hand_over(args: list[str]) -> int | None:
     if reply is None or "exit" not in reply:
         return _await_lost_command(pid)
     return _exit_status(int(reply["exit"]))
+
+
+def _start_command(conn: socket.socket, request: dict) -> int | None:
+    """Send the request with our stdin, stdout and stderr; the command's pid, or None if
+    the server started nothing (no answer in time, refused, gone)."""
+    try:
+        send_message(conn, request, [0, 1, 2])
+        reply, _ = receive_message(conn)
+    except TimeoutError:
+        print(
+            f"frictiondisk: the warm server did not answer within "
+            f"{HANDSHAKE_TIMEOUT_S:g} s; running here",
+            file=sys.stderr,
+        )
+        return None  # closing the connection tells the server not to start it
+    except (OSError, ValueError):
+        return None
+    if not reply or not isinstance(reply.get("pid"), int):  # refused: nothing runs there
+        if reply and reply.get("error") not in (None, "stopping"):
+            print(f"frictiondisk: the warm server: {reply['error']}; running here", file=sys.stderr)
+        return None
+    return reply["pid"]
 
 
 def _pass_signals_on(pid: int, ignored: list[int]) -> None:
