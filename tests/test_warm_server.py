@@ -41,15 +41,15 @@ find_jump:
 """
 
 
-def _cli(*args, env, **kwargs) -> subprocess.CompletedProcess:
+def _cli(*args, env, cwd=ROOT, wrapper=()) -> subprocess.CompletedProcess:
+    """`frictiondisk *args` in a process of its own (behind `wrapper`, e.g. nice)."""
     return subprocess.run(
-        [sys.executable, "-m", "frictiondisk.cli", *args],
+        [*wrapper, sys.executable, "-m", "frictiondisk.cli", *args],
         capture_output=True,
         text=True,
-        cwd=ROOT,
+        cwd=cwd,
         env=env,
         timeout=600,
-        **kwargs,
     )
 
 
@@ -122,14 +122,7 @@ def test_exit_codes_and_errors_arrive_from_the_server(server, tmp_path):
     assert any("missing.yaml" in command for command in _served(log))
     # relative paths are the client's: it runs in the client's directory
     (tmp_path / "c.yaml").write_text(SHORT)
-    relative = subprocess.run(
-        [sys.executable, "-m", "frictiondisk.cli", "run", "c.yaml", "-o", "out"],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-        env=env,
-        timeout=600,
-    )
+    relative = _cli("run", "c.yaml", "-o", "out", env=env, cwd=tmp_path)
     assert relative.returncode == 0, relative.stderr
     assert (tmp_path / "out" / "results.nc").exists()
 
@@ -389,25 +382,8 @@ def test_a_client_with_other_process_limits_is_not_served(server, tmp_path):
     env, log = server
     spec = tmp_path / "c.yaml"
     spec.write_text(SHORT)
-    done = subprocess.run(
-        [
-            "nice",
-            "-n",
-            "3",
-            sys.executable,
-            "-m",
-            "frictiondisk.cli",
-            "run",
-            str(spec),
-            "-o",
-            str(tmp_path / "nice"),
-        ],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        env=env,
-        timeout=600,
-    )
+    nice = ("nice", "-n", "3")
+    done = _cli("run", str(spec), "-o", str(tmp_path / "nice"), env=env, wrapper=nice)
     assert done.returncode == 0, done.stderr
     assert not any("nice" in command for command in _served(log))
     _assert_still_serving(env, log, tmp_path)

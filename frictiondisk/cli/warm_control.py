@@ -49,30 +49,29 @@ class ServerLock:
 
 def answers(path: Path) -> dict | None:
     """The reply of the server at `path` to a ping, or None if none listens there."""
+    return _ask(path, {"ping": True})
+
+
+def request_stop(path: Path) -> int | None:
+    """Ask the server at `path` to stop; the number of commands it lets finish first, or
+    None if no server listens there."""
+    reply = _ask(path, {"stop": True})
+    return None if reply is None else int(reply.get("stopping", 0))
+
+
+def _ask(path: Path, message: dict) -> dict | None:
+    """The server's reply to `message`, or None if none listens at `path`."""
     conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     conn.settimeout(ANSWER_TIMEOUT_S)
     try:
         conn.connect(str(path))
-        send_message(conn, {"ping": True})
+        send_message(conn, message)
         reply, _ = receive_message(conn)
         return reply
     except (OSError, ValueError):
         return None
     finally:
         conn.close()
-
-
-def request_stop(path: Path) -> int | None:
-    """Ask the server at `path` to stop; the number of commands it lets finish first, or
-    None if no server listens there."""
-    if answers(path) is None:
-        return None
-    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as conn:
-        conn.settimeout(ANSWER_TIMEOUT_S)
-        conn.connect(str(path))
-        send_message(conn, {"stop": True})
-        reply, _ = receive_message(conn)
-    return int((reply or {}).get("stopping", 0))
 
 
 def detach(idle_timeout_s: float, ready_timeout_s: float) -> tuple[int, Path, Path]:

@@ -48,7 +48,6 @@ class _Command:
     """A forked command; `conn` to its client, None once the client went away."""
 
     conn: socket.socket | None
-    args: list[str]
     started: float = field(default_factory=time.perf_counter)
 
 
@@ -250,7 +249,7 @@ class _Server:
             self.log(f"cannot fork a command: {exc!r}")
             send_message(conn, {"error": f"cannot fork: {exc.strerror}"})
             return False
-        command = _Command(conn, list(request["argv"]))
+        command = _Command(conn)
         self.commands[pid] = command
         self.served += 1
         self.log(f"pid {pid}: {' '.join(request['argv'])}")
