@@ -68,16 +68,26 @@ def server(tmp_path_factory):
     after the module."""
     directory = tmp_path_factory.mktemp("servers")
     os.chmod(directory, 0o700)
-    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
-    env.pop(NO_SERVER_ENV, None)
-    started = _cli("serve", "--detach", "--idle-timeout", "300", env=env)
-    assert started.returncode == 0, started.stderr
-    pid = int(started.stdout.split("(pid ")[1].split(")")[0])
-    log = Path(started.stdout.strip().split("log: ")[1])
+    env = _server_env(directory)
+    pid, log = _detached(_cli("serve", "--detach", "--idle-timeout", "300", env=env))
     yield env, log
     stopped = _cli("serve", "--stop", env=env)
     assert stopped.returncode == 0, stopped.stderr
     _wait_gone(pid)
+
+
+def _server_env(directory: Path) -> dict:
+    """This environment, with its servers' sockets in `directory` and none bypassed."""
+    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
+    env.pop(NO_SERVER_ENV, None)
+    return env
+
+
+def _detached(done: subprocess.CompletedProcess) -> tuple[int, Path]:
+    """(pid, log) that a successful `serve --detach` printed."""
+    assert done.returncode == 0, done.stderr
+    pid = int(done.stdout.split("(pid ")[1].split(")")[0])
+    return pid, Path(done.stdout.strip().split("log: ")[1])
 
 
 def _wait_gone(pid: int, timeout: float = 60.0) -> None:
@@ -215,11 +225,9 @@ def test_a_socket_directory_others_may_enter_is_refused(tmp_path, monkeypatch):
 
 def test_an_idle_server_stops_and_removes_its_socket(tmp_path):
     directory = tmp_path / "idle"
-    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
-    started = _cli("serve", "--detach", "--idle-timeout", "1", env=env)
-    assert started.returncode == 0, started.stderr
+    env = _server_env(directory)
+    pid, _ = _detached(_cli("serve", "--detach", "--idle-timeout", "1", env=env))
     assert stat.S_IMODE(os.stat(directory).st_mode) == 0o700
-    pid = int(started.stdout.split("(pid ")[1].split(")")[0])
     _wait_gone(pid, timeout=30)
     assert not list(directory.glob("*.sock"))
     assert "idle for 1 s; stopping" in next(directory.glob("*.log")).read_text()
@@ -463,13 +471,8 @@ def test_writing_into_a_folder_on_the_path_keeps_the_key(monkeypatch, tmp_path):
 
 
 def test_a_stopping_server_starts_nothing_new_and_lets_a_new_one_start(tmp_path):
-    directory = tmp_path / "servers"
-    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
-    env.pop(NO_SERVER_ENV, None)
-    first = _cli("serve", "--detach", "--idle-timeout", "300", env=env)
-    assert first.returncode == 0, first.stderr
-    first_pid = int(first.stdout.split("(pid ")[1].split(")")[0])
-    log = Path(first.stdout.strip().split("log: ")[1])
+    env = _server_env(tmp_path / "servers")
+    first_pid, log = _detached(_cli("serve", "--detach", "--idle-timeout", "300", env=env))
     spec = tmp_path / "long.yaml"
     spec.write_text(LONG_CAMPAIGN.replace("num: 24", "num: 400"))  # outlives the steps below
     proc = start_campaign_until(spec, tmp_path / "long", env=env, cwd=ROOT)
@@ -480,10 +483,9 @@ def test_a_stopping_server_starts_nothing_new_and_lets_a_new_one_start(tmp_path)
         alone = _cli("run", str(tmp_path / "c.yaml"), "-o", str(tmp_path / "o"), env=env)
         assert alone.returncode == 0, alone.stderr  # ran by itself
         assert not any(str(tmp_path / "o") in command for command in _served(log))
-        second = _cli("serve", "--detach", "--idle-timeout", "300", env=env)
-        assert second.returncode == 0, second.stderr
+        second_pid, _ = _detached(_cli("serve", "--detach", "--idle-timeout", "300", env=env))
         assert proc.poll() is None  # the old server's command still runs
-        assert int(second.stdout.split("(pid ")[1].split(")")[0]) != first_pid
+        assert second_pid != first_pid
     finally:
         proc.terminate()
         proc.communicate(timeout=120)
@@ -495,9 +497,7 @@ def test_detach_starts_the_package_it_runs_not_one_in_the_working_directory(tmp_
     shadow = tmp_path / "shadow"
     (shadow / "frictiondisk").mkdir(parents=True)
     (shadow / "frictiondisk" / "__init__.py").write_text("raise ImportError('a shadow')\n")
-    directory = tmp_path / "servers"
-    env = {**os.environ, SERVER_DIR_ENV: str(directory)}
-    env.pop(NO_SERVER_ENV, None)
+    env = _server_env(tmp_path / "servers")
     script = Path(sys.executable).parent / "frictiondisk"  # finds the installed package
     started = subprocess.run(
         [str(script), "serve", "--detach", "--idle-timeout", "60"],
@@ -507,7 +507,6 @@ def test_detach_starts_the_package_it_runs_not_one_in_the_working_directory(tmp_
         env=env,
         timeout=600,
     )
-    assert started.returncode == 0, started.stderr
-    pid = int(started.stdout.split("(pid ")[1].split(")")[0])
+    pid, _ = _detached(started)
     subprocess.run([str(script), "serve", "--stop"], cwd=shadow, env=env, timeout=60)
     _wait_gone(pid)
