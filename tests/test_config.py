@@ -60,6 +60,7 @@ DEFAULTS = {
         "cycle_tol": 1.0e-6,
         "cycle_count": 3,
         "stick_rule": "corotation",
+        "evidence": "extrapolate",
         "horizon_budget": 8.0,
         "max_steps": 2_000_000,
         "max_events": 200_000,

@@ -262,6 +262,14 @@ class Numerics(BaseModel):
         "slip (slip per revolution decays to zero; docs/model.md); contacts = every contact "
         "stays in stick mode for one whole revolution",
     )
+    evidence: Literal["extrapolate", "observe"] = _field(
+        "extrapolate",
+        None,
+        "what a verdict may rest on (docs/model.md section 6): extrapolate = also a section "
+        "that contracts geometrically to a cycle, departs from sticking, or a slip that "
+        "extrapolates to nothing (shakedown); observe = only what the run shows: it sticks, "
+        "or its section repeats (for settling disputes with long runs)",
+    )
     horizon_budget: float = _field(
         8.0,
         "1",

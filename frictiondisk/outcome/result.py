@@ -86,6 +86,8 @@ class SimulationResult:
     trajectory: Trajectory | None = None
     # per-revolution measures of the last revolutions (kernel/monitor.py RV_* columns)
     revolutions: np.ndarray | None = None
+    # the last whole-body sticking phases, oldest first (kernel/monitor_slots.py RA_* columns)
+    sections: np.ndarray | None = None
     # Energy balance E(t_end) - E(0) = energy_in - energy_dissipated (kernel/energy.py);
     # NaN for integrators without the diagnostic (scipy-radau, coulomb).
     energy_in: float = math.nan  # work the driven master put in [J]
@@ -109,7 +111,7 @@ class SimulationResult:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
         out: dict[str, Any] = {}
         for field in dataclasses.fields(self):
-            if field.name in ("trajectory", "revolutions"):
+            if field.name in ("trajectory", "revolutions", "sections"):
                 continue
             value = getattr(self, field.name)
             if isinstance(value, float) and not math.isfinite(value):

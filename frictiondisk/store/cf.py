@@ -36,6 +36,7 @@ FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
     "warm_start": ((0, 1), "bracket_from_campaign bracket_predicted"),
     "cycle_converged": ((0, 1), "not_converged converged"),
     "jump_rising": ((-1, 0, 1), "no_jump falling rising"),
+    "window_narrow": ((-1, 0, 1), "no_window wider_than_persistence narrower_than_persistence"),
     "is_reference": ((0, 1), "not_reference reference"),
     "in_ladder": ((0, 1), "not_in_ladder in_ladder"),
     "mode": ((0, 1), "slide stick"),  # trajectory.nc: contact mode
@@ -74,6 +75,7 @@ DIMENSIONLESS = {
     "setting",
     "contact",
     "n_jumps",
+    "n_windows",
     "sample",
     "n_samples",
 }

@@ -33,6 +33,8 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
     elif dims:
         stacked = stacked.rename({dims[0]: "point"}).assign_coords(point=results[dims[0]].values)
     jumps = results.get("jump_mu_star")
+    windows = results.get("n_windows")
+    below = _grid_below_column(results)
     for i in range(stacked.sizes.get("point", 1)):
         row = stacked.isel(point=i) if dims else stacked
         coords = row["point"].values.item() if dims else ()
@@ -42,15 +44,21 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
         extra = ""
         if jumps is not None:
             n = int(np.isfinite(jumps.values.reshape(-1, jumps.shape[-1])[i]).sum())
-            extra = f" ({n} jumps)" if n > 1 else ""
+            k = int(windows.values.reshape(-1)[i]) if windows is not None else 0
+            parts = ([f"{n} jumps"] if n > 1 else []) + (
+                [f"{k} window{'s' if k > 1 else ''}"] if k else []
+            )
+            extra = f" ({', '.join(parts)})" if parts else ""
         rows.append(
             [f"{c:g}" for c in coords]
             + [f"{mu:.6f}" if math.isfinite(mu) else "-", bracket, str(int(row["n_runs"]))]
             + [f"{row['status'].values.item()}{extra}"]
             + ([_flag(results["certification"], row["certification"])] if certified else [])
+            + ([below[i]] if below else [])
         )
     heads += ["mu*", "bracket [mu_lo, mu_hi]", "runs", "status"]
     heads += ["certification"] if certified else []
+    heads += ["grid below mu* decided"] if below else []
     widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(heads)]
     tol = results.attrs.get("tol")
     title = f"mu* per point (bracket width <= tol {float(tol):g}):" if tol else "mu* per point:"
@@ -59,6 +67,20 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
         for r in [heads, *rows]
     ]
     return [title, *(line.rstrip() for line in lines)]
+
+
+def _grid_below_column(results: xr.Dataset) -> list[str]:
+    """'12/12 (0.01)' per point: prescan values below mu* with a decided verdict, of all,
+    and the resolution below which a window could still hide; [] without a prescan."""
+    if "grid_below_total" not in results:
+        return []
+    decided = results["grid_below_decided"].values.reshape(-1)
+    total = results["grid_below_total"].values.reshape(-1)
+    step = results["window_resolution"].values.reshape(-1)
+    return [
+        f"{int(d)}/{int(t)} ({r:.3g})" if math.isfinite(t) else "-"
+        for d, t, r in zip(decided, total, step, strict=True)
+    ]
 
 
 def _flag(var: xr.DataArray, value) -> str:
