@@ -428,7 +428,10 @@ def scene_from_dict(
     Raises ConfigError listing every problem as `dotted.path: message`.
     """
     if isinstance(overrides, str):
-        raise TypeError("overrides must be a sequence of 'KEY=VALUE' strings, not one string")
+        raise TypeError(
+            "overrides must be a sequence of 'KEY=VALUE' strings, not one string: "
+            f"write [{overrides!r}]"
+        )
     pairs, problems = [], []
     for text in overrides:
         try:
