@@ -47,6 +47,8 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == code, err
     assert word in err and "frictiondisk resume" in err
+    if sig != signal.SIGINT:  # a drain notice, if any, names the signal that was sent
+        assert "Ctrl-C again" not in err, err
 
     with xr.open_dataset(out / "results.nc") as part, xr.open_dataset(whole / "results.nc") as ref:
         assert part.attrs["partial"] == 1
@@ -68,6 +70,18 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
     with xr.open_dataset(out / "results.nc") as a, xr.open_dataset(whole / "results.nc") as b:
         assert "partial" not in a.attrs
         xr.testing.assert_identical(a.load(), b.load())
+
+
+def test_the_drain_notice_names_the_action_that_drops_the_runs_in_flight():
+    """A second Ctrl-C drops the runs in flight after a Ctrl-C; after a SIGTERM (a batch
+    scheduler, `kill`) or a SIGHUP (no terminal left to press Ctrl-C in) it is a SIGTERM."""
+    import os
+
+    from frictiondisk.engine.signals import HungUp, Terminated, drop_hint
+
+    assert drop_hint(KeyboardInterrupt()) == "Ctrl-C again to drop them"
+    assert drop_hint(Terminated()) == f"SIGTERM again, kill {os.getpid()}, to drop them"
+    assert drop_hint(HungUp()) == f"SIGTERM, kill {os.getpid()}, to drop them"
 
 
 @pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")

@@ -21,7 +21,7 @@ from frictiondisk.engine.cluster import (
 )
 from frictiondisk.engine.directory import RESULTS_FILE, RUNS_FILE, write_status
 from frictiondisk.engine.plan import Sizing, planner_for
-from frictiondisk.engine.signals import _raise_if_stop_requested
+from frictiondisk.engine.signals import _raise_if_stop_requested, drop_hint
 from frictiondisk.engine.tasks import Sealed, run_sealed, warm_up
 from frictiondisk.model.campaign import Campaign
 from frictiondisk.store import basin_datasets, datasets
@@ -128,8 +128,8 @@ class _Driver:
             self._open_bar()
             try:
                 self._loop(client)
-            except KeyboardInterrupt:
-                self._drain(client)
+            except KeyboardInterrupt as stop:
+                self._drain(client, stop)
                 raise
         finally:
             for *_, future in self.in_flight.values():
@@ -221,16 +221,17 @@ class _Driver:
             self.task_overhead_s or 0.0, mean_run, self.worker_threads, len(self.in_flight)
         )
 
-    def _drain(self, client) -> None:
-        """After Ctrl-C: journal the runs of the tasks in flight as they finish (at most
-        DRAIN_TIMEOUT_S; a second Ctrl-C drops them), submitting nothing new."""
+    def _drain(self, client, stop: KeyboardInterrupt) -> None:
+        """After a stop (Ctrl-C, SIGTERM, SIGHUP): journal the runs of the tasks in flight as
+        they finish (at most DRAIN_TIMEOUT_S; a second stop drops them), submitting nothing
+        new."""
         if not self.in_flight:
             return
         self._draining = True
         _on_stderr(
             print,
             f"\nstopping: journaling the runs of {len(self.in_flight)} tasks in flight, for at "
-            f"most {DRAIN_TIMEOUT_S:.0f} s (Ctrl-C again to drop them)",
+            f"most {DRAIN_TIMEOUT_S:.0f} s ({drop_hint(stop)})",
             file=sys.stderr,
         )
         deadline = time.monotonic() + DRAIN_TIMEOUT_S
