@@ -81,7 +81,7 @@ def _coord(key, values):
     return dim, (dim, np.asarray(values, float), attrs)
 
 
-def _attrs(name, task, **extra):
+def _attrs(name, task, unfixed=(), **extra):
     return {
         "campaign_name": name,
         "task": task,
@@ -89,7 +89,7 @@ def _attrs(name, task, **extra):
         "numerics_yaml": NUMERICS_YAML,
         "frictiondisk_version": __version__,
         "kernel_version": "0123456789abcdef",
-        **cf.scene_attrs(scene_from_dict({"scene": "pin"})),
+        **cf.scene_attrs(scene_from_dict({"scene": "pin"}), unfixed),
         **{key: f"synthetic {key}" for key in CF_GLOBALS},
         **extra,
     }
@@ -142,7 +142,9 @@ def jump_results(
     return xr.Dataset(
         data_vars,
         coords=coords,
-        attrs=_attrs(name, "find_jump", tol=1e-3, runs_saved_by_warm_start=0),
+        attrs=_attrs(
+            name, "find_jump", {"params.mu", *along}, tol=1e-3, runs_saved_by_warm_start=0
+        ),
     )
 
 
@@ -189,7 +191,7 @@ def scan_results(mu, outcome, size, a, along=None, name="synth_scan", mode="conv
     for k, units in MEASURES.items():
         values = {"size": size, "a": a}.get(k, np.full(shape, np.nan))
         data_vars[k] = (dims, np.asarray(values, float), {"units": units, "long_name": k})
-    attrs = _attrs(name, "scan")
+    attrs = _attrs(name, "scan", {"params.mu", *(along or {})})
     attrs["campaign_yaml"] = f"name: {name}\nscene: pin\nscan:\n  mode: {mode}\n"
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 

@@ -161,7 +161,7 @@ def scene_title(ds: xr.Dataset) -> str:
 def physics_text(ds: xr.Dataset) -> str:
     """The physical parameters that are not varied, e.g. "pin, x_ms 0.1 m, x0 0 m" (disk:
     also beta_b and phidot0); empty for results without the resolved scene."""
-    if "param_x_ms" not in ds.attrs:
+    if "scene_yaml" not in ds.attrs:
         return ""
     varied = {str(ds[c].attrs.get("scene_key", "")) for c in ds.coords}
     varied |= {str(key) for key in sample_spec(ds)}  # sampled: no single value either
