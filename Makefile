@@ -69,10 +69,8 @@ lock:
 # then one orbit of the demo scene.
 demo: $(STAMP)
 	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) -o $(DEMO_CAMPAIGN_DIR)
-	$(BIN)/frictiondisk status $(DEMO_CAMPAIGN_DIR)
 	$(BIN)/frictiondisk plot $(DEMO_CAMPAIGN_DIR) -o $(DEMO_LINE_PNG)
 	$(BIN)/frictiondisk run $(DEMO_DISK_CAMPAIGN) -o $(DEMO_DISK_DIR)
-	$(BIN)/frictiondisk status $(DEMO_DISK_DIR)
 	$(BIN)/frictiondisk plot $(DEMO_DISK_DIR) -o $(DEMO_DISK_PNG)
 	@mkdir -p $(DEMO_DIR)
 	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)
