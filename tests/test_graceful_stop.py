@@ -72,6 +72,56 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
         xr.testing.assert_identical(a.load(), b.load())
 
 
+# a disk from rest, prescanned: a point takes a dozen runs of about a second
+SLOW_DISK = """\
+name: slow_disk
+scene: disk
+params: {phidot0: 0.0}
+find_jump:
+  tol: 1.0e-4
+  prescan: {mu: {start: 0.05, stop: 0.3, num: 12}}
+  along: {params.x_ms: [0.08, 0.1, 0.12]}
+"""
+
+
+def test_a_stop_before_the_first_point_leaves_every_point_pending(tmp_path):
+    """README: results.nc is always written, unfinished points pending. A SIGTERM a few
+    seconds into a disk campaign (here: once its first run is journaled, long before its
+    first point) left none: `plot` exited 2 on a missing file, open_results raised."""
+    from frictiondisk import open_results
+
+    spec = tmp_path / "disk.yaml"
+    spec.write_text(SLOW_DISK)
+    out = tmp_path / "out"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    t0 = time.time()
+    while time.time() - t0 < 120 and proc.poll() is None and not list(out.glob("journal/*/*")):
+        time.sleep(0.02)
+    assert proc.poll() is None, "the campaign ended before its first run was journaled"
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 143, err
+    assert "results.nc" in err, err  # the stop names the file it wrote
+
+    results = open_results(out)
+    assert results.attrs["partial"] == 1 and results.attrs["points_done"] == 0
+    assert list(results["status"].values) == ["pending"] * 3
+    assert np.isnan(results["mu_star"].values).all()
+
+    status = CliRunner().invoke(main, ["status", str(out)])
+    assert status.exit_code == 0, status.output
+    assert "(partial: 0 of 3 points finished)" in status.output, status.output
+    plotted = CliRunner().invoke(main, ["plot", str(out), "-o", str(tmp_path / "f.png")])
+    assert "not found" not in plotted.output, plotted.output
+    assert "no point is finished yet" in plotted.output, plotted.output
+    assert f"frictiondisk resume {out}" in plotted.output
+
+
 def test_the_drain_notice_names_the_action_that_drops_the_runs_in_flight():
     """A second Ctrl-C drops the runs in flight after a Ctrl-C; after a SIGTERM (a batch
     scheduler, `kill`) or a SIGHUP (no terminal left to press Ctrl-C in) it is a SIGTERM."""

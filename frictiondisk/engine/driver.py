@@ -322,15 +322,15 @@ class _Driver:
         """The module that builds this campaign's results.nc and runs.nc."""
         return basin_datasets if self.campaign.kind == "basin" else datasets
 
-    def write_partial(self) -> int:
+    def write_partial(self) -> int | None:
         """Write results.nc from the finished points, the rest pending, marked `partial`
-        (frictiondisk.store.partial); returns the points it holds (0: nothing written,
-        as for a trajectory or when no point is finished). Never raises: a failure is
-        reported on stderr, the journal keeps every run, and the final write of results.nc
-        raises as usual."""
+        (frictiondisk.store.partial), also before the first point is finished; returns the
+        finished points it holds (None: nothing written, as for a trajectory or a finished
+        campaign). Never raises: a failure is reported on stderr, the journal keeps every
+        run, and the final write of results.nc raises as usual."""
         done = self._points_done()
-        if done == 0 or self.planner.done or self.campaign.kind == "trajectory":
-            return 0
+        if self.planner.done or self.campaign.kind == "trajectory":
+            return None
         try:
             pending = with_pending(self.campaign.kind, self.planner)
             ds = self._datasets().results_dataset(self.campaign, pending)
@@ -338,7 +338,7 @@ class _Driver:
             atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
         except Exception as exc:  # noqa: BLE001  a side file: never stop the campaign for it
             _on_stderr(print, f"warning: partial results not written: {exc!r}", file=sys.stderr)
-            return 0
+            return None
         return done
 
     def _write_status(self, state: str) -> None:
