@@ -11,6 +11,7 @@ import pytest
 import xarray as xr
 import yaml
 from click.testing import CliRunner
+from conftest import outside_the_figure
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
@@ -180,6 +181,7 @@ def test_every_figure_has_the_one_house_style_whatever_the_callers_rc(files, kin
     assert labelled, kind
     for ax in labelled:
         assert ax.xaxis.label.get_fontsize() == LABEL_FONT_PT, (kind, ax.get_xlabel())
+    assert outside_the_figure(fig) == [], kind  # no legend or text cut off at an edge
 
 
 @pytest.mark.parametrize(
