@@ -54,6 +54,25 @@ def points_done(out) -> int:
         return 0
 
 
+def wait_for_cpu(pid: int, seconds: float, timeout: float = 300.0) -> None:
+    """Return once process `pid` has used `seconds` more CPU time (user + system, all its
+    threads) than when called: "it has been working for a while" on any machine, where a
+    sleep of as many seconds means less work the busier the machine is. Returns early if
+    the process ends."""
+    import time
+
+    import psutil
+
+    process = psutil.Process(pid)
+    try:
+        start = sum(process.cpu_times()[:2])
+        deadline = time.monotonic() + timeout
+        while sum(process.cpu_times()[:2]) - start < seconds and time.monotonic() < deadline:
+            time.sleep(0.05)
+    except psutil.NoSuchProcess:
+        return
+
+
 def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None):
     """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
     returned once `points` points are done; fails if it ended before."""

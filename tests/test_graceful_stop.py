@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import LONG_CAMPAIGN, points_done, start_campaign_until
+from conftest import LONG_CAMPAIGN, points_done, start_campaign_until, wait_for_cpu
 
 from frictiondisk.cli import main
 
@@ -212,7 +212,7 @@ def test_a_trajectory_run_stops_at_once_on_sigterm(tmp_path):
     t0 = time.time()  # campaign.yaml is written after the handlers are installed
     while time.time() - t0 < 120 and proc.poll() is None and not (out / "campaign.yaml").exists():
         time.sleep(0.02)
-    time.sleep(1.0)  # into the run
+    wait_for_cpu(proc.pid, 1.0)  # into the run: a second of its work, not of the clock
     assert proc.poll() is None, "the trajectory finished before the signal"
     proc.send_signal(signal.SIGTERM)
     try:
