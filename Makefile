@@ -13,9 +13,9 @@
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
-#   make gallery make figures, then copy the PNGs into figures/ (the README gallery: commit them)
+#   make gallery make figures, then copy the PNGs into figures/ (the gallery of docs/user-guide.md: commit them)
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
-#                and draw figures/basin_*.png (README "Basin stability")
+#                and draw figures/basin_*.png (docs/user-guide.md, "Basin stability")
 #   make lint    ruff check + ruff format --check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
