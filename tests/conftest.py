@@ -73,9 +73,10 @@ def wait_for_cpu(pid: int, seconds: float, timeout: float = 300.0) -> None:
         return
 
 
-def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None):
+def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None, until=None):
     """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
-    returned once `points` points are done; fails if it ended before."""
+    returned once `points` points are done (or once `until()`, if given, is true); fails
+    if it ended before."""
     import subprocess
     import sys
     import time
@@ -89,7 +90,8 @@ def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None):
         cwd=cwd,
     )
     t0 = time.time()
-    while time.time() - t0 < 120 and proc.poll() is None and points_done(out) < points:
+    ready = until or (lambda: points_done(out) >= points)
+    while time.time() - t0 < 120 and proc.poll() is None and not ready():
         time.sleep(0.02)
     assert proc.poll() is None, "the campaign finished before the signal"
     return proc

@@ -93,16 +93,7 @@ def test_a_stop_before_the_first_point_leaves_every_point_pending(tmp_path):
     spec = tmp_path / "disk.yaml"
     spec.write_text(SLOW_DISK)
     out = tmp_path / "out"
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    t0 = time.time()
-    while time.time() - t0 < 120 and proc.poll() is None and not list(out.glob("journal/*/*")):
-        time.sleep(0.02)
-    assert proc.poll() is None, "the campaign ended before its first run was journaled"
+    proc = start_campaign_until(spec, out, until=lambda: any(out.glob("journal/*/*")))
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == 143, err
@@ -203,15 +194,8 @@ def test_a_trajectory_run_stops_at_once_on_sigterm(tmp_path):
     spec = tmp_path / "t.yaml"
     spec.write_text(LONG_TRAJECTORY)
     out = tmp_path / "out"
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    t0 = time.time()  # campaign.yaml is written after the handlers are installed
-    while time.time() - t0 < 120 and proc.poll() is None and not (out / "campaign.yaml").exists():
-        time.sleep(0.02)
+    # campaign.yaml is written after the handlers are installed
+    proc = start_campaign_until(spec, out, until=(out / "campaign.yaml").exists)
     wait_for_cpu(proc.pid, 1.0)  # into the run: a second of its work, not of the clock
     assert proc.poll() is None, "the trajectory finished before the signal"
     proc.send_signal(signal.SIGTERM)
