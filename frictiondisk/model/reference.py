@@ -20,6 +20,8 @@ from frictiondisk.model.yamlio import StrictDumper
 
 __all__ = ["annotated_scene", "annotated_task", "reference_markdown"]
 
+_DISK_ONLY = unused_keys("pin", "ring")  # the scene keys a pin refuses
+
 
 def annotated_scene(scene: str) -> str:
     """The default scene `scene` as YAML, each key with a comment `# description [unit]`;
@@ -128,9 +130,6 @@ def _rows(model: type[BaseModel], prefix: str, skip: tuple[str, ...] = ()) -> li
             text = f"*disk only*: {text}"
         rows.append(f"| `{prefix}{name}` | {unit} | `{shown}` | {text} |")
     return rows
-
-
-_DISK_ONLY = unused_keys("pin", "ring")  # the scene keys a pin refuses
 
 
 def _default(info: FieldInfo) -> Any:

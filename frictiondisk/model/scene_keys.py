@@ -28,7 +28,7 @@ _PIN_HAS_NO_LAYOUT = (
     "a pin has one contact, at its centre (ring_radius, inner_radius, outer_radius, "
     "positions and weights place a disk's contacts); remove it, or use scene: disk"
 )
-PIN_LAYOUT = "a pin has exactly one contact, at its centre; use layout 'ring'"
+_PIN_LAYOUT = "a pin has exactly one contact, at its centre; use layout 'ring'"
 
 
 def unused_keys(scene: Any, layout: Any) -> dict[str, str]:
@@ -71,7 +71,7 @@ def without_unused(
     problems = []
     if scene == "pin" and layout in LAYOUT_KEYS and layout != "ring":
         problems.append(
-            (("contact", "layout"), _error("contact.layout", layout, scene, PIN_LAYOUT))
+            (("contact", "layout"), _error("contact.layout", layout, scene, _PIN_LAYOUT))
         )
         data = _without(data, "contact.layout")
     for key, why in unused_keys(scene, layout).items():

@@ -154,6 +154,7 @@ def scene_attrs(config: Any, unfixed: Collection[str] = ()) -> dict[str, Any]:
     for name, value in canonical["params"].items():
         if f"params.{name}" not in unfixed:
             attrs[f"param_{name}"] = float(value)
-    attrs["param_contact_points"] = int(canonical["contact"]["points"])
-    attrs["param_contact_stiffness"] = float(canonical["contact"]["stiffness"])
+    for name, kind in (("points", int), ("stiffness", float)):
+        if f"contact.{name}" not in unfixed:
+            attrs[f"param_contact_{name}"] = kind(canonical["contact"][name])
     return attrs
