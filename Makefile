@@ -13,9 +13,9 @@
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
-#   make gallery make figures, then copy the PNGs into figures/ (the README gallery: commit them)
+#   make gallery make figures, then copy the PNGs into figures/ (the gallery of docs/user-guide.md: commit them)
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
-#                and draw figures/basin_*.png (README "Basin stability")
+#                and draw figures/basin_*.png (docs/user-guide.md, "Basin stability")
 #   make lint    ruff check + ruff format --check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
@@ -69,10 +69,8 @@ lock:
 # then one orbit of the demo scene.
 demo: $(STAMP)
 	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) -o $(DEMO_CAMPAIGN_DIR)
-	$(BIN)/frictiondisk status $(DEMO_CAMPAIGN_DIR)
 	$(BIN)/frictiondisk plot $(DEMO_CAMPAIGN_DIR) -o $(DEMO_LINE_PNG)
 	$(BIN)/frictiondisk run $(DEMO_DISK_CAMPAIGN) -o $(DEMO_DISK_DIR)
-	$(BIN)/frictiondisk status $(DEMO_DISK_DIR)
 	$(BIN)/frictiondisk plot $(DEMO_DISK_DIR) -o $(DEMO_DISK_PNG)
 	@mkdir -p $(DEMO_DIR)
 	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)

@@ -343,7 +343,8 @@ def test_rtol_must_be_below_one(tmp_path, value):
     ],
 )
 def test_param_ranges(tmp_path, key, value, bound):
-    found = problems(tmp_path, f"scene: pin\nparams:\n  {key}: {value}\n")
+    # a disk: J_s and beta_b are its keys (a pin refuses them, tests/test_scene_keys.py)
+    found = problems(tmp_path, f"scene: disk\nparams:\n  {key}: {value}\n")
     shown = repr(load_yaml_text(value))
     assert found == [f"params.{key}: {shown} is out of range: must be {bound}"]
 

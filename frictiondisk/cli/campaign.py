@@ -133,19 +133,20 @@ def _execute(
 
 
 def _echo_closing(results_path: Path) -> None:
-    """The closing lines of a finished campaign, read from results.nc once: a find_jump
-    with uncertain points names them (not an error, exit 0: the best bracket of each is
-    kept, flagged `uncertain`); a basin campaign prints its fractions with their 95 %
-    intervals, one line per point."""
+    """The closing lines of a finished campaign, read from results.nc once: the answer (a
+    find_jump's mu* table, a scan's outcome per point), and for a find_jump with uncertain
+    points their names (not an error, exit 0: the best bracket of each is kept, flagged
+    `uncertain`); a basin campaign prints its fractions with their 95 % intervals, one
+    line per point."""
     import xarray as xr
 
     from frictiondisk.store.basin_datasets import summary_lines
-    from frictiondisk.store.table import closing_lines
+    from frictiondisk.store.table import closing_lines, results_table
 
     if results_path.name != "results.nc" or not results_path.is_file():
         return
     with xr.open_dataset(results_path) as results:
-        lines = closing_lines(results)
+        lines = results_table(results) + closing_lines(results)
         if results.attrs.get("task") == "basin":
             lines += summary_lines(results.load())
     for line in lines:
@@ -216,7 +217,10 @@ def run(
     dashboard: bool,
     force: bool,
 ) -> None:
-    """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it."""
+    """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it.
+
+    At the end it prints the answer: the mu* table of a find_jump (failed points with
+    their reasons), the outcome and size per point of a scan, a basin's fractions."""
     from frictiondisk.model.campaign import load_campaign
     from frictiondisk.model.scene import ConfigError
 
@@ -248,7 +252,9 @@ def resume(
 @click.command()
 @click.argument("out_dir", type=click.Path(file_okay=False, path_type=Path))
 def status(out_dir: Path) -> None:
-    """Report progress of the campaign in DIR: points, runs, failures, time left."""
+    """Report progress of the campaign in DIR: points, runs, failures, time left, and the
+    answer so far (the mu* table with the reason of each failed point, a scan's outcome
+    and size per point)."""
     from frictiondisk.engine.directory import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
     from frictiondisk.store.files import netcdf_is_valid
     from frictiondisk.store.journal import Journal
@@ -339,12 +345,13 @@ def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
 
 
 def _results_lines(results_file: Path, complete: bool) -> list[str]:
-    """What results.nc says: the mu* table of a complete find_jump campaign, or what a
-    stopped or running campaign has found so far (its partial results.nc; [] if none)."""
+    """What results.nc says: the mu* table of a complete find_jump campaign (a scan's
+    outcome per point), or what a stopped or running campaign has found so far (its
+    partial results.nc; [] if none)."""
     import xarray as xr
 
     from frictiondisk.store.basin_datasets import summary_lines
-    from frictiondisk.store.table import closing_lines, mu_star_table
+    from frictiondisk.store.table import closing_lines, results_table
 
     with xr.open_dataset(results_file) as results:
         if complete:
@@ -358,4 +365,4 @@ def _results_lines(results_file: Path, complete: bool) -> list[str]:
             return []
         if not complete and results.attrs.get("task") == "basin":
             return [head, *summary_lines(results.load())]
-        return [head, *mu_star_table(results), *closing_lines(results)]
+        return [head, *results_table(results), *closing_lines(results)]

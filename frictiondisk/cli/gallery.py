@@ -5,7 +5,7 @@
 Each campaign runs into OUT/<name> (resuming whatever is already there, like
 `frictiondisk run`), and its figure is written as FIGURES/<name>.png and .pdf from the
 netCDF files alone (by default under the ignored out/, so the tracked tree stays clean;
-`make gallery` copies the PNGs into the README's figures/) (like `frictiondisk plot`; size-versus-mu figures get their bisection
+`make gallery` copies the PNGs into figures/, the gallery of docs/user-guide.md) (like `frictiondisk plot`; size-versus-mu figures get their bisection
 runs). The wall time of each figure is printed, and the total.
 """
 

@@ -252,7 +252,8 @@ def _interruptible(function, *args, **kwargs):
     type=click.Choice(["pin", "disk"]),
     default="pin",
     show_default=True,
-    help="Which scene's defaults to print.",
+    help="Which scene's defaults to print: the keys that scene uses (a pin has no spin "
+    "and no contact layout keys; it refuses them).",
 )
 @click.option(
     "--task",

@@ -3,7 +3,8 @@
 Reads DIR/results.nc (and DIR/runs.nc for --runs), never simulates, and draws the figure
 that fits the campaign (see frictiondisk.figures.campaign). Exit codes: 0 written, 2 a
 missing or damaged results.nc / runs.nc (the message names the file and suggests
-`frictiondisk resume DIR`), a file that is not a campaign result, or a bad -o suffix.
+`frictiondisk resume DIR`), a partial results.nc without a finished point (stopped
+early: nothing to draw yet), a file that is not a campaign result, or a bad -o suffix.
 """
 
 from __future__ import annotations
@@ -121,6 +122,12 @@ def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None, boundary=N
 
     out_dir = Path(out_dir)
     results = _load(out_dir / RESULTS_FILE, out_dir)
+    if results.attrs.get("partial") and not results.attrs.get("points_done"):
+        raise CampaignFileError(
+            f"{out_dir / RESULTS_FILE}: nothing to draw, no point is finished yet "
+            f"(partial: 0 of {results.attrs.get('points_total', '?')} points)",
+            [f"the campaign was stopped early; continue with: frictiondisk resume {out_dir}"],
+        )
     task = results.attrs.get("task")
     if task == "trajectory":
         trajectory = _load(out_dir / TRAJECTORY_FILE, out_dir)

@@ -21,7 +21,7 @@ from frictiondisk.engine.cluster import (
 )
 from frictiondisk.engine.directory import RESULTS_FILE, RUNS_FILE, write_status
 from frictiondisk.engine.plan import Sizing, planner_for
-from frictiondisk.engine.signals import _raise_if_stop_requested
+from frictiondisk.engine.signals import _raise_if_stop_requested, drop_hint
 from frictiondisk.engine.tasks import Sealed, run_sealed, warm_up
 from frictiondisk.model.campaign import Campaign
 from frictiondisk.store import basin_datasets, datasets
@@ -128,8 +128,8 @@ class _Driver:
             self._open_bar()
             try:
                 self._loop(client)
-            except KeyboardInterrupt:
-                self._drain(client)
+            except KeyboardInterrupt as stop:
+                self._drain(client, stop)
                 raise
         finally:
             for *_, future in self.in_flight.values():
@@ -221,16 +221,17 @@ class _Driver:
             self.task_overhead_s or 0.0, mean_run, self.worker_threads, len(self.in_flight)
         )
 
-    def _drain(self, client) -> None:
-        """After Ctrl-C: journal the runs of the tasks in flight as they finish (at most
-        DRAIN_TIMEOUT_S; a second Ctrl-C drops them), submitting nothing new."""
+    def _drain(self, client, stop: KeyboardInterrupt) -> None:
+        """After a stop (Ctrl-C, SIGTERM, SIGHUP): journal the runs of the tasks in flight as
+        they finish (at most DRAIN_TIMEOUT_S; a second stop drops them), submitting nothing
+        new."""
         if not self.in_flight:
             return
         self._draining = True
         _on_stderr(
             print,
             f"\nstopping: journaling the runs of {len(self.in_flight)} tasks in flight, for at "
-            f"most {DRAIN_TIMEOUT_S:.0f} s (Ctrl-C again to drop them)",
+            f"most {DRAIN_TIMEOUT_S:.0f} s ({drop_hint(stop)})",
             file=sys.stderr,
         )
         deadline = time.monotonic() + DRAIN_TIMEOUT_S
@@ -321,15 +322,15 @@ class _Driver:
         """The module that builds this campaign's results.nc and runs.nc."""
         return basin_datasets if self.campaign.kind == "basin" else datasets
 
-    def write_partial(self) -> int:
+    def write_partial(self) -> int | None:
         """Write results.nc from the finished points, the rest pending, marked `partial`
-        (frictiondisk.store.partial); returns the points it holds (0: nothing written,
-        as for a trajectory or when no point is finished). Never raises: a failure is
-        reported on stderr, the journal keeps every run, and the final write of results.nc
-        raises as usual."""
+        (frictiondisk.store.partial), also before the first point is finished; returns the
+        finished points it holds (None: nothing written, as for a trajectory or a finished
+        campaign). Never raises: a failure is reported on stderr, the journal keeps every
+        run, and the final write of results.nc raises as usual."""
         done = self._points_done()
-        if done == 0 or self.planner.done or self.campaign.kind == "trajectory":
-            return 0
+        if self.planner.done or self.campaign.kind == "trajectory":
+            return None
         try:
             pending = with_pending(self.campaign.kind, self.planner)
             ds = self._datasets().results_dataset(self.campaign, pending)
@@ -337,7 +338,7 @@ class _Driver:
             atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
         except Exception as exc:  # noqa: BLE001  a side file: never stop the campaign for it
             _on_stderr(print, f"warning: partial results not written: {exc!r}", file=sys.stderr)
-            return 0
+            return None
         return done
 
     def _write_status(self, state: str) -> None:

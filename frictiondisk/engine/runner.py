@@ -79,14 +79,15 @@ def run_campaign(
             driver.interrupted()
             what, code = describe_stop(stop)
             written = driver.write_partial()
+            if written is None:
+                results = ""
+            elif written:
+                results = f", the {written} finished points in {RESULTS_FILE} (partial)"
+            else:
+                results = f"; no point is finished yet ({RESULTS_FILE}: every point pending)"
             raise CampaignInterrupted(
-                f"{what}; {driver.runs_done()} finished runs are in the journal"
-                + (
-                    f", the {written} finished points in {RESULTS_FILE} (partial)"
-                    if written
-                    else ""
-                )
-                + f". Continue with: frictiondisk resume {out_dir}",
+                f"{what}; {driver.runs_done()} finished runs are in the journal{results}. "
+                f"Continue with: frictiondisk resume {out_dir}",
                 code,
             ) from None
         finally:

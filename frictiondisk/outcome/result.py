@@ -101,7 +101,7 @@ class SimulationResult:
     )  # net plastic slip of the mean contact, sum_i w_i int |w_i'| dt [m]
     drift_per_rev: float = math.nan  # drift of the slave centre in the master frame [m]
     spin_drift_per_rev: float = math.nan  # drift of the spin phase phi - omega_m t [rad]
-    slip_decay: float = math.nan  # mean log ratio of successive slips per revolution [1/rev]
+    slip_decay: float = math.nan  # mean log ratio of successive revolutions' slips [1]
     slip_limit: float = math.nan  # extrapolated limit of slip_per_rev (Aitken) [m]
     slip_total: float = math.nan  # net plastic slip over the whole run [m]
     # mu - demand(R1) / F_n: > 0 where the first sticking circle holds (frictiondisk/outcome/reserve.py)

@@ -15,6 +15,7 @@ run or resume, and the same campaign must give identical files whatever the work
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 import numpy as np
@@ -146,13 +147,16 @@ def complete(ds: xr.Dataset, title: str, what: str) -> xr.Dataset:
     return ds
 
 
-def scene_attrs(config: Any) -> dict[str, Any]:
+def scene_attrs(config: Any, unfixed: Collection[str] = ()) -> dict[str, Any]:
     """The resolved physical parameters of a scene as attributes: `scene_yaml` (every key,
-    defaults filled in) and one `param_<name>` per physical parameter, in SI units."""
+    defaults filled in) and one `param_<name>` per physical parameter, in SI units, but
+    none for the dotted keys `unfixed` (varied, sampled or searched: no one value holds)."""
     canonical = config.canonical()
     attrs: dict[str, Any] = {"scene_yaml": str(config.to_yaml())}
     for name, value in canonical["params"].items():
-        attrs[f"param_{name}"] = float(value)
-    attrs["param_contact_points"] = int(canonical["contact"]["points"])
-    attrs["param_contact_stiffness"] = float(canonical["contact"]["stiffness"])
+        if f"params.{name}" not in unfixed:
+            attrs[f"param_{name}"] = float(value)
+    for name, kind in (("points", int), ("stiffness", float)):
+        if f"contact.{name}" not in unfixed:
+            attrs[f"param_contact_{name}"] = kind(canonical["contact"][name])
     return attrs

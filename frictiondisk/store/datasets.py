@@ -61,8 +61,15 @@ def campaign_attrs(campaign) -> dict[str, Any]:
         "numerics_yaml": dump_yaml(campaign.base.canonical()["numerics"]),
         "frictiondisk_version": __version__,
         "kernel_version": kernel_version(),
-        **cf.scene_attrs(campaign.base),
+        **cf.scene_attrs(campaign.base, unfixed_keys(campaign)),
     }
+
+
+def unfixed_keys(campaign) -> set[str]:
+    """The scene keys without one value in the files: varied (the coordinates), sampled
+    (a basin) and params.mu where a find_jump searches it."""
+    keys = set(campaign.dims) | set(getattr(campaign.task, "sample", {}))
+    return keys | ({"params.mu"} if campaign.kind == "find_jump" else set())
 
 
 def results_dataset(campaign, planner) -> xr.Dataset:
