@@ -339,12 +339,14 @@ def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
 
 
 def _results_lines(results_file: Path, complete: bool) -> list[str]:
-    """What results.nc says: the mu* table of a complete find_jump campaign, or what a
-    stopped or running campaign has found so far (its partial results.nc; [] if none)."""
+    """What results.nc says: the mu* table of a complete find_jump campaign (a trace's
+    curves and folds), or what a stopped or running campaign has found so far (its partial
+    results.nc; [] if none)."""
     import xarray as xr
 
     from frictiondisk.store.basin_datasets import summary_lines
     from frictiondisk.store.table import closing_lines, mu_star_table
+    from frictiondisk.store.trace_table import trace_lines
 
     with xr.open_dataset(results_file) as results:
         if complete:
@@ -358,4 +360,5 @@ def _results_lines(results_file: Path, complete: bool) -> list[str]:
             return []
         if not complete and results.attrs.get("task") == "basin":
             return [head, *summary_lines(results.load())]
-        return [head, *mu_star_table(results), *closing_lines(results)]
+        tables = [*mu_star_table(results), *trace_lines(results)]
+        return [head, *tables, *closing_lines(results)]
