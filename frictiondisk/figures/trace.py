@@ -16,7 +16,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
+from matplotlib.patches import Patch, Rectangle
 
 from frictiondisk.figures.jump_line import _run_dots
 from frictiondisk.figures.kind import _check_vars
@@ -39,8 +39,8 @@ TRACE_VARS = ("point_curve", "mu_star", "curve_first_point", "curve_points", "ce
 
 
 def _band(key: np.ndarray, mu: np.ndarray, spans: tuple[float, float]) -> np.ndarray:
-    """The polygon between a curve and its copy moved BAND to its left (scaled units):
-    the sticking side."""
+    """The polygon between a curve and its copy moved BAND to its left, in units of the
+    view's `spans`: the sticking side."""
     x, y = key / spans[0], mu / spans[1]
     tx, ty = np.gradient(x), np.gradient(y)
     length = np.hypot(tx, ty)
@@ -67,6 +67,8 @@ def plot_trace(
     key_lo, key_hi = (float(v) for v in np.atleast_1d(results.attrs["key_range"]))
     mu_lo, mu_hi = (float(v) for v in np.atleast_1d(results.attrs["mu_range"]))
     spans = (key_hi - key_lo, mu_hi - mu_lo)
+    view = _mu_view(np.asarray(results["mu_star"].values, float), results, (mu_lo, mu_hi))
+    shown = (spans[0], view[1] - view[0])  # the band's width is a fraction of the view
     key = np.asarray(results[name].values, float)
     mu = np.asarray(results["mu_star"].values, float)
     flags = flag_meanings(results["certification"])
@@ -104,7 +106,7 @@ def plot_trace(
             ck, cm = np.append(ck, ck[0]), np.append(cm, cm[0])
         if len(ck) > 1:
             ax.fill(
-                *_band(ck - key_lo, cm - mu_lo, spans).T + np.array([[key_lo], [mu_lo]]),
+                *_band(ck - key_lo, cm - mu_lo, shown).T + np.array([[key_lo], [mu_lo]]),
                 color=STICK_COLOR,
                 alpha=0.18,
                 linewidth=0,
@@ -149,8 +151,12 @@ def plot_trace(
         )
     handles += _draw_folds(ax, results, name)
 
+    # the plane, zoomed to its curves in mu (a plane may be much taller than its curves)
+    ax.add_patch(
+        Rectangle((key_lo, mu_lo), *spans, fill=False, edgecolor="0.6", linewidth=0.8, zorder=0)
+    )
     ax.set_xlim(key_lo - 0.02 * spans[0], key_hi + 0.02 * spans[0])
-    ax.set_ylim(mu_lo - 0.02 * spans[1], mu_hi + 0.02 * spans[1])
+    ax.set_ylim(*view)
     ax.set_xlabel(axis_label(results[name]))
     ax.set_ylabel(MU_LABEL)
     if not results.sizes["curve"]:
@@ -174,6 +180,21 @@ def plot_trace(
             frameon=False,
         )
     return fig
+
+
+def _mu_view(mu: np.ndarray, results: xr.Dataset, plane: tuple[float, float]):
+    """Limits of the mu axis: the curves and folds, padded, within the plane (padded)."""
+    shown = [mu[np.isfinite(mu)]]
+    if results.sizes.get("fold"):
+        shown += [np.asarray(results[n].values, float) for n in ("fold_mu_lo", "fold_mu_hi")]
+    values = np.concatenate(shown)
+    values = values[np.isfinite(values)]
+    span = plane[1] - plane[0]
+    if values.size == 0:
+        return plane[0] - 0.02 * span, plane[1] + 0.02 * span
+    lo, hi = float(values.min()), float(values.max())
+    pad = max(0.08 * (hi - lo), 0.02 * span * (hi - lo == 0))
+    return max(plane[0] - 0.02 * span, lo - pad), min(plane[1] + 0.02 * span, hi + pad)
 
 
 def _draw_folds(ax, results: xr.Dataset, name: str) -> list[Any]:

@@ -142,7 +142,8 @@ class Trace(Spec):
 
     @property
     def first_step(self) -> float:
-        return 0.25 * self.resolution
+        """The step from a seed, whose curve's slope is not known yet (scaled)."""
+        return 0.5 * self.resolution
 
     @property
     def smallest_step(self) -> float:

@@ -16,10 +16,12 @@ stick and not stick swapped. `FoldLocator` brackets the tip in the key:
   wide. The tip is then known to tol in both coordinates: its key within [key_in,
   key_out], its mu within the two jumps' brackets at key_in.
 
-It starts from a point inside the region (checked first). The last outer probe is re-run one certification level up; the fold's certification is
-the weakest of that check and the two jumps'. A tip that lies beyond the plane, two jumps
-that stay apart (the window ends abruptly), or a search that fails, is reported `not
-located` with the reason.
+It starts from a point inside the region (checked first). Certification: one probe a key
+tolerance beyond key_in, at the next certification level, must give the outer verdict
+(the reported key bracket is then [key_in, that key]: tol wide); the fold's certification
+is the weakest of that check and the two jumps'. A tip that lies beyond the plane, two
+jumps that stay apart (the window ends abruptly), or a search that fails, is reported
+`not located` with the reason.
 """
 
 from __future__ import annotations
@@ -221,6 +223,8 @@ class FoldLocator:
             certified = point_certification(
                 [self.windows[-1][1].certification, self.windows[-1][2].certification]
             )
+            if not inner:
+                self.key_out = probe.key  # the bracket that was checked: key_tol wide
             self._end("located", "", certification="uncertain" if inner else certified)
             return
         self.probes += 1
@@ -247,7 +251,10 @@ class FoldLocator:
         if not self.out_known:
             key = self.key_out
         elif gap <= tol_k * (1 + 1e-9) and width <= self.plane.tol:
-            self._probe_key, self._probe_mu = self.key_out, self._centre(self.key_out)
+            # the check: at stricter numerics, the region is absent a key tolerance beyond
+            low, high = self.plane.key_range
+            key = min(high, max(low, self.key_in + self.tip * tol_k))
+            self._probe_key, self._probe_mu = key, self._centre(key)
             self.phase = "check"
             return
         elif gap <= tol_k * 1e-6:

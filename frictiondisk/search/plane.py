@@ -14,11 +14,12 @@ certification (frictiondisk.search.certify) then run unchanged: the same checks,
 widening, the same ladder.
 
 The friction reserve (frictiondisk/outcome/reserve.py) the interpolating root finder aims
-with is about mu - mu*: slope +1 in mu. On a line it is handed on as sign r / slope, with
-`slope` the rate at which the reserve changes along the line (1 along mu; |d mu*/d key|
-along the key), so that it stays close to c - c* with slope 1 and positive on the stick
-side. Where that does not hold (a falling jump, a reserve biased by a brake), its sign
-disagrees with the verdict and the bisection ignores it (bisection.Bisection._agrees).
+with is positive where the slave sticks and changes about as fast as mu - mu*. On a line it
+is handed on as r / slope, with `slope` the rate at which it changes along the line (1
+along mu; |d mu*/d key| along the key, from the curve's tangent), so that it stays close
+to c - c* with slope 1, positive on the stick side (the high end of c). Where that does
+not hold (a falling jump, a reserve biased by a brake), its sign disagrees with the
+verdict and the bisection ignores it (bisection.Bisection._agrees).
 """
 
 from __future__ import annotations
@@ -76,11 +77,11 @@ class Line:
     def signal(self, result: dict[str, Any]) -> dict[str, Any]:
         """The run summary with its reserve scaled to the line (see the module docstring)."""
         reserve = result.get("reserve")
-        if reserve is None or (self.sign == 1.0 and self.slope == 1.0):
+        if reserve is None or self.slope == 1.0:
             return result
         if self.slope is None or not math.isfinite(reserve):
             return {**result, "reserve": None}
-        return {**result, "reserve": self.sign * reserve / self.slope}
+        return {**result, "reserve": reserve / self.slope}
 
 
 class LineSearch:

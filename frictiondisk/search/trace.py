@@ -175,7 +175,8 @@ class Tracer:
         self.round += 1
         self._current = []
         for branch in self.branches:
-            self._current += [("curve", s) for s in branch.start(caps.get(id(branch)))]
+            searches = branch.start(caps.get(id(branch)), self.curves)
+            self._current += [("curve", s) for s in searches]
         for _, locator in self.locators:
             self._current += [("fold", s) for s in locator.start()]
         if not self._current:

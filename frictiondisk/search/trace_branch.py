@@ -29,6 +29,7 @@ results once they are done; the tracer (frictiondisk.search.trace) runs them.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from frictiondisk.search.plane import LineBracket, LineSearch, found_bracket, line_bisection
 from frictiondisk.search.trace_steps import (
@@ -48,7 +49,7 @@ from frictiondisk.search.trace_steps import (
     unit,
 )
 
-LIMIT_STEPS = 4.0  # a correction may widen to this many steps (or bracket half-widths) away
+LIMIT_STEPS = 4.0  # a correction may widen this many bracket half-widths (or a step) away
 TURN_REACH = 4.0  # a turn search spans this many min_steps along the direction of travel
 
 
@@ -86,6 +87,32 @@ class Curve:
 
     def head(self, end: int) -> CurvePoint:
         return self.points[-1] if end > 0 else self.points[0]
+
+    def arclength_from(self, end: int) -> list[float]:
+        """Arclength (scaled) from the end `end` to each point."""
+        points = [p.position for p in self.points]
+        order = range(len(points) - 1, -1, -1) if end > 0 else range(len(points))
+        out = [0.0] * len(points)
+        total, last = 0.0, None
+        for j in order:
+            if last is not None:
+                total += norm(sub(points[j], points[last]))
+            out[j] = total
+            last = j
+        return out
+
+
+def clearance(point: Vec, curves: list[Curve], own: Curve, end: int, behind: float) -> float:
+    """Distance (scaled) from `point` to the nearest point of a curve, not counting the
+    points of `own` within arclength `behind` of its end `end`: how far a correction near
+    `point` may reach without meeting another jump."""
+    nearest = math.inf
+    for curve in curves:
+        skip = curve.arclength_from(end) if curve is own else None
+        for j, other in enumerate(curve.points):
+            if skip is None or skip[j] > behind:
+                nearest = min(nearest, norm(sub(other.position, point)))
+    return nearest
 
 
 class Branch:
@@ -125,8 +152,9 @@ class Branch:
         self.curve.ends[self.end] = f"{state}: {reason}" if reason else state
 
     # ---- one step ----------------------------------------------------------------------
-    def start(self, cap: float | None = None) -> list[LineSearch]:
-        """The searches of this branch's next step (none once it has stopped)."""
+    def start(self, cap: float | None = None, curves: list[Curve] = ()) -> list[LineSearch]:
+        """The searches of this branch's next step (none once it has stopped); `curves`:
+        every curve traced so far, whose points its correction keeps clear of."""
         self.searches = []
         if not self.active:
             return []
@@ -159,19 +187,25 @@ class Branch:
             # on a key edge the curve is crossed in mu, on a mu edge in the key
             along = "mu" if edge_axis == "key" else "key"
             fixed = edge
-        self.searches = [self._correction(target, tangent, along, ds, fixed)]
+        room = clearance(target, list(curves), self.curve, self.end, 2.0 * ds)
+        self.searches = [self._correction(target, tangent, along, ds, fixed, room)]
         return self.searches
 
-    def _correction(self, target: Vec, tangent: Vec, along: str, ds: float, fixed) -> LineSearch:
-        """A certified bisection across the curve at `target` along `along`."""
+    def _correction(
+        self, target: Vec, tangent: Vec, along: str, ds: float, fixed, room: float
+    ) -> LineSearch:
+        """A certified bisection across the curve at `target` along `along`, starting from
+        the predicted bracket and widening at most a step (or LIMIT_STEPS bracket
+        half-widths) from it, and less than `room`: never as far as another curve."""
         normal = left_normal(tangent)
         normal = (self.end * normal[0], self.end * normal[1])  # towards the sticking side
         axis = 1 if along == "mu" else 0
         other = 1 - axis
         if fixed is not None:
             target = (fixed, target[1]) if other == 0 else (target[0], fixed)
-        half = self.prediction.error
-        reach = max(LIMIT_STEPS * half, LIMIT_STEPS * ds)
+        tol = self.plane.scaled_tol
+        half = max(0.5 * tol, min(self.prediction.error, 0.45 * room))
+        reach = max(half + tol, min(max(LIMIT_STEPS * half, ds), 0.9 * room))
         low, high = (max(0.0, target[axis] - reach), min(1.0, target[axis] + reach))
         lo, hi = max(low, target[axis] - half), min(high, target[axis] + half)
         if hi <= lo:  # the target lies on the plane's edge in this coordinate

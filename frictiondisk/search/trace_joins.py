@@ -44,7 +44,7 @@ def find_join(branch: Branch, curves: list[Curve], reach: float) -> tuple[Curve,
     forward, travel = loop_direction(branch), branch.direction()
     best = None
     for curve in curves:
-        behind = _arclength_from(curve, branch.end) if curve is branch.curve else None
+        behind = curve.arclength_from(branch.end) if curve is branch.curve else None
         for j, point in enumerate(curve.points):
             if behind is not None and behind[j] <= 3.0 * reach:
                 continue
@@ -58,20 +58,6 @@ def find_join(branch: Branch, curves: list[Curve], reach: float) -> tuple[Curve,
             if best is None or gap < best[0]:
                 best = (gap, curve, j)
     return None if best is None else (best[1], best[2])
-
-
-def _arclength_from(curve: Curve, end: int) -> list[float]:
-    """Arclength (scaled) from the curve's end `end` to each of its points."""
-    points = [p.position for p in curve.points]
-    order = range(len(points) - 1, -1, -1) if end > 0 else range(len(points))
-    out = [0.0] * len(points)
-    total, last = 0.0, None
-    for j in order:
-        if last is not None:
-            total += norm(sub(points[j], points[last]))
-        out[j] = total
-        last = j
-    return out
 
 
 def join(branch: Branch, target: Curve, j: int, branches: list[Branch], curves: list[Curve]):
