@@ -229,6 +229,9 @@ class FoldLocator:
             return
         self.probes += 1
         if inner:
+            if not self.out_known:  # the tip lies further: look twice as far beyond
+                reach = max(2.0 * abs(probe.key - self.key_in), self.plane.key_tol)
+                self.key_out = probe.key + self.tip * reach
             self.key_in, self.mu_in = probe.key, probe.mu
             self.phase = "edges"
         else:

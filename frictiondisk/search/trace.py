@@ -27,6 +27,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
+from frictiondisk.search.bisection import UNDETERMINED
 from frictiondisk.search.fold import Fold, FoldLocator, Probe
 from frictiondisk.search.jumps import JumpSearch, run_role
 from frictiondisk.search.plane import Line, LineBracket, LineSearch, PlaneRequest
@@ -177,8 +178,11 @@ class Tracer:
         for branch in self.branches:
             searches = branch.start(caps.get(id(branch)), self.curves)
             self._current += [("curve", s) for s in searches]
-        for _, locator in self.locators:
+        for ident, locator in self.locators:
             self._current += [("fold", s) for s in locator.start()]
+            if locator.done:  # it ended without another search
+                self.folds.append((ident, locator.result()))
+        self.locators = [(i, loc) for i, loc in self.locators if not loc.done]
         if not self._current:
             self._finished = True
 
@@ -208,22 +212,28 @@ class Tracer:
 
     # ---- folds -----------------------------------------------------------------------------
     def _find_folds(self) -> None:
-        """A locator for every new point where a curve turns back in the key."""
+        """A locator for every new point where a curve turns back in the key (a closed
+        curve is read from a point halfway between its extremes, round to that point)."""
         for curve in self.curves:
-            xs = [point.position[0] for point in curve.points]
+            points = curve.points
+            if curve.closed and len(points) > 2:
+                xs = [point.position[0] for point in points]
+                middle = 0.5 * (min(xs) + max(xs))
+                first = min(range(len(xs)), key=lambda j: abs(xs[j] - middle))
+                points = points[first:] + points[: first + 1]
+            xs = [point.position[0] for point in points]
             for index, tip in key_turns(xs, self.plane.scaled_tol):
-                point = curve.points[index]
+                point = points[index]
                 if id(point) not in self._folded and 0 < index < len(xs) - 1:
                     self._folded.add(id(point))
-                    self._locate(curve, index, tip)
+                    self._locate(curve, points, index, tip)
 
-    def _locate(self, curve: Curve, index: int, tip: float) -> None:
-        """Start a FoldLocator at the tip near curve.points[index] (an extreme of the key,
+    def _locate(self, curve: Curve, points: list[CurvePoint], index: int, tip: float) -> None:
+        """Start a FoldLocator at the tip near points[index] (an extreme of the key,
         towards `tip`): inside the region a little back from the tip, between the curve's
         two sides there. Loop order keeps the sticking side on the left: a curve that
         passes a tip at larger keys going up has the region between its sides on its left,
         so that region sticks (a window); going down, it does not (a gap)."""
-        points = curve.points
         point, before, after = points[index], points[index - 1], points[index + 1]
         inner_sticks = (tip > 0) == (after.position[1] > before.position[1])
         bracket = point.bracket
@@ -273,7 +283,9 @@ class Tracer:
             problems.append(self._failure)
         for key, search in self.look:
             found = search.result()
-            if found.status != "converged" and found.jumps == ():
+            # a key where every prescan run is decided and none changes has no curve: fine
+            quiet = not found.jumps and all(r.outcome != UNDETERMINED for r in found.scan)
+            if found.status != "converged" and not quiet:
                 problems.append(f"first look at key {key:.6g}: {found.reason}")
         for curve in self.curves:
             for end, why in curve.ends.items():

@@ -39,10 +39,11 @@ def tangent(curve: Curve, j: int) -> Vec:
 def find_join(branch: Branch, curves: list[Curve], reach: float) -> tuple[Curve, int] | None:
     """The point (curve, index) that the end of `branch` meets, if any: the nearest one
     within `reach` ahead of it, heading the same way (own piece: only beyond 3 reach of
-    arclength behind the end)."""
+    arclength behind the end), with no point heading another way nearer than it (a jump
+    of the other orientation between them: they are different curves)."""
     head = branch.curve.head(branch.end).position
     forward, travel = loop_direction(branch), branch.direction()
-    best = None
+    best, barrier = None, math.inf
     for curve in curves:
         behind = curve.arclength_from(branch.end) if curve is branch.curve else None
         for j, point in enumerate(curve.points):
@@ -50,14 +51,17 @@ def find_join(branch: Branch, curves: list[Curve], reach: float) -> tuple[Curve,
                 continue
             between = sub(point.position, head)
             gap = norm(between)
-            if gap > reach or between[0] * travel[0] + between[1] * travel[1] < 0:
+            if gap > reach:
                 continue
             t = tangent(curve, j)
             if forward[0] * t[0] + forward[1] * t[1] < JOIN_COS:
-                continue
-            if best is None or gap < best[0]:
-                best = (gap, curve, j)
-    return None if best is None else (best[1], best[2])
+                barrier = min(barrier, gap)
+            elif between[0] * travel[0] + between[1] * travel[1] >= 0:
+                if best is None or gap < best[0]:
+                    best = (gap, curve, j)
+    if best is None or best[0] >= barrier:
+        return None
+    return best[1], best[2]
 
 
 def join(branch: Branch, target: Curve, j: int, branches: list[Branch], curves: list[Curve]):
