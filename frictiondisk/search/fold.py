@@ -8,8 +8,9 @@ stick and not stick swapped. `FoldLocator` brackets the tip in the key:
 * at `key_in` the inner region exists: both jumps are bisected in mu there (certified
   line bisections from a run known to lie inside, widening outwards only);
 * at `key_out` it does not: a run at the inner region's predicted centre gives the outer
-  verdict (the centre is extrapolated from the last two windows' centres and kept inside
-  the last window: a window narrows towards its tip, so the windows nest);
+  verdict (both jumps extrapolated linearly, with slopes from the last two windows or
+  from the traced curve near the tip; the centre is kept inside the last window: a
+  window narrows towards its tip, so the windows nest);
 * a probe between them (aimed where the squared width, linear near a smooth fold,
   extrapolates to (tol / 2)^2, kept within the middle 80 % of the bracket) moves one of the
   two, until key_out - key_in <= the key's tolerance and the window at key_in is at most tol
@@ -129,6 +130,7 @@ class FoldLocator:
         tip: float,
         key_out: float,
         half: float,
+        slopes: tuple[float, float] | None = None,
     ):
         self.plane, self.task = plane, task
         self.inner_sticks = inner_sticks
@@ -137,6 +139,7 @@ class FoldLocator:
         self.key_out = key_out
         self.out_known = False
         self.half = max(half, plane.tol)
+        self.slopes = slopes  # d mu / d key of the lower and the upper jump near the tip
         self.windows: list[tuple[float, LineBracket, LineBracket]] = []  # (key, lower, upper)
         self.searches: list[Any] = []
         self.phase = "start"  # start (is (key_in, mu_in) inner?), edges, probe, check
@@ -194,10 +197,15 @@ class FoldLocator:
         if self.phase == "edges":
             lower, upper = (found_bracket(s) for s in self.searches)
             if lower is None or upper is None:
-                lost = self.searches[0] if lower is None else self.searches[1]
-                self._end(
-                    "not located", f"a jump at key {self.key_in:.10g}: {lost.result().reason}"
-                )
+                lost = (self.searches[0] if lower is None else self.searches[1]).result()
+                if lost.certification == "vanished":  # the region is the short horizon's
+                    self._end(
+                        "not located",
+                        f"the region vanishes at stricter numerics at key {self.key_in:.10g}",
+                        certification="vanished",
+                    )
+                    return
+                self._end("not located", f"a jump at key {self.key_in:.10g}: {lost.reason}")
                 return
             self.windows.append((self.key_in, lower, upper))
             self.half = max(self.plane.tol, 0.5 * (upper.hi - lower.lo))  # the next is narrower
@@ -294,15 +302,21 @@ class FoldLocator:
         return min(1 - AIM_CLIP, max(AIM_CLIP, fraction))
 
     def _centre(self, key: float) -> float:
-        """The predicted centre of the inner region at `key`, inside the last window."""
-        _, lower, upper = self.windows[-1]
+        """The predicted centre of the inner region at `key`: both jumps extrapolated
+        linearly (slopes from the last two windows, or the curve's near the tip), kept
+        inside the last window."""
+        k1, lower, upper = self.windows[-1]
         inside = (lower.hi, upper.lo) if lower.hi <= upper.lo else (upper.lo, lower.hi)
-        centre = 0.5 * (inside[0] + inside[1])
+        slopes = self.slopes
         if len(self.windows) >= 2:
-            (k0, l0, u0), (k1, l1, u1) = self.windows[-2], self.windows[-1]
-            c0, c1 = 0.5 * (l0.hi + u0.lo), 0.5 * (l1.hi + u1.lo)
+            k0, l0, u0 = self.windows[-2]
             if k1 != k0:
-                centre = c1 + (c1 - c0) * (key - k1) / (k1 - k0)
+                slopes = ((lower.hi - l0.hi) / (k1 - k0), (upper.lo - u0.lo) / (k1 - k0))
+        centre = 0.5 * (inside[0] + inside[1])
+        if slopes is not None:
+            low = lower.hi + slopes[0] * (key - k1)
+            high = upper.lo + slopes[1] * (key - k1)
+            centre = 0.5 * (low + high)
         return min(inside[1], max(inside[0], centre))
 
     def _end(self, status: str, reason: str, certification: str | None = None) -> None:

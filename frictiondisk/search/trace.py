@@ -242,6 +242,13 @@ class Tracer:
         key_in = bracket.key - tip * back
         sides = [_mu_along(points, index, step, key_in) for step in (-1, 1)]
         mu_in = 0.5 * (sides[0] + sides[1]) if None not in sides else bracket.mu
+        # the two jumps' slopes near the tip, for the locator's first predictions
+        deeper = key_in - tip * back
+        inner = [_mu_along(points, index, step, deeper) for step in (-1, 1)]
+        slopes = None
+        if None not in sides and None not in inner:
+            pairs = sorted(zip(sides, inner, strict=True))  # the lower jump first
+            slopes = tuple((a - b) / (key_in - deeper) for a, b in pairs)
         if bracket.along == "key":  # its end beyond the tip: a run outside the region
             key_out = bracket.free_end if inner_sticks else bracket.stick_end
         else:
@@ -251,7 +258,7 @@ class Tracer:
         widths = [abs(m - mu_in) for m in sides if m is not None]
         half = 2.0 * max(widths) if widths else self.plane.tol
         locator = FoldLocator(
-            self.plane, self.settings, key_in, mu_in, inner_sticks, tip, key_out, half
+            self.plane, self.settings, key_in, mu_in, inner_sticks, tip, key_out, half, slopes
         )
         self.locators.append((curve.id, locator))
 
@@ -287,16 +294,22 @@ class Tracer:
             quiet = not found.jumps and all(r.outcome != UNDETERMINED for r in found.scan)
             if found.status != "converged" and not quiet:
                 problems.append(f"first look at key {key:.6g}: {found.reason}")
+        number = {curve.id: n for n, curve in enumerate(self.curves)}  # as in results.nc
         for curve in self.curves:
             for end, why in curve.ends.items():
                 if why.startswith("failed"):
                     side = "last" if end > 0 else "first"
-                    problems.append(f"curve {curve.id} ({side} end) {why}")
+                    problems.append(f"curve {number[curve.id]} ({side} end) {why}")
+        vanished = 0
         for ident, fold in self.folds:
-            if fold.status != "located":
-                problems.append(f"fold on curve {ident}: {fold.reason}")
+            if fold.certification == "vanished":
+                vanished += 1
+            elif fold.status != "located":
+                problems.append(f"fold on curve {number.get(ident, '?')}: {fold.reason}")
         status = "failed" if problems else "converged"
         reason = "; ".join(problems) or self._summary()
+        if vanished:
+            reason += f"; {vanished} fold(s) whose region vanishes at stricter numerics"
         look = tuple((key, search.result()) for key, search in self.look)
         return TraceResult(
             status, reason, tuple(self.curves), tuple(self.folds), tuple(self.runs), look

@@ -35,22 +35,28 @@ from frictiondisk.search.plane import LineBracket, LineSearch, found_bracket, li
 from frictiondisk.search.trace_steps import (
     GROW,
     MAX_TURN,
+    SAGITTA,
     SHRINK,
     Plane,
+    Prediction,
     Vec,
     add,
-    angle,
+    curvature,
     exit_point,
     left_normal,
     norm,
     on_edge,
     predict,
+    quadratic,
     sub,
     unit,
 )
 
 LIMIT_STEPS = 4.0  # a correction may widen this many bracket half-widths (or a step) away
 TURN_REACH = 4.0  # a turn search spans this many min_steps along the direction of travel
+# a quadratic through three points each within tol / 2 extrapolates one spacing ahead
+# with weights (1, -3, 3): up to 3.5 tol off from their uncertainty alone
+NOISE = 3.5
 
 
 @dataclasses.dataclass(frozen=True)
@@ -133,6 +139,9 @@ class Branch:
         self.prediction = None
         self.edge_fraction = 1.0
         self._turn_next = False  # the next step is a turn (a failure at min_step)
+        self._refine: tuple[CurvePoint, CurvePoint] | None = None  # a chord too far off
+        self._kept: set[tuple[int, int]] = set()  # chords whose refinement found no jump
+        self._at_edge = False  # reached the plane's edge (stops once nothing is refined)
 
     @property
     def active(self) -> bool:
@@ -161,6 +170,9 @@ class Branch:
         if self._turn_next:
             self._turn_next = False
             self._start_turn()
+            return self.searches
+        if self._refine is not None:
+            self.searches = [self._refinement(curves)]
             return self.searches
         if len(self.curve.points) >= self.task.max_points:
             self.stop("limit", f"max_points = {self.task.max_points} reached")
@@ -241,6 +253,17 @@ class Branch:
             self._finish_turn()
             return
         found = found_bracket(self.searches[0])
+        if self.kind == "refine":
+            a, b = self._refine
+            self._refine = None
+            if found is not None:
+                index = max(self.curve.points.index(a), self.curve.points.index(b))
+                self.curve.points.insert(index, self._point(found))
+                self.stretch += 1
+            else:  # the chord stays as it is: no point is guessed
+                self._kept.add((id(a), id(b)))
+            self._next_refinement()
+            return
         if found is None:
             self._failed(self.searches[0].result().reason)
             return
@@ -249,26 +272,82 @@ class Branch:
         head = history[-1]
         step = sub(point.position, head)
         ds = norm(step)
-        # a point lies anywhere in its bracket (scaled width tol): directions are known to
-        # about tol / length, positions to tol / 2
         tol = self.plane.scaled_tol
-        bend = 0.0
+        bend = 0.0  # the turn at the head, less what the points' uncertainty can make of it
         if len(history) > 1:
-            before = sub(head, history[-2])
-            noise = 2.0 * tol / max(min(ds, norm(before)), tol)
-            bend = max(0.0, angle(before, step) - noise)
+            bend = curvature(history[-2], head, point.position, tol)
+            bend *= 0.5 * (norm(sub(head, history[-2])) + ds)
         if bend > 2 * MAX_TURN and self.ds > self.task.min_step:
             self.ds = max(self.task.min_step, self.ds * SHRINK)  # too far for this bend
             return
         self.curve.add(self.end, point)
         self.stretch += 1
-        if self.kind == "edge":
-            self.stop("edge")
-        error = max(0.0, norm(sub(point.position, self.prediction.point)) - 0.5 * tol)
-        if bend > MAX_TURN or error > self.prediction.error:
+        self._at_edge = self.kind == "edge"
+        # extrapolating points that lie anywhere in their brackets is off by a few tol
+        # anyway (NOISE): only an error beyond that says the step was too long
+        error = norm(sub(point.position, self.prediction.point))
+        allowed = max(self.prediction.error, NOISE * tol)
+        if bend > MAX_TURN or error > allowed:
             self.ds = max(self.task.min_step, max(ds, self.task.min_step) * SHRINK)
-        elif error <= 0.5 * self.prediction.error and bend <= 0.5 * MAX_TURN:
+        elif error <= 0.5 * allowed and bend <= 0.5 * MAX_TURN:
             self.ds = min(self.task.max_step, max(ds, self.ds) * GROW)
+        if len(history) > 1:  # the chord of the next step within SAGITTA tol of the curve
+            kappa = curvature(history[-2], head, point.position, tol)
+            if kappa > 0:
+                self.ds = max(
+                    self.task.min_step, min(self.ds, math.sqrt(8 * SAGITTA * tol / kappa))
+                )
+        self._next_refinement()
+
+    # ---- chords too far from the curve ----------------------------------------------------
+    def _next_refinement(self) -> None:
+        """Refine the oldest of the last three chords whose sagitta, kappa L^2 / 8 with the
+        larger curvature at its two ends, exceeds SAGITTA tol (a step made before the
+        curvature was known, such as the first from a seed); stop at the edge otherwise."""
+        points = self.curve.travel(self.end, min(self.stretch, 5))
+        tol = self.plane.scaled_tol
+        positions = [p.position for p in points]
+        for j in range(max(0, len(points) - 4), len(points) - 1):
+            length = norm(sub(positions[j + 1], positions[j]))
+            if length <= 2 * self.task.min_step or (id(points[j]), id(points[j + 1])) in self._kept:
+                continue
+            kappa = (
+                max(
+                    curvature(*positions[k - 1 : k + 2], tol)
+                    for k in (j, j + 1)
+                    if 0 < k < len(positions) - 1
+                )
+                if len(positions) > 2
+                else 0.0
+            )
+            if kappa * length**2 / 8 > SAGITTA * tol:
+                self._refine = (points[j], points[j + 1])
+                return
+        if self._at_edge:
+            self.stop("edge")
+
+    def _refinement(self, curves) -> LineSearch:
+        """A correction at the middle of the chord to refine, on the quadratic through it
+        and its neighbour."""
+        a, b = self._refine
+        points = self.curve.travel(self.end, min(self.stretch, 5))
+        j = points.index(a)
+        three = points[j - 1 : j + 2] if j > 0 else points[j : j + 3]
+        positions = [p.position for p in three]
+        start = norm(sub(positions[1], positions[0])) if j > 0 else 0.0
+        middle = start + 0.5 * norm(sub(b.position, a.position))
+        target, tangent = quadratic(positions, middle)
+        sag = norm(sub(target, add(a.position, sub(b.position, a.position), 0.5)))
+        self.kind = "refine"
+        self.prediction = Prediction(target, tangent, max(self.plane.scaled_tol, sag))
+        along = "mu" if abs(tangent[1]) <= abs(tangent[0]) else "key"
+        ds = norm(sub(b.position, a.position))
+        room = clearance(target, list(curves), self.curve, self.end, 2.0 * ds + self._behind(a))
+        return self._correction(target, tangent, along, 0.5 * ds, None, room)
+
+    def _behind(self, point: CurvePoint) -> float:
+        """Arclength from the branch's end back to `point`."""
+        return self.curve.arclength_from(self.end)[self.curve.points.index(point)]
 
     def _point(self, found: LineBracket, turn: bool = False) -> CurvePoint:
         return CurvePoint(found, self.plane.scaled(found.key, found.mu), turn)

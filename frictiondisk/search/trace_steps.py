@@ -10,7 +10,9 @@ The predictor (BifurcationKit's tangent predictor, with a secant for a tangent):
 last points of a curve, parameterized by their arclength s, the next point at s + ds is
 extrapolated linearly from the last two, or quadratically from the last three. The
 difference between the two is the prediction's error estimate (as the warm start of
-engine/plan.py uses it across a line).
+engine/plan.py uses it across a line). A step's chord stays within SAGITTA tol of the
+curve (kappa ds^2 / 8 with the curvature kappa from three points): the polyline through a
+curve's points is then as good as its points, for interpolation between them.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ SHRINK = 0.5  # step factor after a correction that failed or had to widen
 MAX_TURN = 0.35  # [rad] largest change of direction per step before the step shrinks
 ERROR_FACTOR = 2.0  # bracket half-width: this x |quadratic - linear| (engine/plan.py's warm start)
 SECANT_SLACK = 0.25  # bracket half-width of a secant step, in units of ds (a bend of ~14 deg)
+SAGITTA = 1.0  # a step's chord may deviate this many tol from the curve (kappa ds^2 / 8)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -117,6 +120,27 @@ class Prediction:
     error: float
 
 
+def quadratic(points: list[Vec], s: float) -> tuple[Vec, Vec]:
+    """The point and unit tangent at arclength s (from points[0]) of the quadratic in
+    arclength through three points (Lagrange)."""
+    p0, p1, p2 = points
+    s1 = norm(sub(p1, p0))
+    s2 = s1 + norm(sub(p2, p1))
+    w = (
+        (s - s1) * (s - s2) / (s1 * s2),
+        s * (s - s2) / (s1 * (s1 - s2)),
+        s * (s - s1) / (s2 * (s2 - s1)),
+    )
+    d = (
+        ((s - s1) + (s - s2)) / (s1 * s2),
+        (2 * s - s2) / (s1 * (s1 - s2)),
+        (2 * s - s1) / (s2 * (s2 - s1)),
+    )
+    point = tuple(sum(w[k] * points[k][i] for k in range(3)) for i in range(2))
+    slope = tuple(sum(d[k] * points[k][i] for k in range(3)) for i in range(2))
+    return point, unit(slope)
+
+
 def predict(history: list[Vec], heading: Vec, ds: float, tol: float) -> Prediction:
     """The next point at arclength ds beyond history[-1] (history: the last points of the
     current stretch, oldest first, scaled). With one point: along `heading`, error ds (an
@@ -128,31 +152,24 @@ def predict(history: list[Vec], heading: Vec, ds: float, tol: float) -> Predicti
         return Prediction(add(head, t, ds), t, max(0.5 * tol, ds))
     t = unit(sub(head, history[-2]))
     linear = add(head, t, ds)
-    if len(history) == 2:
+    p0, p1, p2 = ([history[0]] + history)[-3:]
+    if len(history) == 2 or norm(sub(p1, p0)) == 0 or norm(sub(p2, p1)) == 0:
         return Prediction(linear, t, max(0.5 * tol, SECANT_SLACK * ds))
-    p0, p1, p2 = history[-3:]
-    s1 = norm(sub(p1, p0))
-    s2 = s1 + norm(sub(p2, p1))
-    s = s2 + ds
-    if s1 <= 0 or s2 <= s1:
-        return Prediction(linear, t, max(0.5 * tol, SECANT_SLACK * ds))
-    # Lagrange weights at s through (0, p0), (s1, p1), (s2, p2)
-    w0 = (s - s1) * (s - s2) / (s1 * s2)
-    w1 = s * (s - s2) / (s1 * (s1 - s2))
-    w2 = s * (s - s1) / (s2 * (s2 - s1))
-    quad = (
-        w0 * p0[0] + w1 * p1[0] + w2 * p2[0],
-        w0 * p0[1] + w1 * p1[1] + w2 * p2[1],
-    )
-    # derivative of the quadratic at s: the tangent there
-    d0 = ((s - s1) + (s - s2)) / (s1 * s2)
-    d1 = (2 * s - s2) / (s1 * (s1 - s2))
-    d2 = (2 * s - s1) / (s2 * (s2 - s1))
-    tangent = unit((d0 * p0[0] + d1 * p1[0] + d2 * p2[0], d0 * p0[1] + d1 * p1[1] + d2 * p2[1]))
+    quad, tangent = quadratic([p0, p1, p2], norm(sub(p1, p0)) + norm(sub(p2, p1)) + ds)
     if tangent == (0.0, 0.0):
         tangent = t
     error = ERROR_FACTOR * norm(sub(quad, linear))
     return Prediction(quad, tangent, max(0.5 * tol, error))
+
+
+def curvature(a: Vec, b: Vec, c: Vec, tol: float) -> float:
+    """The curve's curvature at b from its neighbours a and c (scaled), less what the
+    points' own uncertainty (tol / 2 each) can make of it: the turning angle at b minus
+    2 tol / (the shorter segment), over the mean segment length; 0 if that is negative."""
+    before, after = sub(b, a), sub(c, b)
+    shorter = max(min(norm(before), norm(after)), tol)
+    turn = max(0.0, angle(before, after) - 2.0 * tol / shorter)
+    return turn / max(0.5 * (norm(before) + norm(after)), tol)
 
 
 def exit_point(head: Vec, target: Vec) -> tuple[float, str, float] | None:
