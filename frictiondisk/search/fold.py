@@ -5,8 +5,8 @@ A sticking window is the set of mu between a rising jump (below) and a falling j
 (a *fold*: smooth, with both jumps vertical there, or a corner). A gap is the same with
 stick and not stick swapped. `FoldLocator` brackets the tip in the key:
 
-* at `key_in` the inner region exists: both jumps are bisected in mu there (certified
-  line bisections from a run known to lie inside, widening outwards only);
+* at `key_in` the inner region exists: both jumps are bisected in mu there (line
+  bisections from a run known to lie inside, widening outwards only);
 * at `key_out` it does not: a run at the inner region's predicted centre gives the outer
   verdict (both jumps extrapolated linearly, with slopes from the last two windows or
   from the traced curve near the tip; the centre is kept inside the last window: a
@@ -17,10 +17,11 @@ stick and not stick swapped. `FoldLocator` brackets the tip in the key:
   wide. The tip is then known to tol in both coordinates: its key within [key_in,
   key_out], its mu within the two jumps' brackets at key_in.
 
-It starts from a point inside the region (checked first). Certification: one probe a key
-tolerance beyond key_in, at the next certification level, must give the outer verdict
-(the reported key bracket is then [key_in, that key]: tol wide); the fold's certification
-is the weakest of that check and the two jumps'. A tip that lies beyond the plane, two
+It starts from a point inside the region (checked first). Certification, once located: the
+two jumps at key_in are certified (find_jump's ladder), and one probe a key tolerance
+beyond key_in, at the next certification level, must give the outer verdict (the
+reported key bracket is then [key_in, that key]: tol wide); the fold's certification is
+the weakest of the three. A tip that lies beyond the plane, two
 jumps that stay apart (the window ends abruptly), or a search that fails, is reported
 `not located` with the reason.
 """
@@ -31,12 +32,27 @@ import dataclasses
 import math
 from typing import Any
 
+from frictiondisk.model.search_settings import OFF
 from frictiondisk.search.bisection import STICK, UNDETERMINED
 from frictiondisk.search.certify import point_certification
 from frictiondisk.search.plane import LineBracket, PlaneRequest, found_bracket, line_bisection
 from frictiondisk.search.trace_steps import Plane
 
 MAX_PROBES = 60  # probes of one fold before it is given up
+
+
+class _Uncertified:
+    """A task's search settings without certification (the windows on the way)."""
+
+    certify = OFF
+
+    def __init__(self, task):
+        self._task = task
+
+    def __getattr__(self, name: str):
+        return getattr(self._task, name)
+
+
 AIM_CLIP = 0.1  # a probe lies at least this fraction of the key bracket inside it
 EDGE_REACH = 8.0  # an edge's bracket may widen to this many initial half-widths
 
@@ -163,14 +179,33 @@ class FoldLocator:
             self.searches = [Probe(self.key_in, self.mu_in, self.task.max_retries)]
         elif self.phase == "edges":
             self.searches = [self._edge(lower=True), self._edge(lower=False)]
+        elif self.phase == "check":  # the last window's jumps certified, and a probe beyond
+            strict = 1 if self.task.certify.enabled else 0
+            _, lower, upper = self.windows[-1]
+            self.searches = [
+                *(self._certified(edge) for edge in (lower, upper)),
+                Probe(self._probe_key, self._probe_mu, self.task.max_retries, strict),
+            ]
         else:
-            strict = 1 if self.phase == "check" and self.task.certify.enabled else 0
-            probe = Probe(self._probe_key, self._probe_mu, self.task.max_retries, strict)
-            self.searches = [probe]
+            self.searches = [Probe(self._probe_key, self._probe_mu, self.task.max_retries)]
         return self.searches
 
+    def _certified(self, edge: LineBracket):
+        """The certified bisection of a jump already bracketed to tol (its ends' runs are
+        known: only the certification runs are new)."""
+        return line_bisection(
+            "key",
+            edge.fixed_value,
+            (edge.lo, edge.hi),
+            self.plane.mu_range,
+            edge.stick_high,
+            self.plane.tol,
+            self.task,
+        )
+
     def _edge(self, lower: bool):
-        """A certified bisection in mu at key_in from mu_in outwards to one jump."""
+        """A bisection in mu at key_in from mu_in outwards to one jump (certified only in
+        the last window, by the check)."""
         sign = -1.0 if lower else 1.0
         span = self.plane.mu_span
         m0, m1 = self.plane.mu_range
@@ -187,7 +222,7 @@ class FoldLocator:
             (min(near, widest, far), max(near, widest, far)),
             stick_high,
             self.plane.tol,
-            self.task,
+            _Uncertified(self.task),
         )
 
     def finish(self) -> None:
@@ -211,7 +246,7 @@ class FoldLocator:
             self.half = max(self.plane.tol, 0.5 * (upper.hi - lower.lo))  # the next is narrower
             self.phase = "probe"
             return
-        probe = self.searches[0]
+        probe = self.searches[-1]
         if probe.sticks is None:
             self._end("not located", f"undetermined at key {probe.key:.10g}, mu {probe.mu:.10g}")
             return
@@ -228,11 +263,14 @@ class FoldLocator:
                 self.phase = "edges"
             return
         if self.phase == "check":
-            certified = point_certification(
-                [self.windows[-1][1].certification, self.windows[-1][2].certification]
-            )
+            key, *_ = self.windows[-1]
+            edges = [found_bracket(search) for search in self.searches[:2]]
+            flags = [search.result().certification for search in self.searches[:2]]
+            if None not in edges:
+                self.windows[-1] = (key, *edges)
             if not inner:
                 self.key_out = probe.key  # the bracket that was checked: key_tol wide
+            certified = point_certification(flags) if None not in edges else "uncertain"
             self._end("located", "", certification="uncertain" if inner else certified)
             return
         self.probes += 1

@@ -300,16 +300,16 @@ class Tracer:
                 if why.startswith("failed"):
                     side = "last" if end > 0 else "first"
                     problems.append(f"curve {number[curve.id]} ({side} end) {why}")
-        vanished = 0
-        for ident, fold in self.folds:
-            if fold.certification == "vanished":
-                vanished += 1
-            elif fold.status != "located":
-                problems.append(f"fold on curve {number.get(ident, '?')}: {fold.reason}")
         status = "failed" if problems else "converged"
-        reason = "; ".join(problems) or self._summary()
-        if vanished:
-            reason += f"; {vanished} fold(s) whose region vanishes at stricter numerics"
+        # a fold not located leaves the curves whole: noted, flagged in results.nc
+        problems += [
+            f"fold on curve {number.get(ident, '?')} not located: {fold.reason}"
+            for ident, fold in self.folds
+            if fold.status != "located"
+        ]
+        reason = "; ".join(problems) if status == "failed" else self._summary()
+        if status == "converged" and problems:
+            reason += "; " + "; ".join(problems)
         look = tuple((key, search.result()) for key, search in self.look)
         return TraceResult(
             status, reason, tuple(self.curves), tuple(self.folds), tuple(self.runs), look

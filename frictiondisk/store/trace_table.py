@@ -91,4 +91,8 @@ def trace_closing(results: xr.Dataset) -> list[str]:
         lines.append(f"{uncertain} of {len(flags)} curve points uncertain (kept, flagged)")
     if results.attrs.get("status") == "failed":
         lines.append(f"trace incomplete: {results.attrs.get('reason')}")
+    elif results.sizes.get("fold"):
+        missed = [str(r) for r in results["fold_reason"].values if str(r)]
+        if missed:
+            lines.append(f"{len(missed)} fold(s) not located: " + "; ".join(missed))
     return lines
