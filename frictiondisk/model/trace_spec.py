@@ -33,7 +33,7 @@ class FirstLook(Spec):
 
     keys: int = field(3, "1", "key values searched in mu, ends included", ge=1, le=1001)
     mu: int = field(31, "1", "prescan values of mu at each of them, ends included", ge=2, le=10000)
-    stride: int = field(
+    stride: int | None = field(
         None,
         "1",
         "run every stride-th prescan value first; not given: about sqrt(mu)",
