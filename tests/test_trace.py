@@ -144,7 +144,9 @@ def test_a_closed_window_is_one_closed_curve_with_its_two_folds_located():
     assert curve.closed
     tips = sorted(fold.key for _, fold in result.folds)
     assert len(tips) == 2
-    for fold, tip in zip(sorted((f for _, f in result.folds), key=lambda f: f.key), (0.2, 0.8), strict=True):
+    for fold, tip in zip(
+        sorted((f for _, f in result.folds), key=lambda f: f.key), (0.2, 0.8), strict=True
+    ):
         assert fold.status == "located" and fold.inner_sticks
         assert fold.certification == "certified"
         low, high = sorted((fold.key_in, fold.key_out))
