@@ -172,12 +172,6 @@ class FindJump(Spec):
             raise rule(*problems)
         return spec
 
-    @field_validator("certify", mode="before")
-    @classmethod
-    def _certify(cls, value: Any) -> Any:
-        """true: the default certification; false: none."""
-        return {True: {}, False: {"levels": 0}}[value] if isinstance(value, bool) else value
-
     @field_validator("along")
     @classmethod
     def _along(cls, along: Axes, info: ValidationInfo) -> Axes:

@@ -95,11 +95,6 @@ class Trace(Spec):
         "itp", None, "itp: interpolate on the friction reserve; bisect: halve"
     )
 
-    @field_validator("certify", mode="before")
-    @classmethod
-    def _certify(cls, value: Any) -> Any:
-        return {True: {}, False: {"levels": 0}}[value] if isinstance(value, bool) else value
-
     @field_validator("key")
     @classmethod
     def _key(cls, key: str) -> str:
