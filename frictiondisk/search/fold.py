@@ -35,7 +35,13 @@ from typing import Any
 from frictiondisk.model.search_settings import OFF
 from frictiondisk.search.bisection import STICK, UNDETERMINED
 from frictiondisk.search.certify import point_certification
-from frictiondisk.search.plane import LineBracket, PlaneRequest, found_bracket, line_bisection
+from frictiondisk.search.plane import (
+    LineBracket,
+    PlaneRequest,
+    failure,
+    found_bracket,
+    line_bisection,
+)
 from frictiondisk.search.trace_steps import Plane
 
 MAX_PROBES = 60  # probes of one fold before it is given up
@@ -232,7 +238,8 @@ class FoldLocator:
         if self.phase == "edges":
             lower, upper = (found_bracket(s) for s in self.searches)
             if lower is None or upper is None:
-                lost = (self.searches[0] if lower is None else self.searches[1]).result()
+                search = self.searches[0] if lower is None else self.searches[1]
+                lost = search.result()
                 if lost.certification == "vanished":  # the region is the short horizon's
                     self._end(
                         "not located",
@@ -240,7 +247,7 @@ class FoldLocator:
                         certification="vanished",
                     )
                     return
-                self._end("not located", f"a jump at key {self.key_in:.10g}: {lost.reason}")
+                self._end("not located", f"a jump at key {self.key_in:.10g}: {failure(search)}")
                 return
             self.windows.append((self.key_in, lower, upper))
             self.half = max(self.plane.tol, 0.5 * (upper.hi - lower.lo))  # the next is narrower

@@ -28,8 +28,8 @@ import dataclasses
 import math
 from typing import Any
 
-from frictiondisk.model.search_settings import OFF, Certify
-from frictiondisk.search.bisection import BisectionResult, RunRecord, RunRequest
+from frictiondisk.model.search_settings import OFF
+from frictiondisk.search.bisection import BisectionResult, RunRequest
 from frictiondisk.search.certify import CertifiedBisection
 
 
@@ -113,12 +113,6 @@ class LineSearch:
 
     def result(self):
         return self.search.result()
-
-    def plane_runs(self, known: dict[PlaneRequest, dict[str, Any]]) -> list[PlaneRequest]:
-        """The plane requests of every run the search made, in its own order (the runs of
-        result().runs; `known` maps them to their untransformed summaries)."""
-        runs = [self.line.to_plane(run.request) for run in self.result().runs]
-        return [request for request in runs if request in known]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -206,10 +200,13 @@ def found_bracket(search: LineSearch) -> LineBracket | None:
     return LineBracket(line.along, line.value, min(a, b), max(a, b), line.sign > 0, found)
 
 
-def certify_of(settings) -> Certify:
-    return getattr(settings, "certify", OFF)
-
-
-def runs_of(search, line: Line) -> list[tuple[PlaneRequest, RunRecord]]:
-    """Every run of a finished search as (plane request, record)."""
-    return [(line.to_plane(run.request), run) for run in search.result().runs]
+def failure(search: LineSearch) -> str:
+    """Why a line search found no jump, with the line it searched (its reason speaks of
+    `mu`, the searched coordinate c, which is -mu or +-key on some lines)."""
+    line = search.line
+    names = {"key": "the key", "mu": "mu"}
+    sign = "" if line.sign > 0 else "-"
+    return (
+        f"on {names[line.fixed]} = {line.value:.10g}, c = {sign}{names[line.along]}: "
+        f"{search.result().reason}"
+    )

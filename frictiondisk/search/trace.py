@@ -66,7 +66,7 @@ class TracedRun:
 
 @dataclasses.dataclass(frozen=True)
 class TraceResult:
-    status: str  # "converged": every curve and fold ended normally; else "failed"
+    status: str  # "converged": the first look and every curve ended normally; else "failed"
     reason: str
     curves: tuple[Curve, ...]
     folds: tuple[tuple[int, Fold], ...]  # (curve id, fold)
@@ -152,6 +152,7 @@ class Tracer:
         self._failure = reason
         for _, search in self._current:
             search.abort(reason)
+        self._log_round()  # the runs the round made before it ended
         for branch in self.branches:
             if branch.active:
                 branch.stop("failed", reason)

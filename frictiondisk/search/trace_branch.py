@@ -31,7 +31,13 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from frictiondisk.search.plane import LineBracket, LineSearch, found_bracket, line_bisection
+from frictiondisk.search.plane import (
+    LineBracket,
+    LineSearch,
+    failure,
+    found_bracket,
+    line_bisection,
+)
 from frictiondisk.search.trace_steps import (
     GROW,
     MAX_TURN,
@@ -61,12 +67,10 @@ NOISE = 3.5
 
 @dataclasses.dataclass(frozen=True)
 class CurvePoint:
-    """A certified point of a curve: its bracket, where it lies (scaled), and whether a
-    new stretch starts here (the first point after a turn)."""
+    """A certified point of a curve: its bracket and where it lies (scaled)."""
 
     bracket: LineBracket
     position: Vec
-    turn: bool = False
 
 
 class Curve:
@@ -134,7 +138,7 @@ class Branch:
         self.stretch = 1  # points of the current stretch (since the seed or the last turn)
         self.state = "active"
         self.reason = ""
-        self.kind = ""  # what the searches of this round are: step, edge or turn
+        self.kind = ""  # what the searches of this round are: step, edge, refine or turn
         self.searches: list[LineSearch] = []
         self.prediction = None
         self.edge_fraction = 1.0
@@ -265,7 +269,7 @@ class Branch:
             self._next_refinement()
             return
         if found is None:
-            self._failed(self.searches[0].result().reason)
+            self._failed(failure(self.searches[0]))
             return
         point = self._point(found)
         history = self.history()
@@ -349,8 +353,8 @@ class Branch:
         """Arclength from the branch's end back to `point`."""
         return self.curve.arclength_from(self.end)[self.curve.points.index(point)]
 
-    def _point(self, found: LineBracket, turn: bool = False) -> CurvePoint:
-        return CurvePoint(found, self.plane.scaled(found.key, found.mu), turn)
+    def _point(self, found: LineBracket) -> CurvePoint:
+        return CurvePoint(found, self.plane.scaled(found.key, found.mu))
 
     def _failed(self, why: str) -> None:
         if self.kind == "edge":
@@ -411,18 +415,15 @@ class Branch:
         ]
 
     def _finish_turn(self) -> None:
-        found = [
-            (found_bracket(s), inner) for s, inner in zip(self.searches, (True, False), strict=True)
-        ]
-        found = [(b, inner) for b, inner in found if b is not None]
+        found = [b for b in map(found_bracket, self.searches) if b is not None]
         if not found:
-            reasons = "; ".join(s.result().reason for s in self.searches)
+            reasons = "; ".join(map(failure, self.searches))
             self.stop("failed", f"lost the curve: no jump ahead and no turn ({reasons})")
             return
         head = self.curve.head(self.end)
         # the nearer side of the two (a wedge found from both ends: the tip that comes first)
-        bracket, _ = min(found, key=lambda item: abs(item[0].mid - head.bracket.fixed_value))
-        point = self._point(bracket, turn=True)
+        bracket = min(found, key=lambda b: abs(b.mid - head.bracket.fixed_value))
+        point = self._point(bracket)
         t = self.direction()
         self.heading = (-t[0], -t[1])  # back along the other side of the wedge
         self.curve.add(self.end, point)
