@@ -11,7 +11,8 @@
 #                runs per mu* (bench_runs: the search against plain bisection), start-up
 #                (bench_startup: warm simulate, the fixed cost of run)
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
-#   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
+#   make figures run the paper's figure campaigns (campaigns/fig*.yaml, and the traced Fig 11)
+#                into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
 #   make gallery make figures, then copy the PNGs into figures/ (the gallery of docs/user-guide.md: commit them)
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
@@ -100,7 +101,7 @@ figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.cli.gallery --campaigns campaigns --out out/figures --figures out/figures
 
 gallery: figures
-	cp out/figures/fig*.png figures/
+	cp out/figures/fig*.png out/figures/trace_fig11_betab_mu.png figures/
 
 basin-figures: $(STAMP)
 	$(BIN)/python benchmarks/basin_study.py --out out/basin --figures figures

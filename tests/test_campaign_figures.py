@@ -516,7 +516,7 @@ def test_axis_label_and_caption_from_attributes(line):
 
 
 def test_a_dataset_that_is_not_a_campaign_result_is_refused(line):
-    with pytest.raises(ValueError, match="expected 'find_jump', 'scan' or 'trajectory'"):
+    with pytest.raises(ValueError, match="expected 'find_jump', 'scan', 'trajectory' or 'trace'"):
         figure_kind(xr.Dataset(attrs={"task": "orbit"}))
     with pytest.raises(ValueError, match="lacks the variable"):
         figure_kind(line.drop_vars("mu_hi"))

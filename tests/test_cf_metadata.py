@@ -1,4 +1,4 @@
-"""CF-1.10 metadata of every netCDF file we write: results.nc, runs.nc, trajectory.nc and
+"""CF-1.10 metadata of every netCDF file we write: results.nc (a trace's too), runs.nc, trajectory.nc and
 accuracy.nc (frictiondisk/store/cf.py)."""
 
 from __future__ import annotations
@@ -44,6 +44,18 @@ basin:
   samples: 6
   seed: 7
 """
+TRACE = """\
+name: cf_trace
+scene: pin
+numerics: {t_decide: 20.0}
+trace:
+  key: params.x_ms
+  range: [0.08, 0.12]
+  mu: [0.05, 0.2]
+  tol: 1.0e-3
+  resolution: 0.5
+  first_look: {keys: 2, mu: 6}
+"""
 ORBIT = """\
 name: cf_orbit
 scene: pin
@@ -57,7 +69,8 @@ trajectory: {dt_out: 0.5, show: whole}
 def files(tmp_path_factory):
     root = tmp_path_factory.mktemp("cf")
     out = {}
-    for name, text in (("line", LINE), ("scan", SCAN), ("orbit", ORBIT), ("basin", BASIN)):
+    campaigns = (("line", LINE), ("scan", SCAN), ("orbit", ORBIT), ("basin", BASIN))
+    for name, text in (*campaigns, ("trace", TRACE)):
         run_campaign(campaign_from_text(text, "<test>"), root / name, 1, None, False)
         for nc in (root / name).glob("*.nc"):
             out[f"{name}/{nc.name}"] = nc
@@ -82,6 +95,8 @@ FILES = [  # every netCDF file the workflow writes, sorted
     "orbit/trajectory.nc",
     "scan/results.nc",
     "scan/runs.nc",
+    "trace/results.nc",
+    "trace/runs.nc",
 ]
 
 

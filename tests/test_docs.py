@@ -97,7 +97,7 @@ def test_show_defaults_comments_every_key_with_unit_and_description():
     assert all("  # " in line for line in out.splitlines())
 
 
-@pytest.mark.parametrize("task", ["find_jump", "scan", "trajectory", "basin"])
+@pytest.mark.parametrize("task", ["find_jump", "scan", "trajectory", "basin", "trace"])
 def test_show_defaults_prints_a_task_s_keys(task):
     from frictiondisk.model.campaign_spec import TASKS
 
@@ -116,6 +116,7 @@ def test_show_defaults_prints_a_task_s_keys(task):
         ("scan", "demo_scan"),
         ("trajectory", "fig04_trajectory"),
         ("basin", "basin_pin_x0"),
+        ("trace", "trace_fig10_disk_x0"),
     ],
 )
 def test_show_defaults_task_block_loads_once_its_commented_keys_are_filled(task, good):

@@ -346,12 +346,13 @@ def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
 
 def _results_lines(results_file: Path, complete: bool) -> list[str]:
     """What results.nc says: the mu* table of a complete find_jump campaign (a scan's
-    outcome per point), or what a stopped or running campaign has found so far (its
-    partial results.nc; [] if none)."""
+    outcome per point, a trace's curves and folds), or what a stopped or running campaign
+    has found so far (its partial results.nc; [] if none)."""
     import xarray as xr
 
     from frictiondisk.store.basin_datasets import summary_lines
     from frictiondisk.store.table import closing_lines, results_table
+    from frictiondisk.store.trace_table import trace_lines
 
     with xr.open_dataset(results_file) as results:
         if complete:
@@ -365,4 +366,5 @@ def _results_lines(results_file: Path, complete: bool) -> list[str]:
             return []
         if not complete and results.attrs.get("task") == "basin":
             return [head, *summary_lines(results.load())]
-        return [head, *results_table(results), *closing_lines(results)]
+        tables = [*results_table(results), *trace_lines(results)]
+        return [head, *tables, *closing_lines(results)]

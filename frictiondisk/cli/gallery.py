@@ -1,4 +1,5 @@
-"""`make figures`: run every figure campaign (campaigns/fig*.yaml) and draw its figure.
+"""`make figures`: run every figure campaign (campaigns/fig*.yaml, and the traced Fig 11)
+and draw its figure.
 
     python -m frictiondisk.cli.gallery [--campaigns campaigns] [--out out/figures] [--figures out/figures]
 
@@ -18,6 +19,8 @@ from pathlib import Path
 
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.model.campaign import load_campaign
+
+TRACED = ("trace_fig11_betab_mu.yaml",)  # traced planes shown beside the figures (docs/trace.md)
 
 
 def make_figure(campaign_file: Path, out_root: Path, figure_root: Path) -> tuple[str, float]:
@@ -49,6 +52,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--figures", type=Path, default=Path("out/figures"))
     args = parser.parse_args(argv)
     files = sorted(args.campaigns.glob("fig*.yaml"))
+    files += [args.campaigns / name for name in TRACED if (args.campaigns / name).is_file()]
     if not files:
         print(f"no figure campaigns (fig*.yaml) in {args.campaigns}", file=sys.stderr)
         return 2

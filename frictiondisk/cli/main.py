@@ -257,7 +257,7 @@ def _interruptible(function, *args, **kwargs):
 )
 @click.option(
     "--task",
-    type=click.Choice(["find_jump", "scan", "trajectory", "basin"]),
+    type=click.Choice(["find_jump", "scan", "trajectory", "basin", "trace"]),
     default=None,
     help="Print the keys of this campaign task instead of the scene.",
 )

@@ -24,7 +24,7 @@ from frictiondisk.engine.plan import Sizing, planner_for
 from frictiondisk.engine.signals import _raise_if_stop_requested, drop_hint
 from frictiondisk.engine.tasks import Sealed, run_sealed, warm_up
 from frictiondisk.model.campaign import Campaign
-from frictiondisk.store import basin_datasets, datasets
+from frictiondisk.store import basin_datasets, datasets, trace_datasets
 from frictiondisk.store.files import atomic_write_netcdf
 from frictiondisk.store.journal import Journal, run_key
 from frictiondisk.store.partial import with_pending
@@ -138,7 +138,7 @@ class _Driver:
             if cluster is not None:
                 cluster.close()
             if self._bar is not None:
-                self._bar.n = self._points_done()
+                self._bar.n, self._bar.total = self._progress()
                 self._bar.set_postfix(runs=self.runs_done(), in_flight=0, refresh=False)
                 _on_stderr(self._bar.close)
 
@@ -287,7 +287,7 @@ class _Driver:
 
         self._bar = _on_stderr(
             progress_bar,
-            len(self.planner.points),
+            self._points_total(),
             self.campaign.name,
             "point",
             initial=self._points_done(),
@@ -300,13 +300,24 @@ class _Driver:
         return self.runs_at_start + self.computed
 
     def _points_done(self) -> int:
-        return len(self.planner.results)
+        return self._progress()[0]
+
+    def _points_total(self) -> int:
+        return self._progress()[1]
+
+    def _progress(self) -> tuple[int, int]:
+        """(done, total) in the planner's unit: points, or what its `progress()` counts
+        (a trace: curve points placed; its total grows as curves are found)."""
+        progress = getattr(self.planner, "progress", None)
+        if progress is not None:
+            return progress()
+        return len(self.planner.results), len(self.planner.points)
 
     def _tick(self) -> None:
         now = time.perf_counter()
         if self._bar is not None and now - self._last_bar >= BAR_EVERY:
             self._last_bar = now
-            self._bar.n = self._points_done()
+            self._bar.n, self._bar.total = self._progress()
             self._bar.set_postfix(
                 runs=self.runs_done(), in_flight=len(self.in_flight), refresh=False
             )
@@ -320,7 +331,8 @@ class _Driver:
 
     def _datasets(self):
         """The module that builds this campaign's results.nc and runs.nc."""
-        return basin_datasets if self.campaign.kind == "basin" else datasets
+        builders = {"basin": basin_datasets, "trace": trace_datasets}
+        return builders.get(self.campaign.kind, datasets)
 
     def write_partial(self) -> int | None:
         """Write results.nc from the finished points, the rest pending, marked `partial`
@@ -334,7 +346,7 @@ class _Driver:
         try:
             pending = with_pending(self.campaign.kind, self.planner)
             ds = self._datasets().results_dataset(self.campaign, pending)
-            ds.attrs.update(partial=1, points_done=done, points_total=len(self.planner.points))
+            ds.attrs.update(partial=1, points_done=done, points_total=self._points_total())
             atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
         except Exception as exc:  # noqa: BLE001  a side file: never stop the campaign for it
             _on_stderr(print, f"warning: partial results not written: {exc!r}", file=sys.stderr)
@@ -342,8 +354,7 @@ class _Driver:
         return done
 
     def _write_status(self, state: str) -> None:
-        done = self._points_done()
-        total = len(self.planner.points)
+        done, total = self._progress()
         elapsed = time.perf_counter() - self.t0
         rate = done / elapsed if done and elapsed > 0 else 0.0
         write_status(
@@ -373,7 +384,7 @@ class _Driver:
         runs = atomic_write_netcdf(runs_ds, self.out_dir / RUNS_FILE)
         self._write_status(state="complete")
         return RunSummary(
-            points=len(self.planner.points),
+            points=self._points_total(),
             points_failed=self._points_failed(),
             runs_total=int(runs_ds.sizes["run"]),
             runs_computed=self.computed,

@@ -26,6 +26,7 @@ from typing import Any
 
 from frictiondisk.engine.basin_plan import BasinPlanner
 from frictiondisk.engine.tasks import run_batch, run_bisection, run_scene
+from frictiondisk.engine.trace_plan import TracePlanner
 from frictiondisk.search.bisection import BisectionResult, RunRequest
 from frictiondisk.search.certify import CertifiedBisection
 from frictiondisk.search.jumps import JumpSearch, JumpSearchResult, run_role
@@ -378,4 +379,6 @@ class ScanPlanner:
 def planner_for(campaign):
     if campaign.task.kind == "basin":
         return BasinPlanner(campaign)
+    if campaign.task.kind == "trace":
+        return TracePlanner(campaign)
     return JumpPlanner(campaign) if campaign.task.kind == "find_jump" else ScanPlanner(campaign)

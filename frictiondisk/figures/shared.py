@@ -165,6 +165,7 @@ def physics_text(ds: xr.Dataset) -> str:
     if "scene_yaml" not in ds.attrs:
         return ""
     varied = {str(ds[c].attrs.get("scene_key", "")) for c in ds.coords}
+    varied |= {str(ds.attrs["trace_key"])} if "trace_key" in ds.attrs else set()  # a plane's key
     varied |= {str(key) for key in sample_spec(ds)}  # sampled: no single value either
     scene = _scene(ds).get("scene", "")
     shown = [

@@ -30,6 +30,7 @@ from frictiondisk.model.axes import (
 )
 from frictiondisk.model.schema import Spec, canonical, field, joined, merged, rule, within
 from frictiondisk.model.search_settings import Certify
+from frictiondisk.model.trace_spec import Trace
 from frictiondisk.model.varied import INITIAL_STATE_KEYS, initial_state_problem, value_problems
 
 MAX_SPLIT = 64
@@ -170,12 +171,6 @@ class FindJump(Spec):
         if problems:
             raise rule(*problems)
         return spec
-
-    @field_validator("certify", mode="before")
-    @classmethod
-    def _certify(cls, value: Any) -> Any:
-        """true: the default certification; false: none."""
-        return {True: {}, False: {"levels": 0}}[value] if isinstance(value, bool) else value
 
     @field_validator("along")
     @classmethod
@@ -410,8 +405,14 @@ class Basin(Spec):
 # --- the file -------------------------------------------------------------------------------
 
 SCENE_KEYS = ("scene", "params", "contact", "numerics")
-TASK_KEYS = ("find_jump", "scan", "trajectory", "basin")
-TASKS = {"find_jump": FindJump, "scan": Scan, "trajectory": Trajectory, "basin": Basin}
+TASK_KEYS = ("find_jump", "scan", "trajectory", "basin", "trace")
+TASKS = {
+    "find_jump": FindJump,
+    "scan": Scan,
+    "trajectory": Trajectory,
+    "basin": Basin,
+    "trace": Trace,
+}
 _SCENE_DOC = "the base scene's {} (validated as in a scene file; see the scene keys)"
 
 
@@ -433,6 +434,7 @@ class CampaignFile(Spec):
     scan: Scan = field(None, None, "task: run every point of a grid of mu")
     trajectory: Trajectory = field(None, None, "task: one recorded run of the base scene")
     basin: Basin = field(None, None, "task: basin stability or a basin map")
+    trace: Trace = field(None, None, "task: follow every jump curve through a (key, mu) plane")
 
     @field_validator("trajectory", mode="before")
     @classmethod

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from pydantic import BaseModel
+from pydantic import BaseModel, model_validator
 
 from frictiondisk.model.schema import MODEL_CONFIG, field
 
@@ -29,6 +29,12 @@ class Certify(BaseModel):
         gt=0,
         le=1000,
     )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _switch(cls, value: Any) -> Any:
+        """true: the default certification; false: none."""
+        return {True: {}, False: {"levels": 0}}[value] if isinstance(value, bool) else value
 
     @property
     def enabled(self) -> bool:

@@ -1,5 +1,5 @@
 """CF metadata (Climate and Forecast conventions, CF-1.10) for every netCDF file we write:
-results.nc, runs.nc, trajectory.nc and accuracy.nc.
+results.nc (of every task, a trace's included), runs.nc, trajectory.nc and accuracy.nc.
 
 `complete(ds, title)` adds the global attributes (`Conventions`, `title`, `institution`,
 `source`, `history`, `references`) and, per variable, what the builder left out: the flag
@@ -49,6 +49,13 @@ FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
         tuple(range(-1, len(CERTIFICATION_FLAGS))),
         " ".join(("no_jump", *CERTIFICATION_FLAGS)),
     ),
+    # trace results.nc
+    "bisected": ((0, 1), "mu key"),
+    "stick_high": ((0, 1), "stick_at_low_end stick_at_high_end"),
+    "rising": ((0, 1), "falling rising"),
+    "curve_closed": ((0, 1), "open closed"),
+    "fold_window": ((0, 1), "gap_closes sticking_window_closes"),
+    "fold_certification": (tuple(range(len(CERTIFICATION_FLAGS))), " ".join(CERTIFICATION_FLAGS)),
 }
 
 # text variable -> (long_name if the builder gave none, comment)
@@ -65,6 +72,10 @@ TEXT: dict[str, tuple[str, str]] = {
     "jump_status": ("status of the jump", "converged or failed; empty: no jump"),
     "mode": ("numerics.mode of the run", "decide or converge"),
     "key": ("journal key", "sha256 of the canonical scene and the numerics version"),
+    "purpose": ("what the run served", "first_look, curve or fold (trace)"),
+    "fold_status": ("status of the fold", "located or not located"),
+    "curve_first_end": ("why the curve's first end stopped", "edge, joined, closed, limit, failed"),
+    "curve_last_end": ("why the curve's last end stopped", "edge, joined, closed, limit, failed"),
 }
 
 # integer counters and indices that the builders leave without units

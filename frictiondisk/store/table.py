@@ -13,6 +13,7 @@ import xarray as xr
 from frictiondisk.search.jumps import RUN_ROLES
 from frictiondisk.store.cf import flag_meanings
 from frictiondisk.store.partial import PENDING
+from frictiondisk.store.trace_table import trace_closing
 
 
 def _unit(coord: xr.DataArray) -> str:
@@ -195,5 +196,8 @@ def runs_summary(results: xr.Dataset) -> str | None:
 
 def closing_lines(results: xr.Dataset) -> list[str]:
     """What `run` and `status` print under a find_jump's results: runs per point, and the
-    uncertain points if any ([] for other tasks)."""
+    uncertain points if any; under a trace's, its uncertain points and what failed ([] for
+    other tasks)."""
+    if results.attrs.get("task") == "trace":
+        return trace_closing(results)
     return [line for line in (runs_summary(results), uncertain_summary(results)) if line]
