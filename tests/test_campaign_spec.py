@@ -816,7 +816,7 @@ def test_a_null_prescan_is_refused(bracket):
     if bracket is None:  # no stand-in bracket may be checked against the limits
         del data["find_jump"]["bracket"]
     assert problems(data) == [
-        "find_jump.prescan: expected a mapping with keys mu, mode, stride; got null"
+        "find_jump.prescan: expected a mapping with keys mu, mode, stride, persist; got null"
     ]
 
 

@@ -45,14 +45,13 @@ def misleading_reserve(mu):
 
 def test_a_window_the_adaptive_prescan_skips_is_found_below_the_headline():
     mus = grid(0.03, 0.6, 0.01)
-    # uncertified, the adaptive prescan trusts the reserve and never runs 0.15
-    blind = JumpSearch(mus, TOL, 2, "decide", stride=8)
-    drive(blind, window_and_jump, misleading_reserve)
-    assert blind.result().mu_star == pytest.approx(0.249, abs=TOL)
-    # certified, every grid value below the headline is run: the window comes to light,
-    # and the lowest rising jump that persists is its rising edge
+    # the adaptive prescan trusts the reserve and skips 0.15; every grid value below the
+    # headline is run in the end: the window comes to light, and the lowest rising jump
+    # that persists is its rising edge
     search = JumpSearch(mus, TOL, 2, "decide", certify=Certify(), stride=8)
-    drive(search, window_and_jump, misleading_reserve)
+    made = drive(search, window_and_jump, misleading_reserve)
+    first_scan = [r.mu for r in made if r.mode == "decide"][: len(range(0, len(mus), 8)) + 1]
+    assert 0.15 not in first_scan
     res = search.result()
     assert res.status == "converged", res.reason
     assert res.mu_lo < 0.144 <= res.mu_hi and res.mu_hi - res.mu_lo <= TOL * (1 + 1e-9)
@@ -81,20 +80,24 @@ def test_an_isolated_sticking_value_is_a_window_never_the_headline():
     assert len(narrow) == 1 and narrow[0].lo < 0.065 < narrow[0].hi
     assert narrow[0].width < TOL
     # the persistence run just above the isolated value was what showed it
-    assert any(0.065 < r.mu <= 0.065 + Certify().persist * TOL + 1e-12 for r in made)
+    assert any(0.065 < r.mu <= 0.065 + search.persist * TOL + 1e-12 for r in made)
     assert res.certification == "certified"
 
 
-def test_a_headline_that_persists_costs_one_run_more():
+def test_a_headline_that_persists_costs_one_run_and_certification_two():
     mus = grid(0.1, 0.2, 0.01)
     plain = JumpSearch(mus, TOL, 2, "decide", certify=OFF)
     certified = JumpSearch(mus, TOL, 2, "decide", certify=Certify(levels=1))
     n_plain = len(drive(plain, lambda mu: mu >= 0.1431))
     n_cert = len(drive(certified, lambda mu: mu >= 0.1431))
-    # the ladder re-runs the two ends, and one run checks persistence; a dense prescan
-    # leaves no grid value below mu* to fill
-    assert n_cert == n_plain + 2 + 1
+    # a dense prescan (11) leaves no grid value below mu* to fill; bisecting 0.01 to tol
+    # takes 7 halvings, one run checks persistence, and the ladder re-runs the two ends
+    assert n_plain == 11 + 7 + 1
+    assert n_cert == n_plain + 2
     assert certified.result().mu_star == plain.result().mu_star
+    assert plain.result().certification == "off"
+    # 0.10 ... 0.14 lie below the jump: all run by the dense prescan
+    assert plain.result().grid_below.decided == plain.result().grid_below.total == 5
 
 
 def test_no_persisting_jump_is_a_failure_that_names_the_windows():

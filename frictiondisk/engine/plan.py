@@ -240,6 +240,7 @@ class JumpPlanner:
                 self.task.certify,
                 self.task.root_finder,
                 stride_of(prescan, self.points[i].config.numerics.stick_rule),
+                prescan.persist,
             )
             return
         bracket = self._predicted_bracket(i)

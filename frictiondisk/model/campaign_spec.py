@@ -67,7 +67,9 @@ class Prescan(Spec):
     """Values of mu run at every point before bisecting, in numerics.mode `mode`; every
     change between neighbours is then bisected (frictiondisk.search.jumps.JumpSearch). `stride`:
     run every stride-th value first and refine where needed (frictiondisk.search.prescan); None
-    picks `prescan.stride_of` (1, dense, for converge mode and stick_rule contacts)."""
+    picks `prescan.stride_of` (1, dense, for converge mode and stick_rule contacts). Every
+    value below the headline is run in the end, and the headline must stick over `persist`
+    tol above its bracket (docs/model.md section 7)."""
 
     mu: Values = field(..., "1", "values of mu run first, at least 2 (sorted)", VALUES_MUST)
     mode: Literal["decide", "converge"] = field("decide", None, "numerics.mode of these runs")
@@ -77,6 +79,14 @@ class Prescan(Spec):
         "run every stride-th value first; not given: frictiondisk.search.prescan",
         "an integer >= 1 and <= len(mu) - 1",
         ge=1,
+    )
+    persist: float = field(
+        3.0,
+        "1",
+        "width above a rising jump's mu_hi, in units of tol, over which it must stick to be "
+        "the headline (else it is a window)",
+        gt=0,
+        le=1000,
     )
 
     @field_validator("mu")

@@ -21,14 +21,6 @@ class Certify(BaseModel):
     horizon: float = field(4.0, "1", "factor on the decision horizon per level", gt=1)
     rtol: float = field(0.1, "1", "factor on numerics.rtol per level", gt=0, le=1)
     levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
-    persist: float = field(
-        3.0,
-        "1",
-        "with a prescan: width above a rising jump's mu_hi, in units of tol, over which it must "
-        "stick to be the headline (else it is a window)",
-        gt=0,
-        le=1000,
-    )
 
     @model_validator(mode="before")
     @classmethod
@@ -44,7 +36,6 @@ class Certify(BaseModel):
         return {
             "horizon": self.horizon,
             "levels": self.levels,
-            "persist": self.persist,
             "rtol": self.rtol,
         }
 

@@ -96,8 +96,8 @@ class JumpSearchResult:
         return self.primary.end_result(which) if self.primary else None
 
     def role(self, request: RunRequest) -> str:
-        """`prescan`, `certification` (stricter numerics, persistence and fill runs) or
-        `search` (bisection)."""
+        """`prescan` (with the grid values filled below the headline), `search` (bisections,
+        persistence runs) or `certification` (stricter numerics)."""
         return self.roles.get(request) or run_role(request)
 
     @property
@@ -158,7 +158,7 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
     rising = [j for j in jumps if j.rising]
     head = search.headline()
     primary = head or (rising or list(jumps) or [None])[0]
-    persist_width = search.certify.persist * search.tol if search.certify.enabled else 0.0
+    persist_width = search.persist * search.tol
     windows = _windows(jumps, persist_width)
     grid = _grid_below(search, head)
     problems = []
@@ -170,10 +170,10 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
         problems.append(f"prescan undetermined at mu = {mus} after every retry")
     problems += [f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" for j in failed]
-    if rising and head is None and search.certify.enabled and not problems:
+    if rising and head is None and not problems:
         problems.append(
             "no rising jump persists: every sticking set found is a window narrower than "
-            f"{search.certify.persist:g} tol ("
+            f"{search.persist:g} tol ("
             + ", ".join(f"[{w.lo:.6g}, {w.hi:.6g}]" for w in windows)
             + ")"
         )
@@ -202,7 +202,7 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
             reason += "; sticking windows " + ", ".join(
                 f"[{w.lo:.6g}, {w.hi:.6g}]" + (" (narrow)" if w.narrow else "") for w in windows
             )
-        if grid is not None and search.certify.enabled:
+        if grid is not None:
             reason += (
                 f"; {grid.decided} of {grid.total} prescan values below mu* decided "
                 f"(resolution {grid.resolution:.3g})"

@@ -8,17 +8,21 @@ neighbouring decided values whose outcomes differ in stick / not stick: a *risin
 `stride` > 1 the prescan is adaptive (frictiondisk.search.prescan): every stride-th value
 first, more only where the verdicts and friction reserves do not explain an interval.
 
-The headline is the lowest rising jump whose sticking side persists, and it is certified
-together with what lies below it (`Certify`, enabled):
+The headline is the lowest rising jump whose sticking side persists, and it comes with a
+verdict at every prescan value below it:
 
-* persistence: a run at mu_hi + `certify.persist` tol must stick too. If it does not, the
-  sticking set above that jump is a *window* narrower than the persistence width: its
-  falling edge is bisected, the search goes on above, and the window is reported
+* persistence: a run at mu_hi + `persist` tol must stick too. If it does not, the sticking
+  set above that jump is a *window* narrower than the persistence width: its falling edge
+  is bisected, the search goes on above, and the window is reported
   (`JumpSearchResult.windows`), never the headline;
 * the grid below: every prescan value below the headline that the adaptive prescan
-  skipped is run (an interval skipped on the friction reserve alone counts as
-  unexamined), and a change it reveals is bisected like any other, so the headline
-  comes with a verdict at every grid value below it (`JumpSearchResult.grid_below`).
+  skipped is run (an interval skipped on the friction reserve alone is unexamined), and a
+  change it reveals is bisected like any other (`JumpSearchResult.grid_below`). The
+  adaptive prescan saves runs above the headline only.
+
+With `certify` enabled every jump's bracket is re-checked at stricter numerics
+(frictiondisk.search.certify), and the point is certified only with the whole grid below
+its headline decided.
 
 Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
 nothing of simulation, I/O or Dask. Its `pending()` lists every run that can go now, so a
@@ -46,8 +50,8 @@ __all__ = ["RUN_ROLES", "JumpSearch", "JumpSearchResult", "run_role"]
 
 class JumpSearch:
     """Prescan `mus` (all of them, or adaptively from every `stride`-th), bisect every
-    stick / not-stick change to `tol`, and (certify enabled) check that the headline
-    persists and that nothing below it sticks."""
+    stick / not-stick change to `tol`, check that the headline persists over `persist` tol
+    and run every prescan value below it."""
 
     def __init__(
         self,
@@ -59,6 +63,7 @@ class JumpSearch:
         certify: Certify = OFF,
         root_finder: str = "itp",
         stride: int = 1,
+        persist: float = 3.0,
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -69,6 +74,7 @@ class JumpSearch:
         self.split = split  # parts per bisection round (bisection.Bisection)
         self.certify = certify  # every jump's bracket is certified (frictiondisk.search.certify)
         self.root_finder = root_finder  # how each jump's bisection picks its runs
+        self.persist = persist  # [tol] a headline sticks this far above its bracket
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}  # mu -> retry level to ask for next
@@ -78,7 +84,7 @@ class JumpSearch:
         self._covered: set[tuple[float, float]] = set()  # pairs a bisection was started on
         self._bisection_runs: list[RunRecord] = []
         self._issued: set[RunRequest] = set()  # prescan requests asked for
-        # certification of what the headline stands on (certify enabled)
+        # what the headline stands on: its persistence and the grid below it
         self._checks: dict[float, RunRecord] = {}  # mu -> settled persistence or fill run
         self._check_runs: list[RunRecord] = []  # every such run, retries included
         self._waiting: set[float] = set()  # persistence / fill values without a settled run
@@ -176,12 +182,10 @@ class JumpSearch:
             if all(b.done for b in self.bisections):
                 self._advance()  # every new bisection ended on its fed ends (a failure)
             return
-        wanted: set[float] = set()
-        if self.certify.enabled:
-            wanted = self._persistence_wanted()
-            if not wanted and not self._filled:
-                self._filled = True
-                wanted = self._fill_wanted()
+        wanted = self._persistence_wanted()
+        if not wanted and not self._filled:
+            self._filled = True
+            wanted = self._fill_wanted()
         if wanted:
             self._waiting.update(wanted)
         else:
@@ -257,7 +261,7 @@ class JumpSearch:
     def _persists(self, index: int, res, known: dict[float, bool]) -> bool | None:
         """Whether rising jump `index` sticks over the persistence width above its mu_hi:
         by the decided values in (mu_hi, mu_hi + width]; None until one is there."""
-        mu = self._persistence.setdefault(index, res.mu_hi + self.certify.persist * self.tol)
+        mu = self._persistence.setdefault(index, res.mu_hi + self.persist * self.tol)
         above = [m for m in known if res.mu_hi < m <= mu]
         if not above:
             if mu in self._checks:  # undetermined after every retry: taken, but not certified
@@ -287,8 +291,6 @@ class JumpSearch:
     def _headline(self):
         """(bisection index, result) of the headline, or None."""
         rising = self._rising_jumps()
-        if not self.certify.enabled:
-            return rising[0] if rising else None
         known = dict(self.known())
         for index, res in rising:
             if self._persists(index, res, known):
@@ -326,12 +328,12 @@ class JumpSearch:
         return dict(self._checks)
 
     def role(self, request: RunRequest) -> str:
-        """`prescan`, `certification` (stricter numerics, persistence and fill runs) or
-        `search` (bisection)."""
+        """`prescan` (the prescan's runs, and the grid values below the headline it skipped),
+        `search` (bisections and persistence runs) or `certification` (stricter numerics)."""
         if request in self._issued:
             return "prescan"
         if any(run.request == request for run in self._check_runs):
-            return "certification"
+            return "prescan" if request.mu in self._index else "search"
         return run_role(request)
 
     def _order(self, run: RunRecord) -> tuple:
