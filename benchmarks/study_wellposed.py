@@ -228,24 +228,29 @@ def verdict(row: dict) -> str:
     return "unsettled" if unsettled else "both"
 
 
-def study_scene(args: tuple[int, int]) -> dict:
-    seed, index = args
+def study_scene(args: tuple[int, int, bool]) -> dict:
+    seed, index, reference = args
     scene = draw_scene(seed, index)
     row = {"seed": seed, "index": index, "scene": scene}
-    for setting in SETTINGS:
+    for setting in SETTINGS if reference else SETTINGS[:2]:
         row[setting] = locate(scene, setting)
     row["settled"] = []
-    if disagrees(row["default"], row["reference"]):
+    if reference and disagrees(row["default"], row["reference"]):
         row["settled"] = [settle(scene, mu) for mu in disputed(row["default"], row["reference"])]
     return row
 
 
+CODE = ("kernel", "outcome", "simulation", "search", "model")  # what decides a row
+
+
 def _code_hash() -> str:
-    """A hash of the package sources and this study: a cached row is reused only with both."""
-    root = Path(__file__).resolve().parents[1]
+    """A hash of this study and of the packages that decide its rows (not the engine, the
+    store or the figures): a cached row is reused only with all of them unchanged."""
+    root = Path(__file__).resolve().parents[1] / "frictiondisk"
     digest = hashlib.sha256(Path(__file__).read_bytes())
-    for source in sorted((root / "frictiondisk").rglob("*.py")):
-        digest.update(source.read_bytes())
+    for package in CODE:
+        for source in sorted((root / package).rglob("*.py")):
+            digest.update(source.read_bytes())
     return digest.hexdigest()[:16]
 
 
@@ -255,7 +260,7 @@ def _to_json(row: dict) -> dict:
 
 def _from_json(row: dict) -> dict:
     out = dict(row)
-    for setting in SETTINGS:
+    for setting in [s for s in SETTINGS if s in row]:
         data = dict(row[setting])
         data["windows"] = tuple(tuple(w) for w in data["windows"])
         data["claims"] = tuple(tuple(c) for c in data["claims"])
@@ -263,17 +268,20 @@ def _from_json(row: dict) -> dict:
     return out
 
 
-def run_study(seeds, scenes: int, processes: int, cache: Path | None = None) -> list[dict]:
-    """Every scene of every seed; rows already in `cache` (same code) are not run again."""
-    jobs = [(seed, index) for seed in seeds for index in range(scenes)]
-    code = _code_hash()
+def run_study(
+    seeds, scenes: int, processes: int, cache: Path | None = None, reference: bool = True
+) -> list[dict]:
+    """Every scene of every seed; rows already in `cache` (same code) are not run again.
+    reference False: the default and uncertified settings only (the cost of certification)."""
+    jobs = [(seed, index, reference) for seed in seeds for index in range(scenes)]
+    code = _code_hash() + ("" if reference else "-cost")
     done: dict[tuple[int, int], dict] = {}
     if cache is not None and cache.is_file():
         for line in cache.read_text().splitlines():
             entry = json.loads(line)
             if entry.get("code") == code:
                 done[(entry["seed"], entry["index"])] = _from_json(entry["row"])
-    todo = [job for job in jobs if job not in done]
+    todo = [job for job in jobs if job[:2] not in done]
 
     def keep(row):
         done[(row["seed"], row["index"])] = row
@@ -289,7 +297,7 @@ def run_study(seeds, scenes: int, processes: int, cache: Path | None = None) -> 
         with multiprocessing.get_context("spawn").Pool(processes) as pool:
             for row in pool.imap_unordered(study_scene, todo):
                 keep(row)
-    return [done[job] for job in jobs]
+    return [done[job[:2]] for job in jobs]
 
 
 def describe(scene: dict) -> str:
@@ -303,7 +311,10 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
     default = [r["default"] for r in rows]
     failed = [r for r in rows if r["default"].status != "converged"]
     lines = [f"well-posedness study: {n} scenes, tol {TOL:g}, {wall_s:.0f} s"]
-    differ = [r for r in rows if disagrees(r["default"], r["reference"])]
+    settings = [s for s in SETTINGS if all(s in r for r in rows)]
+    differ = [
+        r for r in rows if "reference" in settings and disagrees(r["default"], r["reference"])
+    ]
     verdicts = {(r["seed"], r["index"]): verdict(r) for r in differ}
     silent = [
         r
@@ -338,19 +349,18 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
         f"(mean share {np.mean(shares) if shares else math.nan:.3f}); resolution "
         f"{np.nanmax([f.resolution for f in default] or [math.nan]):.3g} at most"
     )
-    windowed = {s: sum(1 for r in rows if r[s].windows) for s in ("default", "reference")}
+    windowed = {s: sum(1 for r in rows if r[s].windows) for s in settings if s != "uncertified"}
     lines.append(
-        f"  scenes with sticking windows: default {windowed['default']}, "
-        f"reference {windowed['reference']}"
+        "  scenes with sticking windows: " + ", ".join(f"{s} {k}" for s, k in windowed.items())
     )
-    walls = {s: sum(r[s].wall_s for r in rows) for s in SETTINGS}
-    runs = {s: sum(r[s].runs for r in rows) for s in SETTINGS}
+    walls = {s: sum(r[s].wall_s for r in rows) for s in settings}
+    runs = {s: sum(r[s].runs for r in rows) for s in settings}
     extra = walls["default"] / walls["uncertified"] - 1.0 if walls["uncertified"] > 0 else math.nan
     lines.append(
         "  runs: "
-        + ", ".join(f"{s} {runs[s]}" for s in SETTINGS)
+        + ", ".join(f"{s} {runs[s]}" for s in settings)
         + "; kernel wall time [s]: "
-        + ", ".join(f"{s} {walls[s]:.1f}" for s in SETTINGS)
+        + ", ".join(f"{s} {walls[s]:.1f}" for s in settings)
     )
     lines.append(f"  certification costs {100 * extra:+.0f} % kernel wall time over uncertified")
     if differ:
@@ -376,7 +386,8 @@ def silent_errors(rows: list[dict]) -> int:
     return sum(
         1
         for r in rows
-        if disagrees(r["default"], r["reference"])
+        if "reference" in r
+        and disagrees(r["default"], r["reference"])
         and verdict(r) in ("reference", "neither")
         and r["default"].certified
     )
@@ -395,9 +406,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--scenes", type=int, default=50, help="scenes per seed")
     parser.add_argument("--processes", type=int, default=2)
     parser.add_argument("--cache", type=Path, default=None, help="JSON lines of finished rows")
+    parser.add_argument(
+        "--cost-only", action="store_true", help="no reference: the cost of certification only"
+    )
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
-    rows = run_study(_seeds(args.seeds), args.scenes, args.processes, args.cache)
+    rows = run_study(
+        _seeds(args.seeds), args.scenes, args.processes, args.cache, not args.cost_only
+    )
     print("\n".join(report(rows, time.perf_counter() - t0)))
     return 1 if silent_errors(rows) else 0
 

@@ -100,10 +100,13 @@ def test_a_headline_that_persists_costs_one_run_and_certification_two():
     assert plain.result().grid_below.decided == plain.result().grid_below.total == 5
 
 
-def test_no_persisting_jump_is_a_failure_that_names_the_windows():
+def test_no_persisting_jump_gives_the_lowest_one_flagged_uncertain():
     mus = grid(0.1, 0.2, 0.01)
-    search = JumpSearch(mus, TOL, 2, "decide", certify=Certify())
-    drive(search, lambda mu: abs(mu - 0.15) < 1e-12)
-    res = search.result()
-    assert res.status == "failed"
-    assert "no rising jump persists" in res.reason and "0.15" in res.reason
+    for certify in (Certify(), OFF):
+        search = JumpSearch(mus, TOL, 2, "decide", certify=certify)
+        drive(search, lambda mu: abs(mu - 0.15) < 1e-12)
+        res = search.result()
+        assert res.status == "converged" and res.mu_lo < 0.15 <= res.mu_hi
+        assert "no rising jump persists" in res.reason
+        assert res.certification == "uncertain"
+        assert [w.narrow for w in res.windows] == [True]

@@ -293,25 +293,20 @@ def run(
                 return st.SHAKEN_DOWN, t
             if corotation and mi[mon.I_VERDICT] == mon.VERDICT_CREEP:
                 return st.CREEPING, t
-            # An undecided run still settling, or without evidence from its own section that
-            # it will not stick (a cycle reached or approached, a departure from sticking,
-            # steady sliding), extends its horizon, revolution by revolution, up to the
-            # budget: no not-stick verdict without evidence (kernel/verdict.py).
             # contacts: a held phase is `stick`; an open one is finished first (below)
             held = not corotation and (
                 mon.stuck_for(mf, mi, t) >= hold - t_eps
                 or (mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0)
             )
-            # (contacts: a shakedown to co-rotation with grazing contacts is not `stick`
-            # under that rule, which needs every contact stuck for a revolution)
-            evidence = mon.EV_NONE
-            if not converge and not held:
-                evidence = mon.horizon_evidence(mf, mi, ring_all, rv, omega, hold, seq)
-                if corotation and evidence == mon.EV_SHAKEDOWN:
+            go_on = False
+            if not converge:
+                evidence = mon.evidence_at_horizon(
+                    p, pts, mf, mi, ring_all, rv, omega, hold, seq, corotation, held
+                )
+                if evidence == mon.EV_SHAKEDOWN and corotation:
                     return st.SHAKEN_DOWN, t
-            if not converge and (
-                mon.still_settling(mf, mi, rv, corotation) or (not held and evidence == mon.EV_NONE)
-            ):
+                go_on = evidence == mon.EV_NONE
+            if go_on:  # no not-stick verdict without evidence: extend, within the budget
                 if t_stop + hold <= budget + t_eps:
                     out_i[C_SETTLE_REVS] += 1
                     t_stop += hold

@@ -25,6 +25,7 @@ import numpy as np
 from .events import hermite_max
 from .jit import kernel_jit
 from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
+    EV_CANNOT,
     EV_CONTRACT,
     EV_DEPART,
     EV_NONE,
@@ -120,7 +121,9 @@ from .verdict import (  # noqa: F401  (re-exported: mon.corotation_verdict, ...)
     AITKEN_MIN_SPACING,
     VERDICT_REVS,
     VERDICT_Z,
+    cannot_corotate,
     corotation_verdict,
+    evidence_at_horizon,
     horizon_evidence,
     shaken_down,
     still_settling,

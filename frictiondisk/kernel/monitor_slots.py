@@ -111,6 +111,7 @@ EV_REPEAT = 1  # the section repeats within tolerance: a cycle reached (not stic
 EV_CONTRACT = 2  # the section contracts geometrically to a cycle with slip (not stick)
 EV_DEPART = 3  # slip grows and sticking time shrinks step after step (not stick)
 EV_SHAKEDOWN = 4  # slip per step falls to an extrapolated limit <= tolerance (stick)
-EV_SLIDING = 5  # sliding as a whole at a slip per revolution that does not fall (not stick)
+EV_CANNOT = 5  # no co-rotating state can be held: mu F_n below the spring's or brake's pull
+EV_SLIDING = 6  # slides as a whole, its slip per revolution not falling revolution by revolution
 SOURCE_CYCLES = 1  # the onsets of whole-body sticking phases
 SOURCE_REVOLUTIONS = 2  # the state at every whole master revolution

@@ -74,10 +74,11 @@ N_SEQ = 7  # columns of a sequence (the driver's scratch array, SEQ_MAX rows)
 REPEAT_COUNT = 3  # distances within tolerance that make a repeat
 MAX_LAG = 3  # sticking phases per period of a cycle recognised by EV_REPEAT
 CONTRACT_DISTANCES = 5  # distances behind a contraction ratio and its trend
-Q_MAX = 0.9  # largest extrapolated contraction ratio accepted as convergence
+Q_MAX = 0.98  # largest extrapolated contraction ratio accepted as convergence
 RHO_MAX = 0.9  # the ratio's own changes must shrink at least this fast ...
 Q_STEADY = 0.01  # ... unless each of them is below this
 GEOMETRIC_KEEP = 0.75  # 1 - q now must keep this share of 1 - q half the sequence ago
+CONTRACT_SLIP_FALL = 0.1  # share of the slip per step that may still fall on the way
 DEPART_STEPS = 4  # steps of growing slip and shrinking sticking time behind EV_DEPART
 STICK_NOISE = 1e-9  # [s] sticking times closer than this are equal (event location ~1e-11 s)
 APPROACH_STEPS = 8  # steps over which a creep onto a sticking circle is recognised ...
@@ -255,12 +256,14 @@ def _contracts(mf, pts, slip, n, s0):
     q_half = _distance(pts, half, half - 1) / max(_distance(pts, half - 1, half - 2), 1e-300)
     if not (q_half < 1.0 and (1.0 - q) >= GEOMETRIC_KEEP * (1.0 - q_half)):
         return False
-    # the cycle it converges to still slips: the slip per step, extrapolated the same way
+    # the cycle it converges to still slips, nearly as much as now: the slip per step,
+    # extrapolated the same way, keeps all but CONTRACT_SLIP_FALL of itself (a slip that
+    # still falls by much is an approach to sticking, whatever its section's ratio: a
+    # Stribeck disk spinning up contracts at 0.88 a revolution, then sticks for good)
     tail = q_up / (1.0 - q_up)
-    fall = max(0.0, slip[n - 2] - slip[n - 1])
-    limit = slip[n - 1] - fall * tail
+    fall = max(0.0, slip[n - 2] - slip[n - 1]) * tail
     mf[F_EV_LIMIT] = d_prev * tail
-    return limit > s0
+    return slip[n - 1] - fall > s0 and fall <= CONTRACT_SLIP_FALL * slip[n - 1]
 
 
 @kernel_jit

@@ -6,7 +6,7 @@ under stick_rule corotation. `shaken_down` decides `stick` from the motion's own
 (kernel/sections.py): a slip per cycle or revolution that falls to nothing.
 `horizon_evidence` tells whether a run without a verdict at its horizon may end as not
 stick: only on evidence from the section (a cycle reached, a geometric approach to one, a
-departure from sticking) or of steady sliding; otherwise it must go on. The thresholds of
+departure from sticking); otherwise it must go on. The thresholds of
 these rules are the constants below and in kernel/sections.py.
 """
 
@@ -14,11 +14,14 @@ import math
 
 from . import sections as sec
 from .jit import kernel_jit
+from .model import P_BETAB, P_BETAI, P_CS, P_EPS, P_FNI, P_MU, P_OMEGA, P_XMS
 from .monitor_slots import (
+    EV_CANNOT,
     EV_NONE,
     EV_REPEAT,
     EV_SHAKEDOWN,
     EV_SLIDING,
+    F_ARM,
     F_LAMBDA,
     F_LAMBDA_SE,
     F_REMAIN,
@@ -48,6 +51,9 @@ from .monitor_slots import (
 # Revolutions behind a verdict on the slip trend. Five give four decay ratios, enough for
 # a standard error; fewer make one grazing contact's lumpy slip look like a trend.
 VERDICT_REVS = 5
+# Revolutions of whole-body sliding behind EV_SLIDING: a slip that fell at every one of
+# them is an approach to sticking; one that did not wanders or grows.
+SLIDE_REVS = 8
 # Standard errors by which a decay must be established (about 97.5 % one-sided).
 VERDICT_Z = 2.0
 # Spacing (revolutions) below which Aitken's limit is not trusted: measured on the braked
@@ -203,19 +209,22 @@ def still_settling(mf, mi, rv, corotation):
 
 @kernel_jit
 def steady_sliding(mf, mi, rv):
-    """Whether the run has slid as a whole (no whole-body stick) for VERDICT_REVS
-    revolutions at a slip per revolution that does not fall towards sticking: steady or
-    growing (its decay not established at VERDICT_Z standard errors), or falling towards
-    a steady sliding rate (Aitken's limit above tol) that already holds most of it."""
-    sliding = _run_length(mi, rv, RV_EVER_ALL, 0.0)
-    if sliding < VERDICT_REVS:
+    """Whether the run has slid as a whole (no whole-body stick) for SLIDE_REVS revolutions
+    at a slip per revolution that did not fall at every one of them (a slip falling
+    revolution after revolution is an approach to sticking, however slowly it falls: a
+    Stribeck disk spinning up slides 0.2 m a revolution, 1 % less each time, and sticks
+    at 97 s) and whose decay over the last VERDICT_REVS is not established at VERDICT_Z
+    standard errors: a sliding orbit whose slip wanders about a level (its period not the
+    master's) or grows."""
+    if _run_length(mi, rv, RV_EVER_ALL, 0.0) < SLIDE_REVS:
+        return False
+    falling = True
+    for back in range(SLIDE_REVS - 1):
+        falling = falling and rv[_row(mi, back), RV_SLIP] < rv[_row(mi, back + 1), RV_SLIP]
+    if falling:
         return False
     lam, se = _slip_trend(mf, mi, rv)
-    if math.isnan(lam) or lam + VERDICT_Z * se >= 0.0:
-        return True
-    s_inf, _ = _limit_slip(mi, rv, sliding)
-    slip = rv[_row(mi, 0), RV_SLIP]
-    return s_inf > mf[F_SLIP_TOL] and s_inf >= 0.5 * slip
+    return math.isnan(lam) or lam + VERDICT_Z * se >= 0.0
 
 
 @kernel_jit
@@ -263,9 +272,11 @@ def shaken_down(mf, mi, ring_all, rv, omega, hold, seq):
 def horizon_evidence(mf, mi, ring_all, rv, omega, hold, seq):
     """The evidence (EV_*) on which an undecided run at its horizon may end as not stick:
     the section of its recent whole-body sticking onsets or of its revolutions shows a
-    cycle reached, a geometric approach to one or a departure from sticking; or it slides
-    steadily (EV_SLIDING). EV_NONE: it must go on (or end undetermined). A shakedown
-    found here is EV_SHAKEDOWN (stick). Sets the monitor's evidence slots."""
+    cycle reached, a geometric approach to one or a departure from sticking (a sliding
+    slave's revolutions are its section: a steady sliding state repeats or is approached
+    geometrically), or it slides on without approaching sticking (EV_SLIDING). EV_NONE: it
+    must go on (or end undetermined). A shakedown found here is EV_SHAKEDOWN (stick).
+    Sets the monitor's evidence slots."""
     best = EV_NONE
     observe = mi[I_OBSERVE] == 1
     for source in (SOURCE_CYCLES, SOURCE_REVOLUTIONS):
@@ -279,3 +290,43 @@ def horizon_evidence(mf, mi, ring_all, rv, omega, hold, seq):
         mi[I_EV_SOURCE] = SOURCE_REVOLUTIONS
     mi[I_EVIDENCE] = best
     return best
+
+
+@kernel_jit
+def cannot_corotate(p, pts, arm):
+    """Whether no permanent co-rotation can be held at all, whatever the circle: a rigidly
+    co-rotating slave needs a contact force whose largest value over a revolution is at
+    least the spring's pull c_s |x_ms| (the preload sweeps every direction; docs/model.md
+    section 7), and a torque beta_b omega_m that no contact force pattern within mu F_n
+    can carry beyond a lever of the longest arm. Below either, the slave can never stick:
+    a bound, not a measurement (kernel/sections.py EV_CANNOT). The band beta eps of the
+    stuck contacts is added to the friction limit. arm: longest contact arm [m] (0: pin)."""
+    hold = 0.0
+    for i in range(pts.shape[0]):
+        hold += (p[P_MU] * p[P_FNI] + p[P_BETAI] * p[P_EPS]) * pts[i, 2]
+    pull = p[P_CS] * abs(p[P_XMS])
+    if arm > 0.0:
+        pull = max(pull, abs(p[P_BETAB] * p[P_OMEGA]) / arm)
+    return hold < pull
+
+
+@kernel_jit
+def evidence_at_horizon(p, pts, mf, mi, ring_all, rv, omega, hold, seq, corotation, held):
+    """What an undecided run at its horizon may end on (EV_*; EV_NONE: it must go on): a
+    bound that no co-rotation can pass (EV_CANNOT), its section (horizon_evidence), or,
+    stick_rule contacts, a sticking phase already held or open (then EV_REPEAT: the rule's
+    own decision follows in the driver). A run still settling towards a co-rotation verdict
+    (still_settling) goes on. Under stick_rule contacts a shakedown to co-rotation with
+    grazing contacts is no `stick` (that rule needs every contact stuck for a revolution)
+    and counts as not-stick evidence."""
+    if cannot_corotate(p, pts, mf[F_ARM]):
+        mi[I_EVIDENCE] = EV_CANNOT
+        return EV_CANNOT
+    if held:
+        return EV_REPEAT
+    evidence = horizon_evidence(mf, mi, ring_all, rv, omega, hold, seq)
+    if evidence == EV_SHAKEDOWN and corotation:
+        return EV_SHAKEDOWN
+    if still_settling(mf, mi, rv, corotation):
+        return EV_NONE
+    return evidence

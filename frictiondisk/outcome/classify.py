@@ -81,7 +81,15 @@ class Evidence:
                 f"{self.ratio:.3g})"
             )
         if kind == mon.EV_SLIDING:
-            return "slides as a whole at a slip per revolution that does not fall towards sticking"
+            return (
+                "slides as a whole, its slip per revolution not falling revolution after "
+                "revolution (no approach to sticking)"
+            )
+        if kind == mon.EV_CANNOT:
+            return (
+                "no co-rotation can hold: mu F_n is below the spring's pull c_s |x_ms| (or the "
+                "brake torque over the longest arm) on every sticking circle"
+            )
         if kind == mon.EV_SHAKEDOWN:
             return (
                 f"its slip per {self.step} falls at every {self.step} to an extrapolated limit "

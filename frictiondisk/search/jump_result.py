@@ -170,13 +170,6 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
         problems.append(f"prescan undetermined at mu = {mus} after every retry")
     problems += [f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" for j in failed]
-    if rising and head is None and not problems:
-        problems.append(
-            "no rising jump persists: every sticking set found is a window narrower than "
-            f"{search.persist:g} tol ("
-            + ", ".join(f"[{w.lo:.6g}, {w.hi:.6g}]" for w in windows)
-            + ")"
-        )
     if not jumps and not problems:
         kinds = {r.outcome == STICK for r in scan}
         which = "stick" if kinds == {True} else "not stick"
@@ -207,7 +200,12 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
                 f"; {grid.decided} of {grid.total} prescan values below mu* decided "
                 f"(resolution {grid.resolution:.3g})"
             )
-            if not search.headline_judged():
+            if search.persists_nowhere:
+                reason += (
+                    f"; no rising jump persists over {search.persist:g} tol (every sticking "
+                    "set found is that narrow): the lowest one is taken, uncertain"
+                )
+            elif not search.headline_judged():
                 reason += "; the persistence run above mu* stayed undetermined"
         if len(scan) < len(search.mus):
             reason += f"; adaptive prescan ran {len(scan)} of {len(search.mus)} values"
@@ -217,6 +215,8 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
     if search.certify.enabled and grid is not None:
         whole = grid.decided == grid.total and search.headline_judged()
         grid_flag = "certified" if whole else "uncertain"
+    elif search.persists_nowhere:
+        grid_flag = "uncertain"
     roles = {run.request: search.role(run.request) for run in runs}
     return JumpSearchResult(
         status,

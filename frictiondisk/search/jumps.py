@@ -192,37 +192,39 @@ class JumpSearch:
             self._complete = True
 
     def known(self) -> list[tuple[float, bool]]:
-        """(mu, sticks) of every decided prescan value, persistence or fill run and
-        converged bracket end, increasing in mu."""
+        """(mu, sticks) of every decided value at the point's own numerics: prescan values,
+        persistence and fill runs, and the ends of the brackets the bisections converged to
+        before certification; increasing in mu. (A certified bracket may have moved at
+        stricter numerics; the changes between these values are all at one level.)"""
         return sorted((mu, run["outcome"] == STICK) for mu, run in self._decided().items())
 
     def _decided(self) -> dict[float, dict[str, Any]]:
-        """mu -> the decided run behind it: prescan values, persistence and fill runs, and
-        the ends of converged (not vanished) brackets."""
+        """mu -> the decided run behind it (known)."""
         found: dict[float, dict[str, Any]] = {}
         for source in (self._last_scan(), self._checks):
             for mu, run in source.items():
                 if run.outcome != UNDETERMINED:
                     found[mu] = run.result
-        for bisection in self.bisections:
-            if not bisection.done:
-                continue
-            res = bisection.result()
-            if res.status == "converged" and res.certification != "vanished":
-                for mu, which in ((res.mu_lo, "lo"), (res.mu_hi, "hi")):
-                    end = res.end_result(which)
-                    if end is not None:
-                        found.setdefault(mu, end)
+        for base in self._base_brackets():
+            for mu, which in ((base.mu_lo, "lo"), (base.mu_hi, "hi")):
+                end = base.end_result(which)
+                if end is not None:
+                    found.setdefault(mu, end)
         return found
+
+    def _base_brackets(self):
+        """The converged bracket of each finished bisection at the point's own numerics
+        (its first search), unless its jump vanished at stricter numerics."""
+        for bisection in self.bisections:
+            if bisection.done and bisection.result().certification != "vanished":
+                base = bisection.searches[0]
+                if base.done and base.result().status == "converged":
+                    yield base.result()
 
     def _new_changes(self) -> list[tuple[float, float, bool]]:
         """Neighbouring decided values that differ and no bisection was started on."""
         known = self.known()
-        bracketed = {
-            (r.mu_lo, r.mu_hi)
-            for b in self.bisections
-            if b.done and (r := b.result()).status == "converged"
-        }
+        bracketed = {(r.mu_lo, r.mu_hi) for r in self._base_brackets()}
         return [
             (mu_a, mu_b, stick_b)
             for (mu_a, stick_a), (mu_b, stick_b) in zip(known, known[1:], strict=False)
@@ -250,19 +252,26 @@ class JumpSearch:
         self._covered.add((mu_a, mu_b))
 
     def _rising_jumps(self):
-        """(index, result) of the converged rising jumps, increasing in mu."""
+        """(index, result, base) of the converged rising jumps, increasing in mu: the
+        reported result (after certification) and the bracket at the point's own numerics."""
         found = []
         for index, bisection in enumerate(self.bisections):
             res = bisection.result()
-            if res.status == "converged" and res.rising and res.certification != "vanished":
-                found.append((index, res))
-        return sorted(found, key=lambda item: item[1].mu_lo)
+            base = bisection.searches[0].result()
+            if (
+                res.status == base.status == "converged"
+                and res.rising
+                and res.certification != "vanished"
+            ):
+                found.append((index, res, base))
+        return sorted(found, key=lambda item: item[2].mu_lo)
 
-    def _persists(self, index: int, res, known: dict[float, bool]) -> bool | None:
-        """Whether rising jump `index` sticks over the persistence width above its mu_hi:
-        by the decided values in (mu_hi, mu_hi + width]; None until one is there."""
-        mu = self._persistence.setdefault(index, res.mu_hi + self.persist * self.tol)
-        above = [m for m in known if res.mu_hi < m <= mu]
+    def _persists(self, index: int, base, known: dict[float, bool]) -> bool | None:
+        """Whether rising jump `index` sticks over the persistence width above the mu_hi of
+        its bracket at the point's own numerics: by the decided values in
+        (mu_hi, mu_hi + width]; None until one is there."""
+        mu = self._persistence.setdefault(index, base.mu_hi + self.persist * self.tol)
+        above = [m for m in known if base.mu_hi < m <= mu]
         if not above:
             if mu in self._checks:  # undetermined after every retry: taken, but not certified
                 self.unjudged.add(index)
@@ -274,8 +283,8 @@ class JumpSearch:
         """The persistence run that the lowest rising jump not yet judged needs; empty once
         the headline is found (or no rising jump is left)."""
         known = dict(self.known())
-        for index, res in self._rising_jumps():
-            persists = self._persists(index, res, known)
+        for index, _, base in self._rising_jumps():
+            persists = self._persists(index, base, known)
             if persists is None:
                 return {self._persistence[index]}
             if persists:
@@ -283,32 +292,44 @@ class JumpSearch:
         return set()
 
     def headline(self):
-        """The lowest rising jump that persists (certify enabled), else the lowest rising
+        """The lowest rising jump that persists, else (`persists_nowhere`) the lowest rising
         jump; None without one."""
         found = self._headline()
         return None if found is None else found[1]
 
     def _headline(self):
         """(bisection index, result) of the headline, or None."""
-        rising = self._rising_jumps()
         known = dict(self.known())
-        for index, res in rising:
-            if self._persists(index, res, known):
+        rising = self._rising_jumps()
+        for index, res, base in rising:
+            if self._persists(index, base, known):
                 return index, res
-        return None
+        return (rising[0][0], rising[0][1]) if rising else None
+
+    @property
+    def persists_nowhere(self) -> bool:
+        """Rising jumps, but none persists: every sticking set found is narrower than the
+        persistence width at the point's own numerics (a structure at the resolution
+        limit, which stricter numerics may join up)."""
+        known = dict(self.known())
+        rising = self._rising_jumps()
+        return bool(rising) and not any(self._persists(i, base, known) for i, _, base in rising)
 
     def headline_judged(self) -> bool:
-        """Whether the headline's persistence run was decided (not undetermined)."""
+        """Whether the headline's persistence run was decided (not undetermined) and showed
+        it persists."""
         found = self._headline()
-        return found is None or found[0] not in self.unjudged
+        return found is None or (found[0] not in self.unjudged and not self.persists_nowhere)
 
     def _fill_wanted(self) -> set[float]:
         """Every grid value below the headline not run yet."""
         head = self.headline()
         if head is None:
             return set()
+        base = self.bisections[self._headline()[0]].searches[0].result()
         ran = set(self._last_scan()) | set(self._checks)
-        return {mu for mu in self.mus if mu < head.mu_lo and mu not in ran}
+        below = min(head.mu_lo, base.mu_lo)  # certification may have moved the bracket
+        return {mu for mu in self.mus if mu < below and mu not in ran}
 
     # ---- the answer -------------------------------------------------------------------
     def result(self) -> JumpSearchResult:
