@@ -277,7 +277,7 @@ def test_resuming_with_a_changed_campaign_names_the_difference(tmp_path):
             lambda t: t.replace("tol: 1.0e-4", "tol: 1.0e-4\n  frobnicate: 1"),
             "find_jump.frobnicate",
         ),
-        (lambda t: t.replace("[0.05, 0.3]", "[0.3, 0.05]"), "find_jump.bracket"),
+        (lambda t: t.replace("[0.045, 0.3]", "[0.3, 0.045]"), "find_jump.bracket"),
         (lambda t: t.replace("tol: 1.0e-4", "tol: 0"), "find_jump.tol"),
         (lambda t: t.replace("tol: 1.0e-4", "tol: .nan"), "find_jump.tol"),
         (lambda t: t.replace("params.x_ms", "params.nope"), "params.nope"),
