@@ -119,3 +119,28 @@ def test_any_step_oracle_is_bracketed(mu_star, lo, width, tol):
         assert res.status == "converged"
         assert res.mu_lo < mu_star <= res.mu_hi
         assert res.width <= tol * (1 + 1e-9)
+
+
+def slow_near(lo, hi, mu_star):
+    """Undetermined (a slow approach) on [lo, hi], a jump at mu_star inside it."""
+
+    def oracle(req):
+        if lo <= req.mu <= hi:
+            return "undetermined"
+        return "stick" if req.mu >= mu_star else "stick_slip"
+
+    return oracle
+
+
+def test_an_interval_of_undecided_mu_is_bracketed_from_both_sides():
+    tol = 1e-4
+    res = drive(Bisection((0.1, 0.2), tol, (1e-6, 10.0), 1), slow_near(0.1500, 0.1503, 0.1501))
+    assert res.status == "converged", res.reason
+    assert res.mu_lo < 0.1500 and res.mu_hi > 0.1503  # the undecided span, both sides decided
+    assert res.width <= 0.0003 + tol * (1 + 1e-9)
+    assert "undetermined after every retry" in res.reason
+
+
+def test_undecided_mu_spanning_more_than_ten_tol_fail_with_the_reason():
+    res = drive(Bisection((0.1, 0.2), 1e-4, (1e-6, 10.0), 1), slow_near(0.140, 0.160, 0.15))
+    assert res.status == "failed" and "undetermined at mu" in res.reason

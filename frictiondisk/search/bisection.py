@@ -46,6 +46,7 @@ STICK = "stick"
 UNDETERMINED = "undetermined"
 WIDEN_FACTOR = 2.0  # a widened bracket is this many times wider
 ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
+UNDECIDED_SPAN = 10  # [tol] undecided mu a bracket may straddle: wider is a failure
 
 
 def zero_crossing(mu_a: float, signal_a: float, mu_b: float, signal_b: float) -> float:
@@ -188,19 +189,19 @@ class Bisection:
         """The undecided mu that lie inside the current bracket."""
         return [mu for mu in self.undecided if self.lo < mu < self.hi]
 
-    def _straddled(self) -> float | None:
-        """The undecided mu inside the bracket, if any (plain bisection only)."""
+    def _straddled(self) -> tuple[float, float] | None:
+        """(lowest, highest) undecided mu inside the bracket, if any (plain bisection only)."""
         inside = self._undecided_inside()
-        return inside[-1] if inside and self.split == 2 else None
+        return (min(inside), max(inside)) if inside and self.split == 2 else None
 
     def _interior(self) -> list[float]:
         """The interior points of this round, increasing: lo + j (hi - lo) / parts; around
-        an undecided mu u, the two points u -/+ (hi - lo) / 4, so that the bracket closes
-        in on u from both sides (at most the same width as a plain step)."""
+        the undecided mu [u_lo, u_hi], the two points u_lo - (hi - lo) / 4 and
+        u_hi + (hi - lo) / 4, so that the bracket closes in on them from both sides."""
         width = self.hi - self.lo
         u = self._straddled()
         if u is not None:
-            return [max(self.lo, u - width / 4), min(self.hi, u + width / 4)]
+            return [max(self.lo, u[0] - width / 4), min(self.hi, u[1] + width / 4)]
         if self.split == 2 and self.root_finder == "itp":
             return [self._itp_probe()]
         parts = self.split
@@ -217,11 +218,17 @@ class Bisection:
         self.runs.append(RunRecord(request, result))
         outcome = result["outcome"]
         if outcome == UNDETERMINED:
-            # one undecided mu per bracket: a second one is an interval of slow runs
-            straddle = self.phase == "bisect" and self.split == 2 and self._straddled() is None
+            # undecided mu inside the bracket are straddled while they span at most
+            # UNDECIDED_SPAN tol: the jump's slow approach, bracketed from both sides
+            straddle = self.phase == "bisect" and self.split == 2
+            span = self._straddled()
+            if span is not None:
+                lo, hi = min(span[0], request.mu), max(span[1], request.mu)
+                straddle = straddle and hi - lo <= UNDECIDED_SPAN * self.tol * (1 + 1e-9)
             if request.level >= self.max_retries and straddle:
                 self.undecided.append(request.mu)
-                self._round += 1  # the round around it
+                self._round += 1  # the round around them
+                self._maybe_converged()
                 return
             if request.level >= self.max_retries:
                 self._failure = (
@@ -438,7 +445,14 @@ class Bisection:
         return "nothing"
 
     def _maybe_converged(self) -> None:
-        if self.hi - self.lo <= self.tol * (1 + 1e-9):
+        """Converged at a width <= tol, or, around undecided mu, at a width of their span
+        plus tol, or once the probes around them would fall on the bracket's ends (the
+        straddle shrinks no further)."""
+        span = self._straddled()
+        spread = 0.0 if span is None else span[1] - span[0]
+        if self.hi - self.lo <= (self.tol + spread) * (1 + 1e-9):
+            self.phase = "converged"
+        elif span is not None and all(mu in (self.lo, self.hi) for mu in self._interior()):
             self.phase = "converged"
 
     # ---- the answer -------------------------------------------------------------------
@@ -451,7 +465,7 @@ class Bisection:
         return BisectionResult(
             status="converged" if converged else "failed",
             reason=(
-                f"bracket of width {self.hi - self.lo:.3g} <= tol {self.tol:.3g}{self._undecided_note()}"
+                f"bracket of width {self.hi - self.lo:.3g}{self._undecided_note()}"
                 if converged
                 else self._failure
             ),
@@ -465,11 +479,14 @@ class Bisection:
         )
 
     def _undecided_note(self) -> str:
-        inside = self._undecided_inside()
+        inside = sorted(self._undecided_inside())
         if not inside:
-            return ""
+            return f" <= tol {self.tol:.3g}"
         mus = ", ".join(f"{mu:.10g}" for mu in inside)
-        return f" around mu = {mus}, undetermined after every retry (the jump's slow approach)"
+        return (
+            f" around mu = {mus}, undetermined after every retry (the jump's slow approach, "
+            f"bracketed from both sides to its span + tol {self.tol:.3g})"
+        )
 
     def _contradictions(self) -> tuple[tuple[float, float], ...]:
         """Pairs of runs that contradict a single jump of this bracket's direction:

@@ -196,11 +196,16 @@ class Tracer:
                     self.runs.append(TracedRun(request, self.known[request], role, purpose))
 
     def _seed(self) -> None:
-        """One curve per jump of the first look, growing at both ends."""
+        """One curve per jump of the first look, growing at both ends; not the two edges of
+        a window narrower than the persistence width (search.jumps: no tol-wide corridor
+        between them to follow; the first look reports it)."""
         for key, search in self.look:
             found = search.result()
+            narrow = {m for w in found.windows if w.narrow for m in (w.lo, w.hi)}
             for jump in found.jumps:
                 if jump.status != "converged" or jump.certification in ("vanished", "failed"):
+                    continue
+                if jump.mu_star in narrow:
                     continue
                 bracket = LineBracket("mu", key, jump.mu_lo, jump.mu_hi, jump.rising, jump)
                 point = CurvePoint(bracket, self.plane.scaled(bracket.key, bracket.mu))
