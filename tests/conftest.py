@@ -54,15 +54,18 @@ def points_done(out) -> int:
         return 0
 
 
-def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None):
+def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None, done=None):
     """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
-    returned once `points` points are done; fails if it ended before."""
+    returned once `points` points are done (or, if given, once done() is true); fails if
+    it ended before. spec: one campaign file, or a list of them (a folder of campaigns)."""
     import subprocess
     import sys
     import time
 
+    specs = [str(path) for path in spec] if isinstance(spec, list | tuple) else [str(spec)]
+    done = done or (lambda: points_done(out) >= points)
     proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        [sys.executable, "-m", "frictiondisk.cli", "run", *specs, "-o", str(out)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -70,7 +73,7 @@ def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None):
         cwd=cwd,
     )
     t0 = time.time()
-    while time.time() - t0 < 120 and proc.poll() is None and points_done(out) < points:
+    while time.time() - t0 < 120 and proc.poll() is None and not done():
         time.sleep(0.02)
     assert proc.poll() is None, "the campaign finished before the signal"
     return proc
