@@ -23,15 +23,6 @@ def coulomb_mu_star(
     return (c_s * x_ms + g_factor(c_s=c_s, **kw) * radius) / F_n
 
 
-def pytest_configure(config) -> None:
-    """The tests' subprocesses never meet a warm server (`frictiondisk serve`) left
-    running by the developer: they look for one in a fresh private directory."""
-    import os
-    import tempfile
-
-    os.environ["FRICTIONDISK_SERVER_DIR"] = tempfile.mkdtemp(prefix="frictiondisk-test-servers-")
-
-
 # 24 points at tol 1e-8: long enough (about 5 s) to be stopped after its second point
 LONG_CAMPAIGN = """\
 name: stop_line
@@ -54,7 +45,7 @@ def points_done(out) -> int:
         return 0
 
 
-def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None, done=None):
+def start_campaign_until(spec, out, points: int = 2, done=None):
     """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
     returned once `points` points are done (or, if given, once done() is true); fails if
     it ended before. spec: one campaign file, or a list of them (a folder of campaigns)."""
@@ -69,8 +60,6 @@ def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None, done=No
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
-        env=env,
-        cwd=cwd,
     )
     t0 = time.time()
     while time.time() - t0 < 120 and proc.poll() is None and not done():
