@@ -28,16 +28,17 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.frictiondisk-installed
 LINT_PATHS := frictiondisk tests benchmarks
 
+DEMO_FOLDER := out/demo
 DEMO_SCENE := campaigns/demo_pin.yaml
-DEMO_DIR := out/demo
+DEMO_DIR := $(DEMO_FOLDER)/orbit
 DEMO_NC := $(DEMO_DIR)/trajectory.nc
 DEMO_PNG := $(DEMO_DIR)/orbit.png
 DEMO_JSON := $(DEMO_DIR)/summary.json
 DEMO_CAMPAIGN := campaigns/demo_line.yaml
-DEMO_CAMPAIGN_DIR := out/demo_line
+DEMO_CAMPAIGN_DIR := $(DEMO_FOLDER)/demo_line
 DEMO_LINE_PNG := $(DEMO_CAMPAIGN_DIR)/mu_star.png
 DEMO_DISK_CAMPAIGN := campaigns/demo_disk_line.yaml
-DEMO_DISK_DIR := out/demo_disk_line
+DEMO_DISK_DIR := $(DEMO_FOLDER)/demo_disk_line
 DEMO_DISK_PNG := $(DEMO_DISK_DIR)/mu_star.png
 LOCK := requirements/lock.txt
 LOCK_ARGS ?= --upgrade
@@ -65,14 +66,13 @@ lock:
 	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --extra dashboard $(LOCK_ARGS) --generate-hashes \
 		--python-version 3.11 --python-platform x86_64-unknown-linux-gnu -o $(LOCK)
 
-# The main job: locate the jump mu* along a line of axes offsets (resumes if interrupted),
-# then one orbit of the demo scene.
+# The main job: locate the jump mu* along two lines of axes offsets, the pin's and the
+# disk's, in one run (each campaign into out/demo/<name>/; resumes if interrupted), then
+# one orbit of the demo scene.
 demo: $(STAMP)
-	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) -o $(DEMO_CAMPAIGN_DIR)
-	$(BIN)/frictiondisk status $(DEMO_CAMPAIGN_DIR)
+	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) $(DEMO_DISK_CAMPAIGN) -o $(DEMO_FOLDER)
+	$(BIN)/frictiondisk status $(DEMO_FOLDER)
 	$(BIN)/frictiondisk plot $(DEMO_CAMPAIGN_DIR) -o $(DEMO_LINE_PNG)
-	$(BIN)/frictiondisk run $(DEMO_DISK_CAMPAIGN) -o $(DEMO_DISK_DIR)
-	$(BIN)/frictiondisk status $(DEMO_DISK_DIR)
 	$(BIN)/frictiondisk plot $(DEMO_DISK_DIR) -o $(DEMO_DISK_PNG)
 	@mkdir -p $(DEMO_DIR)
 	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)

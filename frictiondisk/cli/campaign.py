@@ -132,17 +132,20 @@ def _execute(
             [f"finished runs are in the journal; fix this, then: frictiondisk resume {out_dir}"],
         )
     for summary in summaries:
-        if several:
-            click.echo(f"{summary.results.parent.name}:")
-        _echo_summary(summary, out_dir / summary.results.parent.name if several else out_dir)
+        if several:  # each campaign's lines under its name
+            name = summary.results.parent.name
+            click.echo(f"{name}:")
+            _echo_summary(summary, out_dir / name, indent="  ")
+        else:
+            _echo_summary(summary, out_dir)
     if several:
         wall = max((summary.wall_s for summary in summaries), default=0.0)
         click.echo(f"all {len(summaries)} campaigns done, {wall:.1f} s")
 
 
-def _echo_summary(summary, out_dir: Path) -> None:
+def _echo_summary(summary, out_dir: Path, indent: str = "") -> None:
     """What a finished campaign prints: rejected journal entries, its counts, its files
-    and its closing lines."""
+    and its closing lines (on stdout, each line after `indent`)."""
     for line in summary.moved_aside:
         click.echo(f"journal: rejected and recomputed: {line}", err=True)
     if summary.moved_aside:
@@ -152,17 +155,17 @@ def _echo_summary(summary, out_dir: Path) -> None:
             err=True,
         )
     click.echo(
-        f"done: {summary.points} points ({summary.points_failed} failed), "
+        f"{indent}done: {summary.points} points ({summary.points_failed} failed), "
         f"{summary.runs_total} runs used, {summary.runs_computed} computed now, "
         f"{summary.runs_saved_by_warm_start} saved by warm starts, {summary.wall_s:.1f} s"
     )
-    click.echo(f"results: {summary.results}")
+    click.echo(f"{indent}results: {summary.results}")
     label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
-    click.echo(f"{label} {summary.runs}")
-    _echo_closing(summary.results)
+    click.echo(f"{indent}{label} {summary.runs}")
+    _echo_closing(summary.results, indent)
 
 
-def _echo_closing(results_path: Path) -> None:
+def _echo_closing(results_path: Path, indent: str = "") -> None:
     """The closing lines of a finished campaign, read from results.nc once: a find_jump
     with uncertain points names them (not an error, exit 0: the best bracket of each is
     kept, flagged `uncertain`); a basin campaign prints its fractions with their 95 %
@@ -179,7 +182,7 @@ def _echo_closing(results_path: Path) -> None:
         if results.attrs.get("task") == "basin":
             lines += summary_lines(results.load())
     for line in lines:
-        click.echo(line)
+        click.echo(indent + line)
 
 
 _workers = click.option(
