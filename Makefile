@@ -3,13 +3,16 @@
 #   make demo    create .venv, install from the lock file, locate mu* along the demo lines
 #                (the pin, and the paper's disk from rest), print the mu* tables, draw the
 #                mu* lines and one orbit, show where the outputs are
+#   make install create .venv, install from the lock file, compile the numba kernel once
 #   make test    create .venv if needed, install from the lock file, run the test suite
 #   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows;
 #                LOCK_ARGS= keeps the pinned versions and only adds what is new)
 #   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
 #                run alongside; bench_layouts: cost per step against N, arrow vs dense LU),
 #                runs per mu* (bench_runs: the search against plain bisection), start-up
-#                (bench_startup: warm simulate, the fixed cost of run)
+#                (bench_startup: warm simulate, the fixed cost of run), the six figure
+#                campaigns one by one against one run of all six (bench_together;
+#                BENCH_TOGETHER_ARGS=--quick for a smoke check)
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
@@ -23,6 +26,7 @@ VENV ?= .venv
 PYTHON ?= python3
 PYTEST_ARGS ?=
 BENCH_SCALING_ARGS ?= --quick
+BENCH_TOGETHER_ARGS ?= --repeat 2
 
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.frictiondisk-installed
@@ -49,11 +53,14 @@ all: test
 
 # (Re)install whenever pyproject.toml or the lock file changes; an existing .venv is reused,
 # never recreated. Every dependency comes from the lock file (exact versions and hashes);
-# the project itself is installed without resolving dependencies again.
+# the project itself is installed without resolving dependencies again. Then the numba
+# kernel is compiled into its cache (frictiondisk/kernel/__pycache__), so that the first
+# campaign or simulate loads it instead of compiling it (docs/benchmarks.md, compile).
 $(STAMP): pyproject.toml $(LOCK)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -r $(LOCK)
 	$(BIN)/python -m pip install --no-deps -e .
+	$(BIN)/python -c "from frictiondisk.engine.tasks import warm_up; warm_up()"
 	touch $@
 
 install: $(STAMP)
@@ -96,6 +103,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_layouts.py
 	$(BIN)/python benchmarks/bench_runs.py
 	$(BIN)/python benchmarks/bench_startup.py
+	$(BIN)/python benchmarks/bench_together.py $(BENCH_TOGETHER_ARGS)
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)
