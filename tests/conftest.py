@@ -45,16 +45,15 @@ def points_done(out) -> int:
         return 0
 
 
-def start_campaign_until(spec, out, points: int = 2, done=None):
+def start_campaign_until(spec, out, points: int = 2, until=None):
     """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
-    returned once `points` points are done (or, if given, once done() is true); fails if
-    it ended before. spec: one campaign file, or a list of them (a folder of campaigns)."""
+    returned once `points` points are done (or once `until()`, if given, is true); fails
+    if it ended before. spec: one campaign file, or a list of them (a folder of campaigns)."""
     import subprocess
     import sys
     import time
 
     specs = [str(path) for path in spec] if isinstance(spec, list | tuple) else [str(spec)]
-    done = done or (lambda: points_done(out) >= points)
     proc = subprocess.Popen(
         [sys.executable, "-m", "frictiondisk.cli", "run", *specs, "-o", str(out)],
         stdout=subprocess.PIPE,
@@ -62,7 +61,8 @@ def start_campaign_until(spec, out, points: int = 2, done=None):
         text=True,
     )
     t0 = time.time()
-    while time.time() - t0 < 120 and proc.poll() is None and not done():
+    ready = until or (lambda: points_done(out) >= points)
+    while time.time() - t0 < 120 and proc.poll() is None and not ready():
         time.sleep(0.02)
     assert proc.poll() is None, "the campaign finished before the signal"
     return proc

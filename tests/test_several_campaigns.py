@@ -142,7 +142,7 @@ def test_sigterm_stops_every_campaign_and_resume_finishes_them_identically(long_
     specs, whole = long_pair
     names = ["left", "right"]
     out = tmp_path / "stopped"
-    proc = start_campaign_until(specs, out, done=lambda: min(_folder_points(out, names)) >= 1)
+    proc = start_campaign_until(specs, out, until=lambda: min(_folder_points(out, names)) >= 1)
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == 143, err
