@@ -27,8 +27,6 @@ from frictiondisk.engine.cluster import (
 from frictiondisk.engine.signals import _raise_if_stop_requested
 from frictiondisk.engine.tasks import Sealed, run_sealed, warm_up
 
-__all__ = ["RunSummary", "_Driver"]
-
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
 PARTIAL_EVERY = 30.0  # [s] between partial results.nc rewrites of a running campaign
 BAR_EVERY = 0.2  # [s] between progress-bar repaints
