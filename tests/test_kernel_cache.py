@@ -80,24 +80,40 @@ def test_a_constant_argument_compiles_the_callee_once():
 FIRST = 0
 
 
+SIGNATURES = """
+import importlib, json, pathlib
+import numba
+from frictiondisk.kernel import jit
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import simulate
+
+for scene in ("pin", "disk"):
+    config = scene_from_dict({"scene": scene, "numerics": {"t_decide": 0.5}})
+    simulate(config)
+    simulate(config, record=True, dt_out=0.01)
+several = {}
+for source in pathlib.Path(jit.__file__).parent.glob("*.py"):
+    module = importlib.import_module(f"frictiondisk.kernel.{source.stem}")
+    for name, value in vars(module).items():
+        if isinstance(value, numba.core.dispatcher.Dispatcher) and len(value.signatures) > 1:
+            several[f"{source.stem}.{name}"] = [str(s) for s in value.signatures]
+from frictiondisk.kernel import model
+print(json.dumps({"several": several, "mode": str(model.switch_value.signatures[0][-1])}))
+"""
+
+
 def test_every_kernel_function_keeps_one_signature():
     """A pin, a disk and a recorded run call the kernel from Python with one set of
     argument types (e.g. a mode as int8, as the kernel holds it): one compiled (or loaded)
-    signature per kernel function."""
-    import importlib
+    signature per kernel function. In a process of its own: tests call kernel functions
+    directly with other types."""
+    import json
+    import subprocess
+    import sys
 
-    from frictiondisk.model.scene import scene_from_dict
-    from frictiondisk.simulation.simulate import simulate
-
-    for scene in ("pin", "disk"):
-        config = scene_from_dict({"scene": scene, "numerics": {"t_decide": 0.5}})
-        simulate(config)
-        simulate(config, record=True, dt_out=0.01)
-    several = {}
-    for source in KERNEL.glob("*.py"):
-        module = importlib.import_module(f"frictiondisk.kernel.{source.stem}")
-        for name, value in vars(module).items():
-            signatures = getattr(value, "signatures", None)
-            if isinstance(value, numba.core.dispatcher.Dispatcher) and len(signatures) > 1:
-                several[f"{source.stem}.{name}"] = signatures
-    assert not several, several
+    done = subprocess.run(
+        [sys.executable, "-c", SIGNATURES], capture_output=True, text=True, check=True
+    )
+    seen = json.loads(done.stdout.splitlines()[-1])
+    assert seen["several"] == {}
+    assert seen["mode"] == "int8"  # as the kernel holds modes: its own calls compile no other
