@@ -14,11 +14,12 @@
 #                campaigns one by one against one run of all six (bench_together;
 #                BENCH_TOGETHER_ARGS=--quick for a smoke check)
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
-#   make figures run the paper's figure campaigns (campaigns/fig*.yaml) into out/figures/
+#   make figures run the paper's figure campaigns (campaigns/fig*.yaml, and the traced Fig 11)
+#                into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
-#   make gallery make figures, then copy the PNGs into figures/ (the README gallery: commit them)
+#   make gallery make figures, then copy the PNGs into figures/ (the gallery of docs/user-guide.md: commit them)
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
-#                and draw figures/basin_*.png (README "Basin stability")
+#                and draw figures/basin_*.png (docs/user-guide.md, "Basin stability")
 #   make lint    ruff check + ruff format --check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
@@ -78,7 +79,6 @@ lock:
 # one orbit of the demo scene.
 demo: $(STAMP)
 	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) $(DEMO_DISK_CAMPAIGN) -o $(DEMO_FOLDER)
-	$(BIN)/frictiondisk status $(DEMO_FOLDER)
 	$(BIN)/frictiondisk plot $(DEMO_CAMPAIGN_DIR) -o $(DEMO_LINE_PNG)
 	$(BIN)/frictiondisk plot $(DEMO_DISK_DIR) -o $(DEMO_DISK_PNG)
 	@mkdir -p $(DEMO_DIR)
@@ -110,7 +110,7 @@ figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.cli.gallery --campaigns campaigns --out out/figures --figures out/figures
 
 gallery: figures
-	cp out/figures/fig*.png figures/
+	cp out/figures/fig*.png out/figures/trace_fig11_betab_mu.png figures/
 
 basin-figures: $(STAMP)
 	$(BIN)/python benchmarks/basin_study.py --out out/basin --figures figures

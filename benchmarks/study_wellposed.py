@@ -1,45 +1,63 @@
-"""Well-posedness study: does the headline mu* move with the horizon and rtol?
+"""Well-posedness study: is the certified headline mu* true, checked against a dense
+reference and settled run by run?
 
 Draws seeded random scenes (pin and disk; random x_ms, x0, m_s, omega_m, J_s, phidot0,
-beta_b; a Stribeck curve on about 30 %) and locates every jump of each with a prescan and
-bisection three times:
+beta_b; a Stribeck curve on half of them) and locates every jump of each three times:
 
-* `default`: the scene's numerics (t_decide 30 s, rtol 1e-6), certification on (the
-  campaign default, find_jump.certify);
-* `uncertified`: the same without certification (what the tool did before);
-* `reference`: horizon x 8 and rtol / 100, no certification.
+* `default`: the campaign defaults (prescan 0.02 ... 0.80 step 0.03, adaptive, t_decide
+  30 s, rtol 1e-6, certification on: the ladder, persistence, the grid below mu*);
+* `uncertified`: the same with certification off (what the extra wall time is against);
+* `reference`: a dense prescan (step 0.01, every value run), horizon x 8, rtol / 100.
 
-A scene *disagrees* when the headline mu* (the lowest rising jump) of a setting differs
-from the reference's by more than tol, or one finds a jump where the other finds none. A
-disagreement is *silent* when that setting calls the point converged and not `uncertain`.
-With certification on, the count of silent disagreements must be 0. The extra wall time
-of certification is the default's run time over the uncertified one's (same scenes).
+A scene *disagrees* when the headline mu* (the lowest rising jump that persists) of the
+default and the reference differ by more than tol, or one finds a headline and the other
+none. Every disagreement is *settled run by run*: each verdict the two settings claim at
+the disputed mu (their headline brackets' ends and every decided value between the two
+headlines) is run again with a long horizon (SETTLE_HORIZON s, horizon_budget SETTLE_BUDGET,
+rtol / 100) under `numerics.evidence: observe`, where only what the run shows counts (it
+sticks, or its section repeats), never an extrapolation. The table says which side was
+right: the default (then the reference missed or misjudged something), the reference
+(then the default's verdict was wrong: *silent* if the default called that point
+certified), both (a window between their samples, narrower than the default's grid), or
+neither settled.
 
-    python benchmarks/study_wellposed.py                  # 50 scenes, 2 processes
-    python benchmarks/study_wellposed.py --scenes 3 --processes 1
+    python benchmarks/study_wellposed.py                       # seeds 1-10, 50 scenes each
+    python benchmarks/study_wellposed.py --seeds 1 --scenes 4 --processes 1
+    python benchmarks/study_wellposed.py --cache out/wellposed.jsonl   # resumable
+
+Exit 1 if any default verdict is settled against a certified default.
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import hashlib
+import json
 import math
 import multiprocessing
 import os
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
 TOL = 1.0e-4
 PRESCAN = tuple(round(0.02 + 0.03 * k, 4) for k in range(27))  # 0.02 ... 0.80
+REFERENCE_PRESCAN = tuple(round(0.02 + 0.01 * k, 4) for k in range(79))  # 0.02 ... 0.80
 REFERENCE_HORIZON = 8.0
 REFERENCE_RTOL = 0.01
-STRIBECK_SHARE = 0.3
+SETTLE_HORIZON = 1500.0  # [s] t_decide of a settling run
+SETTLE_BUDGET = 8.0  # its horizon_budget: up to 12 000 s
+SETTLE_RTOL = 0.01  # rtol factor of a settling run
+SETTLE_MAX = 6  # settling runs per disagreement at most (the nearest to the dispute)
+SETTINGS = ("default", "uncertified", "reference")
 
 
 def draw_scene(seed: int, index: int) -> dict:
-    """The scene dict of scene `index` of the study seeded `seed`."""
+    """The scene dict of scene `index` of the study seeded `seed`: a pin for even index, a
+    disk for odd; a Stribeck curve on every other pin and every other disk."""
     rng = np.random.default_rng([seed, index])
     scene = "disk" if index % 2 else "pin"
     omega_m = float(rng.uniform(0.6, 1.6))
@@ -54,33 +72,37 @@ def draw_scene(seed: int, index: int) -> dict:
         params["phidot0"] = float(rng.choice([0.0, omega_m]))
         params["beta_b"] = float(rng.choice([0.0, rng.uniform(0.0, 0.01)]))
     contact: dict = {}
-    if rng.uniform() < STRIBECK_SHARE:
-        contact["stribeck"] = {
-            "r": float(rng.uniform(0.6, 0.95)),
-            "v_s": float(10.0 ** rng.uniform(-3.0, -1.5)),
-        }
+    stribeck = {"r": float(rng.uniform(0.6, 0.95)), "v_s": float(10.0 ** rng.uniform(-3, -1.5))}
+    if (index // 2) % 2 == 1:
+        contact["stribeck"] = stribeck
     return {"scene": scene, "params": params, "contact": contact}
 
 
 @dataclasses.dataclass(frozen=True)
 class Found:
-    """The jumps one setting found for one scene."""
+    """What one setting found for one scene."""
 
     status: str
-    mu_star: float  # headline: the lowest rising jump (NaN: none)
+    reason: str
+    mu_star: float  # headline (NaN: none)
+    mu_lo: float
+    mu_hi: float
     n_jumps: int
+    windows: tuple[tuple[float, float], ...]
     certification: str
+    grid_share: float  # share of the grid below mu* with a decided verdict (NaN: no headline)
+    resolution: float  # largest gap between decided mu below mu* (NaN: no headline)
+    claims: tuple[tuple[float, bool], ...]  # every decided (mu, sticks) of the search
     runs: int
     wall_s: float  # kernel wall time of every run [s]
 
+    @property
+    def certified(self) -> bool:
+        return self.status == "converged" and self.certification in ("certified", "recertified")
 
-def locate(scene: dict, setting: str) -> Found:
-    """Prescan and bisect every jump of `scene` under `setting` (module docstring)."""
-    from frictiondisk.engine.tasks import run_bisection
+
+def _config(scene: dict, setting: str):
     from frictiondisk.model.scene import scene_from_dict
-    from frictiondisk.model.search_settings import OFF, Certify
-    from frictiondisk.search.jumps import JumpSearch
-    from frictiondisk.search.prescan import default_stride
 
     config = scene_from_dict(scene)
     if setting == "reference":
@@ -91,53 +113,191 @@ def locate(scene: dict, setting: str) -> Found:
                 "numerics.rtol": num.rtol * REFERENCE_RTOL,
             }
         )
+    return config
+
+
+def locate(scene: dict, setting: str) -> Found:
+    """Prescan and bisect every jump of `scene` under `setting` (module docstring)."""
+    from frictiondisk.engine.tasks import run_bisection
+    from frictiondisk.model.search_settings import OFF, Certify
+    from frictiondisk.search.jumps import JumpSearch
+    from frictiondisk.search.prescan import default_stride
+
+    config = _config(scene, setting)
+    grid = REFERENCE_PRESCAN if setting == "reference" else PRESCAN
+    stride = 1 if setting == "reference" else default_stride(len(grid), "decide", "corotation")
     certify = Certify() if setting == "default" else OFF
-    stride = default_stride(len(PRESCAN), "decide", config.numerics.stick_rule)
-    search = JumpSearch(PRESCAN, TOL, 2, "decide", 2, certify, stride=stride)
+    search = JumpSearch(grid, TOL, 2, "decide", 2, certify, stride=stride)
     search, _ = run_bisection(search, config.canonical(), 2.0, os.devnull)
     result = search.result()
     runs = [run.result for run in result.runs]
-    primary = result.primary
+    head = search.headline()
+    below = result.grid_below
     return Found(
         status=result.status,
-        mu_star=primary.mu_star if primary is not None and primary.rising else math.nan,
+        reason=result.reason,
+        mu_star=head.mu_star if head is not None else math.nan,
+        mu_lo=head.mu_lo if head is not None else math.nan,
+        mu_hi=head.mu_hi if head is not None else math.nan,
         n_jumps=len(result.jumps),
+        windows=tuple((float(w.lo), float(w.hi)) for w in result.windows),
         certification=result.certification,
+        grid_share=below.share if below is not None else math.nan,
+        resolution=below.resolution if below is not None else math.nan,
+        claims=tuple((float(mu), bool(stick)) for mu, stick in search.known()),
         runs=len(runs),
         wall_s=float(sum(run.get("wall_s", 0.0) for run in runs)),
     )
 
 
-def study_scene(args: tuple[int, int]) -> dict:
-    seed, index = args
-    scene = draw_scene(seed, index)
-    found = {setting: locate(scene, setting) for setting in SETTINGS}
-    return {"index": index, "scene": scene, **found}
-
-
-SETTINGS = ("default", "uncertified", "reference")
-
-
 def disagrees(found: Found, reference: Found) -> bool:
-    """Headline mu* more than TOL apart, or a jump on one side only."""
+    """Headline mu* more than TOL apart, or a headline on one side only."""
     a, b = found.mu_star, reference.mu_star
     if math.isnan(a) or math.isnan(b):
         return math.isnan(a) != math.isnan(b)
     return abs(a - b) > TOL * (1 + 1e-9)
 
 
-def silent(found: Found, reference: Found) -> bool:
-    """A disagreement the setting does not flag (converged and not uncertain)."""
-    flagged = found.status != "converged" or found.certification == "uncertain"
-    return disagrees(found, reference) and not flagged
+def disputed(default: Found, reference: Found) -> list[float]:
+    """The mu whose verdicts settle a disagreement: both headline brackets' ends and every
+    value either setting decided between the two headlines (the SETTLE_MAX nearest)."""
+    heads = [m for m in (default.mu_star, reference.mu_star) if math.isfinite(m)]
+    ends = [m for f in (default, reference) for m in (f.mu_lo, f.mu_hi) if math.isfinite(m)]
+    if not heads:
+        return []
+    lo, hi = min(heads) - TOL, max(heads) + TOL
+    inside = {mu for f in (default, reference) for mu, _ in f.claims if lo <= mu <= hi}
+    centre = 0.5 * (lo + hi)
+    inside = sorted(inside - set(ends), key=lambda mu: abs(mu - centre))
+    return sorted({*ends, *inside[: max(0, SETTLE_MAX - len(ends))]})
 
 
-def run_study(scenes: int, seed: int, processes: int) -> list[dict]:
-    jobs = [(seed, index) for index in range(scenes)]
+def settle(scene: dict, mu: float) -> dict:
+    """A long run at mu that counts only what it shows (numerics.evidence: observe)."""
+    from frictiondisk.simulation.simulate import simulate
+
+    config = _config(scene, "default")
+    num = config.numerics
+    config = config.with_overrides(
+        {
+            "params.mu": mu,
+            "numerics.t_decide": SETTLE_HORIZON,
+            "numerics.horizon_budget": SETTLE_BUDGET,
+            "numerics.rtol": num.rtol * SETTLE_RTOL,
+            "numerics.evidence": "observe",
+        }
+    )
+    result = simulate(config)
+    sticks = None if result.outcome == "undetermined" else result.outcome == "stick"
+    return {
+        "mu": mu,
+        "outcome": result.outcome,
+        "sticks": sticks,
+        "t_end": result.t_end,
+        "reason": result.reason,
+    }
+
+
+def claim_at(found: Found, mu: float) -> bool | None:
+    for m, stick in found.claims:
+        if m == mu:
+            return stick
+    return None
+
+
+def verdict(row: dict) -> str:
+    """Which side the settling runs proved right: default, reference, both (a window
+    between their samples), neither, or unsettled."""
+    wrong = {"default": False, "reference": False}
+    unsettled = False
+    for run in row["settled"]:
+        for side in wrong:
+            claim = claim_at(row[side], run["mu"])
+            if claim is None:
+                continue
+            if run["sticks"] is None:
+                unsettled = True
+            elif run["sticks"] != claim:
+                wrong[side] = True
+    if wrong["default"] and wrong["reference"]:
+        return "neither"
+    if wrong["default"]:
+        return "reference"
+    if wrong["reference"]:
+        return "default"
+    return "unsettled" if unsettled else "both"
+
+
+def study_scene(args: tuple[int, int, bool]) -> dict:
+    seed, index, reference = args
+    scene = draw_scene(seed, index)
+    row = {"seed": seed, "index": index, "scene": scene}
+    for setting in SETTINGS if reference else SETTINGS[:2]:
+        row[setting] = locate(scene, setting)
+    row["settled"] = []
+    if reference and disagrees(row["default"], row["reference"]):
+        row["settled"] = [settle(scene, mu) for mu in disputed(row["default"], row["reference"])]
+    return row
+
+
+CODE = ("kernel", "outcome", "simulation", "search", "model")  # what decides a row
+
+
+def _code_hash() -> str:
+    """A hash of this study and of the packages that decide its rows (not the engine, the
+    store or the figures): a cached row is reused only with all of them unchanged."""
+    root = Path(__file__).resolve().parents[1] / "frictiondisk"
+    digest = hashlib.sha256(Path(__file__).read_bytes())
+    for package in CODE:
+        for source in sorted((root / package).rglob("*.py")):
+            digest.update(source.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def _to_json(row: dict) -> dict:
+    return {k: dataclasses.asdict(v) if isinstance(v, Found) else v for k, v in row.items()}
+
+
+def _from_json(row: dict) -> dict:
+    out = dict(row)
+    for setting in [s for s in SETTINGS if s in row]:
+        data = dict(row[setting])
+        data["windows"] = tuple(tuple(w) for w in data["windows"])
+        data["claims"] = tuple(tuple(c) for c in data["claims"])
+        out[setting] = Found(**data)
+    return out
+
+
+def run_study(
+    seeds, scenes: int, processes: int, cache: Path | None = None, reference: bool = True
+) -> list[dict]:
+    """Every scene of every seed; rows already in `cache` (same code) are not run again.
+    reference False: the default and uncertified settings only (the cost of certification)."""
+    jobs = [(seed, index, reference) for seed in seeds for index in range(scenes)]
+    code = _code_hash() + ("" if reference else "-cost")
+    done: dict[tuple[int, int], dict] = {}
+    if cache is not None and cache.is_file():
+        for line in cache.read_text().splitlines():
+            entry = json.loads(line)
+            if entry.get("code") == code:
+                done[(entry["seed"], entry["index"])] = _from_json(entry["row"])
+    todo = [job for job in jobs if job[:2] not in done]
+
+    def keep(row):
+        done[(row["seed"], row["index"])] = row
+        if cache is not None:
+            with cache.open("a") as f:
+                entry = {"code": code, "seed": row["seed"], "index": row["index"]}
+                f.write(json.dumps({**entry, "row": _to_json(row)}) + "\n")
+
     if processes <= 1:
-        return [study_scene(job) for job in jobs]
-    with multiprocessing.get_context("spawn").Pool(processes) as pool:
-        return list(pool.imap(study_scene, jobs))
+        for job in todo:
+            keep(study_scene(job))
+    else:
+        with multiprocessing.get_context("spawn").Pool(processes) as pool:
+            for row in pool.imap_unordered(study_scene, todo):
+                keep(row)
+    return [done[job[:2]] for job in jobs]
 
 
 def describe(scene: dict) -> str:
@@ -147,47 +307,115 @@ def describe(scene: dict) -> str:
 
 
 def report(rows: list[dict], wall_s: float) -> list[str]:
-    lines = [f"well-posedness study: {len(rows)} scenes, tol {TOL:g}, {wall_s:.0f} s"]
-    for setting in ("default", "uncertified"):
-        differ = [r for r in rows if disagrees(r[setting], r["reference"])]
-        quiet = [r for r in rows if silent(r[setting], r["reference"])]
-        lines.append(f"  {setting:<12} differ from reference: {len(differ)}; silent: {len(quiet)}")
-        for r in differ:
-            f, ref = r[setting], r["reference"]
-            lines.append(
-                f"    scene {r['index']}: mu* {f.mu_star:.5f} ({f.certification}) vs "
-                f"{ref.mu_star:.5f}; {describe(r['scene'])}"
-            )
-    flags: dict[str, int] = {}
-    for r in rows:
-        flags[r["default"].certification] = flags.get(r["default"].certification, 0) + 1
+    n = len(rows)
+    default = [r["default"] for r in rows]
+    failed = [r for r in rows if r["default"].status != "converged"]
+    lines = [f"well-posedness study: {n} scenes, tol {TOL:g}, {wall_s:.0f} s"]
+    settings = [s for s in SETTINGS if all(s in r for r in rows)]
+    differ = [
+        r for r in rows if "reference" in settings and disagrees(r["default"], r["reference"])
+    ]
+    verdicts = {(r["seed"], r["index"]): verdict(r) for r in differ}
+    silent = [
+        r
+        for r in differ
+        if verdicts[(r["seed"], r["index"])] in ("reference", "neither") and r["default"].certified
+    ]
+    counts: dict[str, int] = {}
+    for v in verdicts.values():
+        counts[v] = counts.get(v, 0) + 1
     lines.append(
-        "  certification of the default: " + ", ".join(f"{k} {v}" for k, v in flags.items())
+        f"  default against the dense reference: {len(differ)} disagree; settled run by run: "
+        + ", ".join(
+            f"{k} right {v}" if k in ("default", "reference", "both") else f"{k} {v}"
+            for k, v in sorted(counts.items())
+        )
     )
-    runs = {s: sum(r[s].runs for r in rows) for s in SETTINGS}
-    walls = {s: sum(r[s].wall_s for r in rows) for s in SETTINGS}
+    lines.append(f"  silent errors (settled against a certified default): {len(silent)}")
+    lines.append(
+        f"  failed points (honest, with a reason): {len(failed)} of {n} "
+        f"({100 * len(failed) / max(1, n):.1f} %)"
+    )
+    flags: dict[str, int] = {}
+    for f in default:
+        flags[f.certification] = flags.get(f.certification, 0) + 1
+    lines.append(
+        "  certification of the default: " + ", ".join(f"{k} {v}" for k, v in sorted(flags.items()))
+    )
+    shares = [f.grid_share for f in default if math.isfinite(f.grid_share)]
+    whole = sum(1 for s in shares if s >= 1.0)
+    lines.append(
+        f"  grid below mu* decided: {whole} of {len(shares)} headlines on their whole grid "
+        f"(mean share {np.mean(shares) if shares else math.nan:.3f}); resolution "
+        f"{np.nanmax([f.resolution for f in default] or [math.nan]):.3g} at most"
+    )
+    windowed = {s: sum(1 for r in rows if r[s].windows) for s in settings if s != "uncertified"}
+    lines.append(
+        "  scenes with sticking windows: " + ", ".join(f"{s} {k}" for s, k in windowed.items())
+    )
+    walls = {s: sum(r[s].wall_s for r in rows) for s in settings}
+    runs = {s: sum(r[s].runs for r in rows) for s in settings}
+    extra = walls["default"] / walls["uncertified"] - 1.0 if walls["uncertified"] > 0 else math.nan
     lines.append(
         "  runs: "
-        + ", ".join(f"{s} {runs[s]}" for s in SETTINGS)
+        + ", ".join(f"{s} {runs[s]}" for s in settings)
         + "; kernel wall time [s]: "
-        + ", ".join(f"{s} {walls[s]:.1f}" for s in SETTINGS)
+        + ", ".join(f"{s} {walls[s]:.1f}" for s in settings)
     )
-    extra = walls["default"] / walls["uncertified"] - 1.0 if walls["uncertified"] > 0 else math.nan
     lines.append(f"  certification costs {100 * extra:+.0f} % kernel wall time over uncertified")
+    if differ:
+        lines.append("  disagreements (seed/scene: default mu* [cert], reference mu*, settled):")
+    for r in differ:
+        d, ref = r["default"], r["reference"]
+        runs_text = "; ".join(
+            f"{s['mu']:.5f} {s['outcome']} at {s['t_end']:.0f} s" for s in r["settled"]
+        )
+        lines.append(
+            f"    {r['seed']}/{r['index']}: {d.mu_star:.5f} [{d.certification}] vs "
+            f"{ref.mu_star:.5f} -> {verdicts[(r['seed'], r['index'])]} right; "
+            f"{describe(r['scene'])}; runs: {runs_text}"
+        )
+    for r in failed:
+        lines.append(
+            f"    failed {r['seed']}/{r['index']}: {r['default'].reason}; {describe(r['scene'])}"
+        )
     return lines
+
+
+def silent_errors(rows: list[dict]) -> int:
+    return sum(
+        1
+        for r in rows
+        if "reference" in r
+        and disagrees(r["default"], r["reference"])
+        and verdict(r) in ("reference", "neither")
+        and r["default"].certified
+    )
+
+
+def _seeds(text: str) -> list[int]:
+    if "-" in text:
+        a, b = text.split("-")
+        return list(range(int(a), int(b) + 1))
+    return [int(s) for s in text.split(",")]
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scenes", type=int, default=50)
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seeds", default="1-10", help="e.g. 1-10 or 1,3")
+    parser.add_argument("--scenes", type=int, default=50, help="scenes per seed")
     parser.add_argument("--processes", type=int, default=2)
+    parser.add_argument("--cache", type=Path, default=None, help="JSON lines of finished rows")
+    parser.add_argument(
+        "--cost-only", action="store_true", help="no reference: the cost of certification only"
+    )
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
-    rows = run_study(args.scenes, args.seed, args.processes)
-    lines = report(rows, time.perf_counter() - t0)
-    print("\n".join(lines))
-    return 1 if any(silent(r["default"], r["reference"]) for r in rows) else 0
+    rows = run_study(
+        _seeds(args.seeds), args.scenes, args.processes, args.cache, not args.cost_only
+    )
+    print("\n".join(report(rows, time.perf_counter() - t0)))
+    return 1 if silent_errors(rows) else 0
 
 
 if __name__ == "__main__":

@@ -53,12 +53,13 @@ def load_scene(
 ) -> SceneConfig:
     """Load and validate a scene YAML file (every key not given takes its default, SI units).
 
-    overrides: "KEY=VALUE" strings like the CLI's --set, e.g. "params.mu=0.13". A bad file
-    or value raises `frictiondisk.model.yamlio.ConfigError` naming the key and its allowed range.
+    overrides: a list of "KEY=VALUE" strings like the CLI's --set, e.g. ["params.mu=0.13"]
+    (one string alone is a TypeError, not a list of its characters). A bad file or value
+    raises `frictiondisk.model.yamlio.ConfigError` naming the key and its allowed range.
     """
     from frictiondisk.model.scene import load_scene as _load_scene
 
-    return _load_scene(path, tuple(overrides))
+    return _load_scene(path, overrides if isinstance(overrides, str) else tuple(overrides))
 
 
 def simulate(scene: SceneConfig, record: bool = False, dt_out: float = 0.0) -> SimulationResult:

@@ -45,6 +45,25 @@ def points_done(out) -> int:
         return 0
 
 
+def wait_for_cpu(pid: int, seconds: float, timeout: float = 300.0) -> None:
+    """Return once process `pid` has used `seconds` more CPU time (user + system, all its
+    threads) than when called: "it has been working for a while" on any machine, where a
+    sleep of as many seconds means less work the busier the machine is. Returns early if
+    the process ends."""
+    import time
+
+    import psutil
+
+    process = psutil.Process(pid)
+    try:
+        start = sum(process.cpu_times()[:2])
+        deadline = time.monotonic() + timeout
+        while sum(process.cpu_times()[:2]) - start < seconds and time.monotonic() < deadline:
+            time.sleep(0.05)
+    except psutil.NoSuchProcess:
+        return
+
+
 def start_campaign_until(spec, out, points: int = 2, until=None):
     """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
     returned once `points` points are done (or once `until()`, if given, is true); fails
@@ -66,3 +85,37 @@ def start_campaign_until(spec, out, points: int = 2, until=None):
         time.sleep(0.02)
     assert proc.poll() is None, "the campaign finished before the signal"
     return proc
+
+
+def outside_the_figure(fig) -> list[str]:
+    """The drawn texts (legend entries, labels, notes, captions) whose extent, after a
+    draw, reaches past an edge of the figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    width, height = canvas.get_width_height()
+    # tick labels: the tight box below holds those drawn (a tick outside the view is not)
+    ticks = {
+        id(label)
+        for ax in fig.get_axes()
+        for axis in (ax.xaxis, ax.yaxis)
+        for tick in axis.get_major_ticks() + axis.get_minor_ticks()
+        for label in (tick.label1, tick.label2)
+    }
+    bad = []
+    for text in fig.findobj(Text):
+        if id(text) in ticks or not text.get_visible() or not text.get_text().strip():
+            continue
+        box = text.get_window_extent(renderer)
+        if box.x0 < -0.5 or box.y0 < -0.5 or box.x1 > width + 0.5 or box.y1 > height + 0.5:
+            bad.append(f"{text.get_text()[:50]!r} at {box.bounds}")
+    tight = fig.get_tightbbox(renderer)  # every drawn artist, ticks only if drawn
+    inches = fig.bbox_inches
+    if tight.x0 < -0.01 or tight.y0 < -0.01 or tight.x1 > inches.x1 + 0.01:
+        bad.append(f"drawn content {tight.bounds} beyond the figure {inches.bounds}")
+    if tight.y1 > inches.y1 + 0.01:
+        bad.append(f"drawn content {tight.bounds} beyond the figure {inches.bounds}")
+    return bad

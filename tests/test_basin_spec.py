@@ -84,7 +84,7 @@ def test_target_se_and_a_map_load():
         ({"sample": {"params.mu": {"uniform": [0, 1]}}}, ("basin.sample.params.mu", "params.x0")),
         (
             {"sample": {"params.phidot0": {"uniform": [0, 1]}}},
-            ("basin.sample.params.phidot0", "'pin' has none"),
+            ("basin.sample.params.phidot0", "not allowed for scene 'pin'"),
         ),
         (
             {"sample": {"params.x0": {"uniform": [0.05, -0.05]}}},

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
+from conftest import outside_the_figure
 from matplotlib.container import ErrorbarContainer
 from matplotlib.text import Text
 
@@ -81,7 +82,7 @@ def _coord(key, values):
     return dim, (dim, np.asarray(values, float), attrs)
 
 
-def _attrs(name, task, **extra):
+def _attrs(name, task, unfixed=(), **extra):
     return {
         "campaign_name": name,
         "task": task,
@@ -89,7 +90,7 @@ def _attrs(name, task, **extra):
         "numerics_yaml": NUMERICS_YAML,
         "frictiondisk_version": __version__,
         "kernel_version": "0123456789abcdef",
-        **cf.scene_attrs(scene_from_dict({"scene": "pin"})),
+        **cf.scene_attrs(scene_from_dict({"scene": "pin"}), unfixed),
         **{key: f"synthetic {key}" for key in CF_GLOBALS},
         **extra,
     }
@@ -142,7 +143,9 @@ def jump_results(
     return xr.Dataset(
         data_vars,
         coords=coords,
-        attrs=_attrs(name, "find_jump", tol=1e-3, runs_saved_by_warm_start=0),
+        attrs=_attrs(
+            name, "find_jump", {"params.mu", *along}, tol=1e-3, runs_saved_by_warm_start=0
+        ),
     )
 
 
@@ -189,7 +192,7 @@ def scan_results(mu, outcome, size, a, along=None, name="synth_scan", mode="conv
     for k, units in MEASURES.items():
         values = {"size": size, "a": a}.get(k, np.full(shape, np.nan))
         data_vars[k] = (dims, np.asarray(values, float), {"units": units, "long_name": k})
-    attrs = _attrs(name, "scan")
+    attrs = _attrs(name, "scan", {"params.mu", *(along or {})})
     attrs["campaign_yaml"] = f"name: {name}\nscene: pin\nscan:\n  mode: {mode}\n"
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
@@ -291,6 +294,39 @@ def test_jump_line_bars_span_the_brackets_and_failures_are_listed(line):
     assert "campaign lineA" in caption_text(line) and "campaign lineA" in text
 
 
+def test_no_legend_entry_or_text_of_a_busy_jump_line_is_clipped(line):
+    """The disk line with prescan jumps drew 'non-monotone: a run contradicts a single...'
+    past the right edge: a line with every kind of legend entry (non-monotone, uncertain,
+    failed with and without a bracket, further and falling jumps, runs above the view)."""
+    flags = ["certified", "uncertain", "certified", "certified", "certified"]
+    data = jump_results(
+        {"params.x_ms": X_MS},
+        LO,
+        HI,
+        STATUS,
+        REASON,
+        monotone=[1, 0, 1, 1, 1],
+        name="busy_line",
+        certification=flags,
+    )
+    jumps = np.full((5, 3), np.nan)
+    rising = np.full((5, 3), -1, np.int8)
+    jumps_lo, jumps_hi = jumps.copy(), jumps.copy()
+    jumps_lo[:, 0], jumps_hi[:, 0], rising[:, 0] = LO, HI, 1
+    jumps_lo[1, 1:], jumps_hi[1, 1:], rising[1, 1:] = [0.20, 0.25], [0.201, 0.251], [0, 1]
+    data = data.assign(
+        jump_mu_lo=(("x_ms", "jump"), jumps_lo),
+        jump_mu_hi=(("x_ms", "jump"), jumps_hi),
+        jump_rising=(("x_ms", "jump"), rising),
+    )
+    runs = jump_runs(data, [[(0.09, "slide"), (3.0, "stick")]] * 5)
+    for fig in (plot_jump_line(data), plot_jump_line(data, runs, show_runs=True)):
+        legend = [t.get_text() for t in main_axes(fig)[0].get_legend().get_texts()]
+        assert any(t.startswith("non-monotone") for t in legend), legend
+        assert any(t.startswith("falling jump") for t in legend), legend
+        assert outside_the_figure(fig) == []
+
+
 def test_jump_line_regions_sit_on_their_side_of_the_line(line):
     fig = plot_jump_line(line)
     ax = main_axes(fig)[0]
@@ -373,6 +409,13 @@ def test_jump_grid_maps_mu_star_and_hatches_failed_cells():
     assert "x_ms = 0.15 m, x0 = -0.01 m: no stick up to the limit: grid cell" in text
     assert "9 runs" in text  # --runs on a grid: run counts
     assert "campaign gridB" in text
+    assert outside_the_figure(fig) == []
+    # every legend entry at once (a failed cell, a non-monotone one): still inside
+    monotone = [[1, 0], [1, 1], [1, 1]]
+    busy = jump_results(
+        {"params.x_ms": x_ms, "params.x0": x0}, lo, hi, status, reason, monotone=monotone
+    )
+    assert outside_the_figure(plot_jump_grid(busy, show_runs=True)) == []
 
 
 # ---- scans ---------------------------------------------------------------------------------
@@ -414,6 +457,7 @@ def test_scan_mu_size_by_outcome_and_a_with_its_least_squares_line():
     np.testing.assert_allclose(fit.get_ydata(), 2.0 * fit.get_xdata() - 0.2)
     assert "numerics rodas4, rtol 1e-06" in all_text(fig)
     assert "mode converge" in caption_text(ds)
+    assert outside_the_figure(fig) == []
 
 
 def test_scan_mu_in_decide_mode_says_why_a_is_missing():
@@ -452,6 +496,7 @@ def test_scan_family_one_curve_per_value_with_its_unit():
     legend_text = {t.get_text() for t in fig.findobj(Text)}
     assert {"x0 = -0.01 m", "x0 = 0.01 m", "stick", "stick_slip (limit cycle)"} <= legend_text
     assert "campaign famD" in all_text(fig)
+    assert outside_the_figure(fig) == []
 
 
 # ---- labels, caption, refusals -----------------------------------------------------------
@@ -471,7 +516,7 @@ def test_axis_label_and_caption_from_attributes(line):
 
 
 def test_a_dataset_that_is_not_a_campaign_result_is_refused(line):
-    with pytest.raises(ValueError, match="expected 'find_jump', 'scan' or 'trajectory'"):
+    with pytest.raises(ValueError, match="expected 'find_jump', 'scan', 'trajectory' or 'trace'"):
         figure_kind(xr.Dataset(attrs={"task": "orbit"}))
     with pytest.raises(ValueError, match="lacks the variable"):
         figure_kind(line.drop_vars("mu_hi"))

@@ -105,13 +105,16 @@ def _cli(*args, env=None):
     )
 
 
-def _wait_for_entries(journal_dir: Path, count: int, proc, timeout=60.0) -> None:
+def _wait_for_entries(journal_dir: Path, count: int, proc, timeout=300.0) -> bool:
+    """Wait until the journal holds `count` entries (True), the process ends or `timeout`
+    s pass (False); the timeout only bounds a hang, a busy machine just takes longer."""
     t0 = time.time()
     while time.time() - t0 < timeout and proc.poll() is None:
         n = sum(1 for _ in journal_dir.glob("*/*.json")) if journal_dir.exists() else 0
         if n >= count:
-            return
+            return True
         time.sleep(0.02)
+    return False
 
 
 @pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
@@ -148,7 +151,8 @@ def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
     campaign_file.write_text(DISK_LINE)
     out = tmp_path / "out"
     proc = _cli("run", campaign_file, "-o", out)
-    _wait_for_entries(out / "journal", 5, proc)
+    if not _wait_for_entries(out / "journal", 5, proc):
+        assert proc.poll() is not None, "no 5 runs journaled in 300 s"
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=60)
     if proc.returncode == 0:

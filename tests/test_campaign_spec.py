@@ -379,13 +379,13 @@ def test_both_tasks():
     data = {**find_jump(), "scan": {"mu": [0.1]}}
     assert problems(data) == [
         "(top level): find_jump and scan given: give exactly one task "
-        "(find_jump, scan, trajectory, basin)"
+        "(find_jump, scan, trajectory, basin, trace)"
     ]
 
 
 def test_no_task():
     assert problems({"name": "t", "scene": "pin"}) == [
-        "(top level): no task: give exactly one of find_jump, scan, trajectory, basin"
+        "(top level): no task: give exactly one of find_jump, scan, trajectory, basin, trace"
     ]
 
 
@@ -816,7 +816,7 @@ def test_a_null_prescan_is_refused(bracket):
     if bracket is None:  # no stand-in bracket may be checked against the limits
         del data["find_jump"]["bracket"]
     assert problems(data) == [
-        "find_jump.prescan: expected a mapping with keys mu, mode, stride; got null"
+        "find_jump.prescan: expected a mapping with keys mu, mode, stride, persist; got null"
     ]
 
 

@@ -1,4 +1,4 @@
-"""CF-1.10 metadata of every netCDF file we write: results.nc, runs.nc, trajectory.nc and
+"""CF-1.10 metadata of every netCDF file we write: results.nc (a trace's too), runs.nc, trajectory.nc and
 accuracy.nc (frictiondisk/store/cf.py)."""
 
 from __future__ import annotations
@@ -11,6 +11,7 @@ import pytest
 import xarray as xr
 import yaml
 from click.testing import CliRunner
+from conftest import outside_the_figure
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
@@ -43,6 +44,18 @@ basin:
   samples: 6
   seed: 7
 """
+TRACE = """\
+name: cf_trace
+scene: pin
+numerics: {t_decide: 20.0}
+trace:
+  key: params.x_ms
+  range: [0.08, 0.12]
+  mu: [0.05, 0.2]
+  tol: 1.0e-3
+  resolution: 0.5
+  first_look: {keys: 2, mu: 6}
+"""
 ORBIT = """\
 name: cf_orbit
 scene: pin
@@ -56,7 +69,8 @@ trajectory: {dt_out: 0.5, show: whole}
 def files(tmp_path_factory):
     root = tmp_path_factory.mktemp("cf")
     out = {}
-    for name, text in (("line", LINE), ("scan", SCAN), ("orbit", ORBIT), ("basin", BASIN)):
+    campaigns = (("line", LINE), ("scan", SCAN), ("orbit", ORBIT), ("basin", BASIN))
+    for name, text in (*campaigns, ("trace", TRACE)):
         run_campaign(campaign_from_text(text, "<test>"), root / name, 1, None, False)
         for nc in (root / name).glob("*.nc"):
             out[f"{name}/{nc.name}"] = nc
@@ -81,6 +95,8 @@ FILES = [  # every netCDF file the workflow writes, sorted
     "orbit/trajectory.nc",
     "scan/results.nc",
     "scan/runs.nc",
+    "trace/results.nc",
+    "trace/runs.nc",
 ]
 
 
@@ -180,3 +196,39 @@ def test_every_figure_has_the_one_house_style_whatever_the_callers_rc(files, kin
     assert labelled, kind
     for ax in labelled:
         assert ax.xaxis.label.get_fontsize() == LABEL_FONT_PT, (kind, ax.get_xlabel())
+    assert outside_the_figure(fig) == [], kind  # no legend or text cut off at an edge
+
+
+@pytest.mark.parametrize(
+    ("name", "absent", "kept"),
+    [
+        ("line/results.nc", ("param_x_ms", "param_mu"), ("param_x0", "param_omega_m")),
+        ("line/runs.nc", ("param_x_ms", "param_mu"), ("param_x0",)),
+        ("scan/results.nc", ("param_mu",), ("param_x_ms", "param_x0")),
+        ("basin/results.nc", ("param_x0",), ("param_x_ms", "param_mu")),
+        ("orbit/results.nc", (), ("param_mu", "param_x0")),
+    ],
+)
+def test_a_varied_sampled_or_searched_key_has_no_single_value_attribute(files, name, absent, kept):
+    """param_x_ms = 0.1 in a file along x_ms, or param_mu = 0.13 in a file that searches
+    mu, read as the value every point used; the coordinates (and scene_key) say it."""
+    with xr.open_dataset(files[name]) as ds:
+        for attr in absent:
+            assert attr not in ds.attrs, (name, attr)
+        for attr in kept:
+            assert attr in ds.attrs, (name, attr)
+
+
+def test_the_measures_table_of_the_model_gives_the_units_of_the_files():
+    """docs/model.md's per-revolution measures carry the units runs.nc writes (slip_decay
+    said 1/rev there and 1 in the file)."""
+    import re
+
+    from frictiondisk.store.datasets import RUN_MEASURES
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "model.md").read_text()
+    rows = re.findall(r"^\| `(\w+)` \|.*\| ([^|]+) \|$", text, flags=re.MULTILINE)
+    units = {name: unit.strip() for name, unit in rows if name in RUN_MEASURES}
+    assert {"slip_per_rev", "slip_decay", "slip_limit"} <= units.keys(), units
+    for name, unit in units.items():
+        assert unit == RUN_MEASURES[name][0], (name, unit, RUN_MEASURES[name][0])

@@ -60,6 +60,7 @@ DEFAULTS = {
         "cycle_tol": 1.0e-6,
         "cycle_count": 3,
         "stick_rule": "corotation",
+        "evidence": "extrapolate",
         "horizon_budget": 8.0,
         "max_steps": 2_000_000,
         "max_events": 200_000,
@@ -342,7 +343,8 @@ def test_rtol_must_be_below_one(tmp_path, value):
     ],
 )
 def test_param_ranges(tmp_path, key, value, bound):
-    found = problems(tmp_path, f"scene: pin\nparams:\n  {key}: {value}\n")
+    # a disk: J_s and beta_b are its keys (a pin refuses them, tests/test_scene_keys.py)
+    found = problems(tmp_path, f"scene: disk\nparams:\n  {key}: {value}\n")
     shown = repr(load_yaml_text(value))
     assert found == [f"params.{key}: {shown} is out of range: must be {bound}"]
 

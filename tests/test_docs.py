@@ -97,7 +97,7 @@ def test_show_defaults_comments_every_key_with_unit_and_description():
     assert all("  # " in line for line in out.splitlines())
 
 
-@pytest.mark.parametrize("task", ["find_jump", "scan", "trajectory", "basin"])
+@pytest.mark.parametrize("task", ["find_jump", "scan", "trajectory", "basin", "trace"])
 def test_show_defaults_prints_a_task_s_keys(task):
     from frictiondisk.model.campaign_spec import TASKS
 
@@ -116,6 +116,7 @@ def test_show_defaults_prints_a_task_s_keys(task):
         ("scan", "demo_scan"),
         ("trajectory", "fig04_trajectory"),
         ("basin", "basin_pin_x0"),
+        ("trace", "trace_fig10_disk_x0"),
     ],
 )
 def test_show_defaults_task_block_loads_once_its_commented_keys_are_filled(task, good):
@@ -132,3 +133,35 @@ def test_show_defaults_task_block_loads_once_its_commented_keys_are_filled(task,
     assert campaign.kind == task
     for line in result.output.splitlines()[1:]:  # every key: a value or a commented-out key
         assert line.startswith(("  # ", "    ")) or ": " in line, line
+
+
+def _links(text: str) -> list[str]:
+    """The relative targets of the markdown links and images in `text`."""
+    import re
+
+    targets = re.findall(r"\]\(([^)#\s]+)(?:#[^)]*)?\)", text)
+    return [t for t in targets if "://" not in t]
+
+
+def test_the_readme_is_a_five_minute_start():
+    """Issue 29: what the tool does, the two commands, one campaign, the outcomes and where
+    the rest is; the quick start fits on one screen before the first link into docs/."""
+    text = (ROOT / "README.md").read_text()
+    start = text.index("## Quick start")
+    quick = text[start : text.index("\n## ", start + 1)]
+    assert quick.count("\n") <= 45, f"the quick start is {quick.count(chr(10))} lines"
+    assert "docs/" not in text[: start + len(quick)], "a link into docs/ before the quick start"
+    for must in ("make demo", "make test"):
+        assert must in quick, must
+    for section in ("campaign", "outcome", "docs/user-guide.md"):
+        assert section in text.lower() or section in text, section
+    for outcome in ("`stick`", "`creep`", "`stick_slip`", "`slide`", "`undetermined`"):
+        assert outcome in text, outcome
+    assert len(text) <= 12_000, f"README.md is {len(text)} characters"
+
+
+@pytest.mark.parametrize("name", ["README.md", "docs/user-guide.md"])
+def test_every_relative_link_of_the_guides_resolves(name):
+    path = ROOT / name
+    missing = [t for t in _links(path.read_text()) if not (path.parent / t).exists()]
+    assert not missing, f"{name} links to missing files: {missing}"

@@ -102,8 +102,12 @@ def test_heavy_disk_and_strong_brake_cannot_co_rotate():
 
 
 def test_one_and_ninety_six_contact_points():
+    # one contact: the disk tumbles irregularly (no cycle its section could show), so it
+    # ends on evidence or undetermined for want of it, never in an integrator failure
     res = run({"scene": "disk", "contact": {"points": 1}})
-    assert res.outcome in ("stick", "stick_slip")
+    assert res.outcome in ("stick", "stick_slip") or (
+        res.outcome == "undetermined" and "without evidence" in res.reason
+    ), res.reason
     many = run({"scene": "disk", "contact": {"points": 96}, "params": {"phidot0": 1.1}})
     assert many.outcome == "stick"
     assert abs(many.R1 - run({"scene": "pin"}).R1) < 1e-6

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import LONG_CAMPAIGN, points_done, start_campaign_until
+from conftest import LONG_CAMPAIGN, points_done, start_campaign_until, wait_for_cpu
 
 from frictiondisk.cli import main
 
@@ -47,6 +47,8 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == code, err
     assert word in err and "frictiondisk resume" in err
+    if sig != signal.SIGINT:  # a drain notice, if any, names the signal that was sent
+        assert "Ctrl-C again" not in err, err
 
     with xr.open_dataset(out / "results.nc") as part, xr.open_dataset(whole / "results.nc") as ref:
         assert part.attrs["partial"] == 1
@@ -68,6 +70,59 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
     with xr.open_dataset(out / "results.nc") as a, xr.open_dataset(whole / "results.nc") as b:
         assert "partial" not in a.attrs
         xr.testing.assert_identical(a.load(), b.load())
+
+
+# a disk from rest, prescanned: a point takes a dozen runs of about a second
+SLOW_DISK = """\
+name: slow_disk
+scene: disk
+params: {phidot0: 0.0}
+find_jump:
+  tol: 1.0e-4
+  prescan: {mu: {start: 0.05, stop: 0.3, num: 12}}
+  along: {params.x_ms: [0.08, 0.1, 0.12]}
+"""
+
+
+def test_a_stop_before_the_first_point_leaves_every_point_pending(tmp_path):
+    """README: results.nc is always written, unfinished points pending. A SIGTERM a few
+    seconds into a disk campaign (here: once its first run is journaled, long before its
+    first point) left none: `plot` exited 2 on a missing file, open_results raised."""
+    from frictiondisk import open_results
+
+    spec = tmp_path / "disk.yaml"
+    spec.write_text(SLOW_DISK)
+    out = tmp_path / "out"
+    proc = start_campaign_until(spec, out, until=lambda: any(out.glob("journal/*/*")))
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 143, err
+    assert "results.nc" in err, err  # the stop names the file it wrote
+
+    results = open_results(out)
+    assert results.attrs["partial"] == 1 and results.attrs["points_done"] == 0
+    assert list(results["status"].values) == ["pending"] * 3
+    assert np.isnan(results["mu_star"].values).all()
+
+    status = CliRunner().invoke(main, ["status", str(out)])
+    assert status.exit_code == 0, status.output
+    assert "(partial: 0 of 3 points finished)" in status.output, status.output
+    plotted = CliRunner().invoke(main, ["plot", str(out), "-o", str(tmp_path / "f.png")])
+    assert "not found" not in plotted.output, plotted.output
+    assert "no point is finished yet" in plotted.output, plotted.output
+    assert f"frictiondisk resume {out}" in plotted.output
+
+
+def test_the_drain_notice_names_the_action_that_drops_the_runs_in_flight():
+    """A second Ctrl-C drops the runs in flight after a Ctrl-C; after a SIGTERM (a batch
+    scheduler, `kill`) or a SIGHUP (no terminal left to press Ctrl-C in) it is a SIGTERM."""
+    import os
+
+    from frictiondisk.engine.signals import HungUp, Terminated, drop_hint
+
+    assert drop_hint(KeyboardInterrupt()) == "Ctrl-C again to drop them"
+    assert drop_hint(Terminated()) == f"SIGTERM again, kill {os.getpid()}, to drop them"
+    assert drop_hint(HungUp()) == f"SIGTERM, kill {os.getpid()}, to drop them"
 
 
 @pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
@@ -139,16 +194,9 @@ def test_a_trajectory_run_stops_at_once_on_sigterm(tmp_path):
     spec = tmp_path / "t.yaml"
     spec.write_text(LONG_TRAJECTORY)
     out = tmp_path / "out"
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    t0 = time.time()  # campaign.yaml is written after the handlers are installed
-    while time.time() - t0 < 120 and proc.poll() is None and not (out / "campaign.yaml").exists():
-        time.sleep(0.02)
-    time.sleep(1.0)  # into the run
+    # campaign.yaml is written after the handlers are installed
+    proc = start_campaign_until(spec, out, until=(out / "campaign.yaml").exists)
+    wait_for_cpu(proc.pid, 1.0)  # into the run: a second of its work, not of the clock
     assert proc.poll() is None, "the trajectory finished before the signal"
     proc.send_signal(signal.SIGTERM)
     try:

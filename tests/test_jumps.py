@@ -53,8 +53,9 @@ def test_a_single_rising_jump_is_monotone_and_its_ends_are_not_run_twice():
     res = search.result()
     assert res.monotone and len(res.jumps) == 1
     assert res.mu_lo < 0.1431 <= res.mu_hi
-    # prescan (11) + halvings of a 0.01 bracket to 1e-4 (7), no end run repeated
-    assert len(made) == 11 + math.ceil(math.log2(0.01 / 1e-4))
+    # prescan (11) + halvings of a 0.01 bracket to 1e-4 (7) + one persistence run above
+    # the jump (docs/model.md section 7), no end run repeated
+    assert len(made) == 11 + math.ceil(math.log2(0.01 / 1e-4)) + 1
     assert len(made) == len(set(made)) == len(res.runs)
 
 

@@ -24,7 +24,7 @@ def test_allocate_sizes_buffers_from_the_kernel_constants():
     run = KernelRun.allocate(np.arange(6.0), np.ones(2, np.int8), capacity=7)
     assert run.rec_y.shape == (7, 6) and run.rec_m.shape == (7, 2)
     assert run.mf.shape == (mon.N_MF,) and run.mi.shape == (mon.N_MI,)
-    assert run.ring_all.shape == run.ring_any.shape == (mon.RING, 2)
+    assert run.ring_all.shape == (mon.RING, mon.N_RA) and run.ring_any.shape == (mon.RING, 2)
     assert run.rv.shape == (mon.REV_RING, mon.N_RV) and run.iopt.shape == (driver.N_IOPT,)
     assert run.status == 0 and math.isnan(run.t_end)
     assert run.steps == run.refused == run.recorded == 0 and not run.truncated

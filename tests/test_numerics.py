@@ -27,7 +27,8 @@ def test_analytic_jacobian_matches_finite_differences(scene, stribeck):
     contact = {"points": 3} if scene == "disk" else {}
     if stribeck:
         contact["stribeck"] = {"r": 0.4, "v_s": 0.05, "delta": 1.5}
-    cfg = scene_from_dict({"scene": scene, "contact": contact, "params": {"beta_b": 0.01}})
+    params = {"beta_b": 0.01} if scene == "disk" else {}  # a pin has no brake (no spin)
+    cfg = scene_from_dict({"scene": scene, "contact": contact, "params": params})
     for _ in range(4):
         p, pts, y = _random_state(rng, cfg)
         n = y.size

@@ -58,7 +58,8 @@ def both(answer, stride, tol=1e-4):
 
 
 def prescan_runs(made, search_result):
-    return [r for r in made if search_result.role(r) == "prescan"]
+    """The runs of the prescan itself: before the grid below the headline is filled in."""
+    return [r.request for r in search_result.prescan_runs]
 
 
 def test_a_single_jump_gets_the_dense_bracket_in_a_third_of_the_prescan_runs():
@@ -69,8 +70,14 @@ def test_a_single_jump_gets_the_dense_bracket_in_a_third_of_the_prescan_runs():
     assert jumps(adaptive) == jumps(dense)
     assert [j.mu_lo for j in adaptive.jumps] == [j.mu_lo for j in dense.jumps]
     assert len(prescan_runs(runs, adaptive)) <= len(GRID) / 3
-    assert len(runs) < len(dense_runs) / 2
     assert "adaptive prescan ran" in adaptive.reason
+    # every grid value below the headline runs in the end (a skipped interval is
+    # unexamined): the adaptive prescan saves the runs above it
+    below = adaptive.grid_below
+    assert below.decided == below.total == sum(mu < 0.2345 for mu in GRID)
+    assert len(dense_runs) - len(runs) == sum(mu > 0.2345 for mu in GRID) - len(
+        [r for r in prescan_runs(runs, adaptive) if r.mu > 0.2345]
+    )
 
 
 def test_the_reserve_picks_the_refinement_so_a_jump_costs_few_grid_runs():

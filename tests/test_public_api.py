@@ -62,3 +62,16 @@ def test_campaign_round_trip(tmp_path):
     assert hi - lo <= 1e-2 and lo < 0.1267 < hi
     assert open_results(tmp_path / "out", "runs").sizes["run"] > 0
     assert load_campaign(spec).name == "tiny_api_line"
+
+
+def test_one_override_given_as_a_string_is_one_clear_error(tmp_path):
+    """A string is not a list of overrides: one error saying so, not one "malformed
+    override" per character."""
+    path = tmp_path / "pin.yaml"
+    path.write_text("scene: pin\n")
+    with pytest.raises(TypeError) as info:
+        load_scene(path, "params.mu=0.2")
+    text = str(info.value)
+    assert "not one string" in text and "['params.mu=0.2']" in text
+    assert "malformed" not in text
+    assert load_scene(path, ("params.mu=0.2",)).params.mu == 0.2  # a tuple is a sequence

@@ -166,19 +166,20 @@ def _echo_summary(summary, out_dir: Path, indent: str = "") -> None:
 
 
 def _echo_closing(results_path: Path, indent: str = "") -> None:
-    """The closing lines of a finished campaign, read from results.nc once: a find_jump
-    with uncertain points names them (not an error, exit 0: the best bracket of each is
-    kept, flagged `uncertain`); a basin campaign prints its fractions with their 95 %
-    intervals, one line per point."""
+    """The closing lines of a finished campaign, read from results.nc once: the answer (a
+    find_jump's mu* table, a scan's outcome per point), and for a find_jump with uncertain
+    points their names (not an error, exit 0: the best bracket of each is kept, flagged
+    `uncertain`); a basin campaign prints its fractions with their 95 % intervals, one
+    line per point."""
     import xarray as xr
 
     from frictiondisk.store.basin_datasets import summary_lines
-    from frictiondisk.store.table import closing_lines
+    from frictiondisk.store.table import closing_lines, results_table
 
     if results_path.name != "results.nc" or not results_path.is_file():
         return
     with xr.open_dataset(results_path) as results:
-        lines = closing_lines(results)
+        lines = results_table(results) + closing_lines(results)
         if results.attrs.get("task") == "basin":
             lines += summary_lines(results.load())
     for line in lines:
@@ -258,6 +259,9 @@ def run(
 ) -> None:
     """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it.
 
+    At the end it prints the answer: the mu* table of a find_jump (failed points with
+    their reasons), the outcome and size per point of a scan, a basin's fractions.
+
     With several files, each campaign runs into DIR/<its name>/ (names must differ), all
     in this one process on one set of workers: their runs are scheduled together, so one
     campaign's last points overlap the next one's first. Each keeps its own journal, lock
@@ -311,8 +315,9 @@ def resume(
 @click.command()
 @click.argument("out_dir", type=click.Path(file_okay=False, path_type=Path))
 def status(out_dir: Path) -> None:
-    """Report progress of the campaign in DIR: points, runs, failures, time left; in a
-    folder of several campaigns, of each of them."""
+    """Report progress of the campaign in DIR: points, runs, failures, time left, and the
+    answer so far (the mu* table with the reason of each failed point, a scan's outcome
+    and size per point); in a folder of several campaigns, of each of them."""
     from frictiondisk.engine.directory import FolderDamaged, is_campaign_folder, read_manifest
 
     if not is_campaign_folder(out_dir):
@@ -420,12 +425,14 @@ def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
 
 
 def _results_lines(results_file: Path, complete: bool) -> list[str]:
-    """What results.nc says: the mu* table of a complete find_jump campaign, or what a
-    stopped or running campaign has found so far (its partial results.nc; [] if none)."""
+    """What results.nc says: the mu* table of a complete find_jump campaign (a scan's
+    outcome per point, a trace's curves and folds), or what a stopped or running campaign
+    has found so far (its partial results.nc; [] if none)."""
     import xarray as xr
 
     from frictiondisk.store.basin_datasets import summary_lines
-    from frictiondisk.store.table import closing_lines, mu_star_table
+    from frictiondisk.store.table import closing_lines, results_table
+    from frictiondisk.store.trace_table import trace_lines
 
     with xr.open_dataset(results_file) as results:
         if complete:
@@ -439,4 +446,5 @@ def _results_lines(results_file: Path, complete: bool) -> list[str]:
             return []
         if not complete and results.attrs.get("task") == "basin":
             return [head, *summary_lines(results.load())]
-        return [head, *mu_star_table(results), *closing_lines(results)]
+        tables = [*results_table(results), *trace_lines(results)]
+        return [head, *tables, *closing_lines(results)]

@@ -1,4 +1,5 @@
-"""`make figures`: run every figure campaign (campaigns/fig*.yaml) and draw its figure.
+"""`make figures`: run every figure campaign (campaigns/fig*.yaml, and the traced Fig 11)
+and draw its figure.
 
     python -m frictiondisk.cli.gallery [--campaigns campaigns] [--out out/figures] [--figures out/figures]
 
@@ -6,10 +7,10 @@ The campaigns run together, in one process on one set of workers (run_campaigns:
 into OUT/<name>/, resuming whatever is already there, like `frictiondisk run A.yaml
 B.yaml -o OUT`). Then each figure is written as FIGURES/<name>.png and .pdf from the
 netCDF files alone (by default under the ignored out/, so the tracked tree stays clean;
-`make gallery` copies the PNGs into the README's figures/) (like `frictiondisk plot`;
-size-versus-mu figures get their bisection runs). Printed: the wall time of each
-figure's campaign (from the start of the run to its last point), the run's, the
-drawing's and the total.
+`make gallery` copies the PNGs into figures/, the gallery of docs/user-guide.md) (like
+`frictiondisk plot`; size-versus-mu figures get their bisection runs). Printed: the wall
+time of each figure's campaign (from the start of the run to its last point), the run's,
+the drawing's and the total.
 """
 
 from __future__ import annotations
@@ -21,6 +22,8 @@ from pathlib import Path
 
 from frictiondisk.engine.runner import run_campaigns
 from frictiondisk.model.campaign import load_campaign
+
+TRACED = ("trace_fig11_betab_mu.yaml",)  # traced planes shown beside the figures (docs/trace.md)
 
 
 def draw_figure(campaign, out_dir: Path, figure_root: Path) -> None:
@@ -47,6 +50,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--figures", type=Path, default=Path("out/figures"))
     args = parser.parse_args(argv)
     files = sorted(args.campaigns.glob("fig*.yaml"))
+    files += [args.campaigns / name for name in TRACED if (args.campaigns / name).is_file()]
     if not files:
         print(f"no figure campaigns (fig*.yaml) in {args.campaigns}", file=sys.stderr)
         return 2

@@ -252,11 +252,12 @@ def _interruptible(function, *args, **kwargs):
     type=click.Choice(["pin", "disk"]),
     default="pin",
     show_default=True,
-    help="Which scene's defaults to print.",
+    help="Which scene's defaults to print: the keys that scene uses (a pin has no spin "
+    "and no contact layout keys; it refuses them).",
 )
 @click.option(
     "--task",
-    type=click.Choice(["find_jump", "scan", "trajectory", "basin"]),
+    type=click.Choice(["find_jump", "scan", "trajectory", "basin", "trace"]),
     default=None,
     help="Print the keys of this campaign task instead of the scene.",
 )

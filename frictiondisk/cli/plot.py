@@ -3,7 +3,8 @@
 Reads DIR/results.nc (and DIR/runs.nc for --runs), never simulates, and draws the figure
 that fits the campaign (see frictiondisk.figures.campaign). Exit codes: 0 written, 2 a
 missing or damaged results.nc / runs.nc (the message names the file and suggests
-`frictiondisk resume DIR`), a file that is not a campaign result, or a bad -o suffix.
+`frictiondisk resume DIR`), a partial results.nc without a finished point (stopped
+early: nothing to draw yet), a file that is not a campaign result, or a bad -o suffix.
 """
 
 from __future__ import annotations
@@ -69,8 +70,9 @@ def _load(path: Path, out_dir: Path):
     "--runs",
     "show_runs",
     is_flag=True,
-    help="find_jump: overlay every run of runs.nc as a dot at (coordinate, mu), stick dark, "
-    "not stick light (how the jump was iterated); a grid shows each cell's run count.",
+    help="find_jump and trace: overlay every run of runs.nc as a dot at (coordinate, mu), "
+    "stick dark, not stick light (how the jump was iterated, or the curves followed); a "
+    "grid shows each cell's run count.",
 )
 @click.option(
     "--boundary",
@@ -88,7 +90,8 @@ def plot(out_dir: Path, output: Path | None, show_runs: bool, boundary: Path | N
     of mu*. scan of mu: size against mu by outcome, and a against mu with its
     least-squares line. scan of mu and one more key: one size curve per value of that key.
     trajectory: the orbit, sticking dark and sliding light (whole, or the last cycle with
-    the deviation a marked). basin: the fractions of each outcome against the varied key
+    the deviation a marked). trace: the jump curves of the (key, mu) plane, their sticking
+    side shaded, the folds where two jumps meet starred. basin: the fractions of each outcome against the varied key
     with 95 % Wilson bands, or a basin map coloured by outcome.
     """
     import matplotlib
@@ -121,6 +124,12 @@ def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None, boundary=N
 
     out_dir = Path(out_dir)
     results = _load(out_dir / RESULTS_FILE, out_dir)
+    if results.attrs.get("partial") and not results.attrs.get("points_done"):
+        raise CampaignFileError(
+            f"{out_dir / RESULTS_FILE}: nothing to draw, no point is finished yet "
+            f"(partial: 0 of {results.attrs.get('points_total', '?')} points)",
+            [f"the campaign was stopped early; continue with: frictiondisk resume {out_dir}"],
+        )
     task = results.attrs.get("task")
     if task == "trajectory":
         trajectory = _load(out_dir / TRAJECTORY_FILE, out_dir)
@@ -131,13 +140,13 @@ def figure_for_dir(out_dir: Path, show_runs: bool = False, note=None, boundary=N
                 f"{out_dir / TRAJECTORY_FILE}: cannot draw this file", [str(exc)]
             ) from None
     runs = None
-    if show_runs and task == "find_jump":
+    if show_runs and task in ("find_jump", "trace"):
         runs = _load(out_dir / RUNS_FILE, out_dir)
     elif show_runs:
         if note is not None:
             note(
-                f"note: --runs applies to find_jump campaigns; in a {task} every run is a "
-                "point already"
+                f"note: --runs applies to find_jump and trace campaigns; in a {task} every "
+                "run is a point already"
             )
         show_runs = False
     if task == "basin":

@@ -12,7 +12,7 @@ import os
 from dataclasses import dataclass
 
 from frictiondisk.engine.plan import cold_run_count
-from frictiondisk.model.campaign import Basin, Campaign, FindJump, Scan
+from frictiondisk.model.campaign import Basin, Campaign, FindJump, Scan, Trace
 
 __all__ = ["MAX_POINTS", "MAX_RUNS", "Estimate", "check", "estimate", "memory_limit"]
 
@@ -62,6 +62,10 @@ def estimate(campaign: Campaign) -> Estimate:
             f"basin.along.{dim}" for dim in task.along
         ]
         fields = ", ".join(keys + ([] if task.is_map else ["basin.samples / max_samples"]))
+    elif isinstance(task, Trace):
+        # the first look alone; the curves' runs depend on what it finds
+        per_point = task.first_look.keys * task.first_look.mu
+        fields = "trace.first_look.keys, trace.first_look.mu"
     else:
         per_point = 1
         fields = "trajectory"

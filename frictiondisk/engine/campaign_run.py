@@ -16,7 +16,7 @@ from typing import Any
 from frictiondisk.engine.directory import RESULTS_FILE, RUNS_FILE, write_status
 from frictiondisk.engine.plan import planner_for
 from frictiondisk.model.campaign import Campaign
-from frictiondisk.store import basin_datasets, datasets
+from frictiondisk.store import basin_datasets, datasets, trace_datasets
 from frictiondisk.store.files import atomic_write_netcdf
 from frictiondisk.store.journal import Journal, run_key
 from frictiondisk.store.partial import with_pending
@@ -120,16 +120,20 @@ class CampaignRun:
     def runs_done(self) -> int:
         return self.runs_at_start + self.computed
 
-    def points_done(self) -> int:
-        return len(self.planner.results)
+    def progress(self) -> tuple[int, int]:
+        """(done, total) in the planner's unit: points, or what its `progress()` counts
+        (a trace: curve points placed; its total grows as curves are found)."""
+        progress = getattr(self.planner, "progress", None)
+        if progress is not None:
+            return progress()
+        return len(self.planner.results), len(self.planner.points)
 
     def points_failed(self) -> int:
         results = self.planner.results.values()
         return sum(1 for r in results if getattr(r, "status", "converged") == "failed")
 
     def write_status(self, state: str, elapsed: float, jobs_in_flight: int) -> None:
-        done = self.points_done()
-        total = len(self.planner.points)
+        done, total = self.progress()
         rate = done / elapsed if done and elapsed > 0 else 0.0
         write_status(
             self.out_dir,
@@ -147,25 +151,26 @@ class CampaignRun:
 
     def _datasets(self):
         """The module that builds this campaign's results.nc and runs.nc."""
-        return basin_datasets if self.campaign.kind == "basin" else datasets
+        builders = {"basin": basin_datasets, "trace": trace_datasets}
+        return builders.get(self.campaign.kind, datasets)
 
-    def write_partial(self) -> int:
+    def write_partial(self) -> int | None:
         """Write results.nc from the finished points, the rest pending, marked `partial`
-        (frictiondisk.store.partial); returns the points it holds (0: nothing written,
-        as for a trajectory or when no point is finished). Never raises: a failure is
-        reported on stderr, the journal keeps every run, and the final write of results.nc
-        raises as usual."""
-        done = self.points_done()
-        if done == 0 or self.planner.done or self.campaign.kind == "trajectory":
-            return 0
+        (frictiondisk.store.partial), also before the first point is finished; returns the
+        finished points it holds (None: nothing written, as for a trajectory or a finished
+        campaign). Never raises: a failure is reported on stderr, the journal keeps every
+        run, and the final write of results.nc raises as usual."""
+        done, total = self.progress()
+        if self.planner.done or self.campaign.kind == "trajectory":
+            return None
         try:
             pending = with_pending(self.campaign.kind, self.planner)
             ds = self._datasets().results_dataset(self.campaign, pending)
-            ds.attrs.update(partial=1, points_done=done, points_total=len(self.planner.points))
+            ds.attrs.update(partial=1, points_done=done, points_total=total)
             atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
         except Exception as exc:  # noqa: BLE001  a side file: never stop the campaign for it
             on_stderr(print, f"warning: partial results not written: {exc!r}", file=sys.stderr)
-            return 0
+            return None
         return done
 
     # ---- the end -------------------------------------------------------------------------
@@ -189,7 +194,7 @@ class CampaignRun:
             runs_total = int(runs_ds.sizes["run"])
         self.write_status("complete", elapsed, 0)
         self.summary = RunSummary(
-            points=len(self.planner.points),
+            points=self.progress()[1],
             points_failed=self.points_failed(),
             runs_total=runs_total,
             runs_computed=self.computed,

@@ -24,7 +24,7 @@ from frictiondisk.engine.cluster import (
     start_client,
     task_sizing,
 )
-from frictiondisk.engine.signals import _raise_if_stop_requested
+from frictiondisk.engine.signals import _raise_if_stop_requested, drop_hint
 from frictiondisk.engine.tasks import Sealed, run_sealed, warm_up
 
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
@@ -87,8 +87,8 @@ class _Driver:
             self._open_bar()
             try:
                 self._loop(client)
-            except KeyboardInterrupt:
-                self._drain(client)
+            except KeyboardInterrupt as stop:
+                self._drain(client, stop)
                 raise
         finally:
             for *_, future in self.in_flight.values():
@@ -97,7 +97,7 @@ class _Driver:
             if cluster is not None:
                 cluster.close()
             if self._bar is not None:
-                self._bar.n = self._points_done()
+                self._bar.n, self._bar.total = self._progress()
                 self._bar.set_postfix(runs=self.runs_done(), in_flight=0, refresh=False)
                 on_stderr(self._bar.close)
 
@@ -187,16 +187,17 @@ class _Driver:
             self.task_overhead_s or 0.0, run.mean_run_s(), self.worker_threads, len(self.in_flight)
         )
 
-    def _drain(self, client) -> None:
-        """After Ctrl-C: journal the runs of the tasks in flight as they finish (at most
-        DRAIN_TIMEOUT_S; a second Ctrl-C drops them), submitting nothing new."""
+    def _drain(self, client, stop: KeyboardInterrupt) -> None:
+        """After a stop (Ctrl-C, SIGTERM, SIGHUP): journal the runs of the tasks in flight as
+        they finish (at most DRAIN_TIMEOUT_S; a second stop drops them), submitting nothing
+        new."""
         if not self.in_flight:
             return
         self._draining = True
         on_stderr(
             print,
             f"\nstopping: journaling the runs of {len(self.in_flight)} tasks in flight, for at "
-            f"most {DRAIN_TIMEOUT_S:.0f} s (Ctrl-C again to drop them)",
+            f"most {DRAIN_TIMEOUT_S:.0f} s ({drop_hint(stop)})",
             file=sys.stderr,
         )
         deadline = time.monotonic() + DRAIN_TIMEOUT_S
@@ -237,8 +238,8 @@ class _Driver:
         from frictiondisk.engine.progress import progress_bar
 
         label = self.runs[0].campaign.name if len(self.runs) == 1 else f"{len(self.runs)} campaigns"
-        total = sum(len(run.planner.points) for run in self.runs)
-        self._bar = on_stderr(progress_bar, total, label, "point", initial=self._points_done())
+        done, total = self._progress()
+        self._bar = on_stderr(progress_bar, total, label, "point", initial=done)
 
     def interrupted(self) -> None:
         """After a stop: a campaign whose last point came back meanwhile writes its final
@@ -250,21 +251,23 @@ class _Driver:
                 self._write_status(run, "interrupted")
 
     def write_partial(self) -> dict[str, int]:
-        """The partial results.nc of every unfinished campaign: {campaign name: points
-        written} for those that got one (never raises)."""
+        """The partial results.nc of every unfinished campaign: {campaign name: finished
+        points written (0: every point pending)} for those that got one (never raises)."""
         written = {}
         for run in self.runs:
             if run.summary is None:
                 points = run.write_partial()
-                if points:
+                if points is not None:
                     written[run.campaign.name] = points
         return written
 
     def runs_done(self) -> int:
         return sum(run.runs_done() for run in self.runs)
 
-    def _points_done(self) -> int:
-        return sum(run.points_done() for run in self.runs)
+    def _progress(self) -> tuple[int, int]:
+        """(done, total) over every campaign, each in its planner's unit (engine/campaign_run.py)."""
+        done, total = zip(*(run.progress() for run in self.runs), strict=True)
+        return sum(done), sum(total)
 
     def _write_status(self, run: CampaignRun, state: str) -> None:
         in_flight = sum(1 for entry in self.in_flight.values() if entry[0] is run)
@@ -274,7 +277,7 @@ class _Driver:
         now = time.perf_counter()
         if self._bar is not None and now - self._last_bar >= BAR_EVERY:
             self._last_bar = now
-            self._bar.n = self._points_done()
+            self._bar.n, self._bar.total = self._progress()
             self._bar.set_postfix(
                 runs=self.runs_done(), in_flight=len(self.in_flight), refresh=False
             )

@@ -19,8 +19,9 @@ import xarray as xr
 from frictiondisk.engine.tasks import run_recorded
 from frictiondisk.simulation.simulate import simulate
 from frictiondisk.store import cf
-from frictiondisk.store.datasets import RUN_MEASURES, campaign_attrs
+from frictiondisk.store.datasets import campaign_attrs
 from frictiondisk.store.files import atomic_write_netcdf, netcdf_is_valid
+from frictiondisk.store.measures import RUN_MEASURES
 from frictiondisk.store.trajectory import write_trajectory
 
 TRAJECTORY_FILE = "trajectory.nc"

@@ -27,6 +27,7 @@ from typing import Any
 
 from frictiondisk.engine.basin_plan import BasinPlanner
 from frictiondisk.engine.tasks import run_batch, run_bisection, run_scene
+from frictiondisk.engine.trace_plan import TracePlanner
 from frictiondisk.search.bisection import BisectionResult, RunRequest
 from frictiondisk.search.certify import CertifiedBisection
 from frictiondisk.search.jumps import JumpSearch, JumpSearchResult, run_role
@@ -240,6 +241,7 @@ class JumpPlanner:
                 self.task.certify,
                 self.task.root_finder,
                 stride_of(prescan, self.points[i].config.numerics.stick_rule),
+                prescan.persist,
             )
             return
         bracket = self._predicted_bracket(i)
@@ -383,4 +385,6 @@ def planner_for(campaign):
         return TrajectoryPlanner(campaign)
     if campaign.task.kind == "basin":
         return BasinPlanner(campaign)
+    if campaign.task.kind == "trace":
+        return TracePlanner(campaign)
     return JumpPlanner(campaign) if campaign.task.kind == "find_jump" else ScanPlanner(campaign)

@@ -208,13 +208,18 @@ def _drive(
 
 
 def _partial_note(written: dict[str, int], campaigns: int) -> str:
-    """Where the finished points of a stopped run are (their partial results.nc)."""
+    """Where the finished points of a stopped run are (their partial results.nc, written
+    also before the first point is finished: every point pending)."""
     if not written:
         return ""
+    finished = sum(written.values())
+    where = RESULTS_FILE if campaigns == 1 else f"each campaign's {RESULTS_FILE}"
+    if finished == 0:
+        return f"; no point is finished yet ({where}: every point pending)"
     if campaigns == 1:
-        return f", the {sum(written.values())} finished points in {RESULTS_FILE} (partial)"
+        return f", the {finished} finished points in {RESULTS_FILE} (partial)"
     each = ", ".join(f"{name} {points}" for name, points in written.items())
-    return f", the finished points in each campaign's {RESULTS_FILE} (partial: {each})"
+    return f", the finished points in {where} (partial: {each})"
 
 
 def _run_trajectory(campaign: Campaign, out_dir: Path) -> RunSummary:

@@ -4,6 +4,7 @@ wait that lets a stop interrupt a run in a numba kernel (wait_interruptibly)."""
 
 from __future__ import annotations
 
+import os
 import threading
 from collections.abc import Callable
 from typing import Any, TypeVar
@@ -40,6 +41,16 @@ def describe_stop(stop: KeyboardInterrupt) -> tuple[str, int]:
     if isinstance(stop, Terminated):
         return stop.what, stop.exit_code
     return "interrupted", 130
+
+
+def drop_hint(stop: KeyboardInterrupt) -> str:
+    """How to drop the runs in flight while a stop drains them: the same signal again
+    (any second stop does it), a SIGTERM after a SIGHUP (the terminal is gone)."""
+    if isinstance(stop, HungUp):
+        return f"SIGTERM, kill {os.getpid()}, to drop them"
+    if isinstance(stop, Terminated):
+        return f"SIGTERM again, kill {os.getpid()}, to drop them"
+    return "Ctrl-C again to drop them"
 
 
 _stop_requested: list[type[KeyboardInterrupt]] = []

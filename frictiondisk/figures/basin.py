@@ -24,7 +24,13 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from frictiondisk.figures.shared import OUTCOME_STYLE, axis_label, new_figure, sample_spec
+from frictiondisk.figures.shared import (
+    OUTCOME_STYLE,
+    axis_label,
+    fitted_legend,
+    new_figure,
+    sample_spec,
+)
 from frictiondisk.figures.style import styled
 from frictiondisk.model.scene import describe_key
 
@@ -132,11 +138,12 @@ def plot_basin_map(results: xr.Dataset, boundary: xr.Dataset | None = None) -> F
         if boundary is not None and mu is not None:
             handles += _draw_boundary(ax, boundary, dims, float(mu))
     mesh.set_gid("basin_map")
-    ax.legend(
+    fitted_legend(
+        ax,
+        min(3, len(handles)),
         handles=handles,
         loc="lower left",
         bbox_to_anchor=(0.0, 1.01),
-        ncols=min(3, len(handles)),
         fontsize="small",
         frameon=False,
     )

@@ -12,6 +12,8 @@ Which figure a campaign gets follows from its results alone (`figure_kind`):
   (top) and the deviation `a` of the converged stick-slip cycles with its least-squares line
   (bottom; the paper finds a linear in mu).
 - ``scan_family``: `scan` of mu and one more key: one `size` curve per value of that key.
+- ``trace``: the jump curves of a (key, mu) plane, their sticking sides shaded, folds marked
+  (trace.py).
 
 For find_jump figures `show_runs=True` overlays every run of runs.nc (paper Fig 7, middle
 panel: how the jump was iterated): dots at (coordinate, mu), stick dark, not stick light,
@@ -20,8 +22,8 @@ undetermined red. A grid has no room for the mu of each run; its cells show thei
 Every figure carries a caption line (campaign, task, tolerance, numerics, versions).
 
 This module dispatches (`plot_campaign`) and names the public figure API (`__all__`); each family is
-drawn in its own module: kind.py (`figure_kind`), jump_line.py, jump_grid.py, scan.py and
-size.py (``jump_sizes``), with what they share in shared.py. Like
+drawn in its own module: kind.py (`figure_kind`), jump_line.py, jump_grid.py, scan.py,
+size.py (``jump_sizes``) and trace.py, with what they share in shared.py. Like
 `frictiondisk.figures.plotting`, none of them selects a backend, touches pyplot, imports
 the kernel or simulates: figures are `matplotlib.figure.Figure` objects, saved with
 `frictiondisk.figures.plotting.save_figure`.
@@ -65,6 +67,10 @@ def plot_campaign(
     there it changes nothing.
     """
     kind = figure_kind(results)
+    if kind == "trace":
+        from frictiondisk.figures.trace import plot_trace
+
+        return plot_trace(results, runs, show_runs=show_runs)
     if kind == "jump_sizes":
         from frictiondisk.figures.size import plot_jump_sizes
 

@@ -24,6 +24,7 @@ from frictiondisk.figures.shared import (
     _failure_lines,
     _point_labels,
     axis_label,
+    fitted_legend,
     new_figure,
     scene_title,
 )
@@ -154,11 +155,12 @@ def plot_jump_grid(
             )
         )
     if handles:
-        ax.legend(
+        fitted_legend(
+            ax,
+            len(handles),
             handles=handles,
             loc="lower left",
             bbox_to_anchor=(0.0, 1.01),
-            ncols=len(handles),
             fontsize="small",
             frameon=False,
         )

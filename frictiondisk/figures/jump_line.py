@@ -34,6 +34,7 @@ from frictiondisk.figures.shared import (
     _padded,
     _point_labels,
     axis_label,
+    fitted_legend,
     new_figure,
     scene_title,
 )
@@ -464,11 +465,12 @@ def plot_jump_line(
     )
     handles += run_handles
     if handles:
-        ax.legend(
+        fitted_legend(
+            ax,
+            2,
             handles=handles,
             loc="lower left",
             bbox_to_anchor=(0.0, 1.01),
-            ncols=2,
             fontsize="small",
             frameon=False,
         )

@@ -9,7 +9,15 @@ from __future__ import annotations
 
 import xarray as xr
 
-FIGURE_KINDS = ("jump_line", "jump_grid", "jump_sizes", "scan_mu", "scan_family", "trajectory")
+FIGURE_KINDS = (
+    "jump_line",
+    "jump_grid",
+    "jump_sizes",
+    "scan_mu",
+    "scan_family",
+    "trajectory",
+    "trace",
+)
 
 _JUMP_VARS = ("mu_star", "mu_lo", "mu_hi", "status", "reason", "monotone")
 _SCAN_VARS = ("outcome", "reason", "size", "a")
@@ -62,7 +70,9 @@ def figure_kind(results: xr.Dataset) -> str:
         raise ValueError(f"a scan varies mu and at most one more key, this one {dims}")
     if task == "trajectory":
         return "trajectory"
+    if task == "trace":
+        return "trace"
     raise ValueError(
-        f"results attribute 'task' is {task!r}; expected 'find_jump', 'scan' or 'trajectory' "
-        "(not a frictiondisk campaign result?)"
+        f"results attribute 'task' is {task!r}; expected 'find_jump', 'scan', 'trajectory' "
+        "or 'trace' (not a frictiondisk campaign result?)"
     )

@@ -16,6 +16,7 @@ import xarray as xr
 import yaml
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure, SubFigure
+from matplotlib.legend import Legend
 from matplotlib.ticker import FuncFormatter
 
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
@@ -161,9 +162,10 @@ def scene_title(ds: xr.Dataset) -> str:
 def physics_text(ds: xr.Dataset) -> str:
     """The physical parameters that are not varied, e.g. "pin, x_ms 0.1 m, x0 0 m" (disk:
     also beta_b and phidot0); empty for results without the resolved scene."""
-    if "param_x_ms" not in ds.attrs:
+    if "scene_yaml" not in ds.attrs:
         return ""
     varied = {str(ds[c].attrs.get("scene_key", "")) for c in ds.coords}
+    varied |= {str(ds.attrs["trace_key"])} if "trace_key" in ds.attrs else set()  # a plane's key
     varied |= {str(key) for key in sample_spec(ds)}  # sampled: no single value either
     scene = _scene(ds).get("scene", "")
     shown = [
@@ -231,6 +233,22 @@ def new_figure(
         gid="caption",
     )
     return fig, subs[0], (subs[1] if note_lines else None)
+
+
+# ---- legends ----------------------------------------------------------------------------
+def fitted_legend(ax: Axes, ncols: int, **kwargs: Any) -> Legend:
+    """`ax.legend(ncols=ncols, **kwargs)` with as many of `ncols` columns as fit: laid out
+    with the figure, a legend that reaches past its left or right edge gets one column
+    fewer (long labels side by side were cut off at the right edge)."""
+    fig = ax.get_figure(root=True)
+    for n in range(max(1, ncols), 0, -1):
+        legend = ax.legend(ncols=n, **kwargs)
+        fig.draw_without_rendering()
+        box = legend.get_window_extent()
+        if n == 1 or (box.x0 >= fig.bbox.x0 and box.x1 <= fig.bbox.x1):
+            return legend
+        legend.remove()
+    raise AssertionError("unreachable: one column is always returned")
 
 
 # ---- the note under the plot ------------------------------------------------------------

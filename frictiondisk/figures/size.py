@@ -24,6 +24,7 @@ from frictiondisk.figures.shared import (
     OUTCOME_STYLE,
     SIZE_LABEL,
     _value_text,
+    fitted_legend,
     new_figure,
     scene_title,
 )
@@ -88,12 +89,13 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
     ax.set_xlabel(MU_LABEL)
     ax.set_ylabel(SIZE_LABEL)
     ax.grid(True, lw=0.4, alpha=0.5)
-    ax.legend(
+    fitted_legend(
+        ax,
+        2,
         handles=handles,
         fontsize="small",
         loc="upper center",
         bbox_to_anchor=(0.5, -0.14),
-        ncols=2,
         frameon=False,
     )
     ax.set_title("size against \u03bc; dashed line and \u25bc: located jump \u03bc*", fontsize=10)

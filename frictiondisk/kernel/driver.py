@@ -22,6 +22,7 @@ import numpy as np
 
 from . import energy as en
 from . import monitor as mon
+from . import sections as sec
 from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
@@ -58,7 +59,8 @@ O_STOP_ON_STICK = 5
 O_RECORD = 6
 O_STICK_RULE = 7  # RULE_CONTACTS or RULE_COROTATION
 O_DENSE_LU = 8  # 1 = dense LU of the stage matrix (O(N^3), for comparison), 0 = arrow (O(N))
-N_IOPT = 9
+O_OBSERVE = 9  # 1 = verdicts only on what the run shows (numerics.evidence observe)
+N_IOPT = 10
 
 RULE_CONTACTS = 0  # stick = every contact stuck for one revolution
 RULE_COROTATION = 1  # stick = co-rotation without net slip (monitor.corotation_verdict)
@@ -203,6 +205,8 @@ def run(
     ybuf = np.empty(n)
     ymid = np.empty(n)
     jac, lu, piv = stage_workspace(n, nq, iopt[O_DENSE_LU] == 1)
+    seq = np.empty((sec.SEQ_MAX, sec.N_SEQ))  # scratch for the section (kernel/sections.py)
+    omega = p[P_OMEGA]
     wk = np.empty((N_WORK_ROWS, n))
     fresh = np.zeros(ncon, dtype=np.int8)
     band = np.zeros(ncon, dtype=np.int8)
@@ -223,6 +227,9 @@ def run(
     # A slip per revolution below the position tolerance plus what the slide->stick
     # threshold eps lets slide unresolved over a revolution is none (kernel/monitor.py).
     mf[mon.F_SLIP_TOL] = atol + p[P_EPS] * hold
+    mf[mon.F_RTOL] = rtol
+    mf[mon.F_ATOL] = atol
+    mi[mon.I_OBSERVE] = iopt[O_OBSERVE]
     mf[mon.F_ARM] = 0.0
     if nq == 3:
         for i in range(ncon):
@@ -261,9 +268,18 @@ def run(
             )
             t_rev += hold
             verdict = mon.corotation_verdict(mf, mi, rv)
+            if (
+                corotation
+                and verdict == mon.VERDICT_NONE
+                and mon.shaken_down(mf, mi, ring_all, rv, omega, hold, seq)
+            ):
+                verdict = mon.VERDICT_SHAKEN
+                mi[mon.I_VERDICT] = verdict
         if corotation:
             if stop_on_stick and verdict == mon.VERDICT_STICK:
                 return st.COROTATING, t
+            if stop_on_stick and verdict == mon.VERDICT_SHAKEN:
+                return st.SHAKEN_DOWN, t
             if not converge and verdict == mon.VERDICT_CREEP:
                 return st.CREEPING, t
         elif stop_on_stick and mon.stuck_for(mf, mi, t) >= hold - t_eps:
@@ -273,20 +289,24 @@ def run(
         if t >= t_stop - t_eps:
             if corotation and mi[mon.I_VERDICT] == mon.VERDICT_STICK:
                 return st.COROTATING, t  # decided, kept running for stop_on_stick false
+            if corotation and mi[mon.I_VERDICT] == mon.VERDICT_SHAKEN:
+                return st.SHAKEN_DOWN, t
             if corotation and mi[mon.I_VERDICT] == mon.VERDICT_CREEP:
                 return st.CREEPING, t
-            # An undecided run still settling, or not yet shown stationary (a slow measure
-            # still moving towards stick), extends its horizon, revolution by revolution,
-            # up to the budget: no not-stick verdict without evidence.
             # contacts: a held phase is `stick`; an open one is finished first (below)
             held = not corotation and (
                 mon.stuck_for(mf, mi, t) >= hold - t_eps
                 or (mi[mon.I_ALL] == 1 and out_i[C_EXTENDED] == 0)
             )
-            if not converge and (
-                mon.still_settling(mf, mi, rv, corotation)
-                or (not held and mon.trend_to_stick(mf, mi, rv))
-            ):
+            go_on = False
+            if not converge:
+                evidence = mon.evidence_at_horizon(
+                    p, pts, mf, mi, ring_all, rv, omega, hold, seq, corotation, held
+                )
+                if evidence == mon.EV_SHAKEDOWN and corotation:
+                    return st.SHAKEN_DOWN, t
+                go_on = evidence == mon.EV_NONE
+            if go_on:  # no not-stick verdict without evidence: extend, within the budget
                 if t_stop + hold <= budget + t_eps:
                     out_i[C_SETTLE_REVS] += 1
                     t_stop += hold
@@ -420,7 +440,9 @@ def run(
             n_sw = 0
             for i in range(ncon):
                 n_sw += 1 if entered[i] > 0 else 0
-            mon.monitor_switch(mf, mi, ring_all, ring_any, t_ev, y, modes, n_sw)
+            mon.monitor_switch(
+                mf, mi, ring_all, ring_any, t_ev, y, modes, n_sw, out_f[en.E_SLIP], out_i[C_STEPS]
+            )
             out_i[C_EVENTS] += n_sw
             if t_ev - t_last_event < SAME_TIME:
                 n_same_time += 1

@@ -25,34 +25,56 @@ import numpy as np
 from .events import hermite_max
 from .jit import kernel_jit
 from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
+    EV_CANNOT,
+    EV_CONTRACT,
+    EV_DEPART,
+    EV_NONE,
+    EV_REPEAT,
+    EV_SHAKEDOWN,
+    EV_SLIDING,
     F_A,
     F_ANG_SECT,
     F_ARM,
+    F_ATOL,
     F_CYCLE_TOL,
     F_DR1,
     F_DR2,
+    F_EV_D,
+    F_EV_LIMIT,
+    F_EV_Q,
+    F_EV_QUP,
     F_LAMBDA,
     F_LAMBDA_SE,
     F_R1,
     F_R_SECT,
     F_REMAIN,
     F_RMAX,
+    F_RTOL,
     F_S_INF,
     F_SIZE,
+    F_SLIP_ALL,
     F_SLIP_REV,
     F_SLIP_TOL,
+    F_STEPS_ALL,
     F_T_ALL,
     F_T_ANY,
     F_T_R1,
     F_T_REV,
+    F_X_ALL,
+    F_Y_ALL,
     I_ALL,
     I_ANY,
     I_CYCLE_COUNT,
+    I_EV_LAG,
+    I_EV_SOURCE,
+    I_EV_STEPS,
+    I_EVIDENCE,
     I_NAGREE,
     I_NQ,
     I_NREV,
     I_NSECT,
     I_NTRANS,
+    I_OBSERVE,
     I_RA_N,
     I_REV_EVER_ALL,
     I_REV_NONE,
@@ -63,7 +85,14 @@ from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
     I_VERDICT,
     N_MF,
     N_MI,
+    N_RA,
     N_RV,
+    RA_SLIP,
+    RA_STEPS,
+    RA_T0,
+    RA_T1,
+    RA_X,
+    RA_Y,
     REV_RING,
     RING,
     RV_ALL_STUCK,
@@ -76,19 +105,28 @@ from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
     RV_STILL,
     RV_SWITCHES,
     RV_T,
+    RV_U,
+    RV_V,
+    RV_W,
+    RV_X,
+    RV_Y,
+    SOURCE_CYCLES,
+    SOURCE_REVOLUTIONS,
     VERDICT_CREEP,
     VERDICT_NONE,
+    VERDICT_SHAKEN,
     VERDICT_STICK,
 )
 from .verdict import (  # noqa: F401  (re-exported: mon.corotation_verdict, ...)
     AITKEN_MIN_SPACING,
-    TREND_REL,
-    TREND_REVS,
     VERDICT_REVS,
     VERDICT_Z,
+    cannot_corotate,
     corotation_verdict,
+    evidence_at_horizon,
+    horizon_evidence,
+    shaken_down,
     still_settling,
-    trend_to_stick,
 )
 
 
@@ -100,8 +138,21 @@ def _radius(y):
 @kernel_jit
 def _push(ring, count, t0, t1):
     k = count % ring.shape[0]
-    ring[k, 0] = t0
-    ring[k, 1] = t1
+    ring[k, RA_T0] = t0
+    ring[k, RA_T1] = t1
+
+
+@kernel_jit
+def _push_phase(mf, mi, ring_all, t):
+    """Close the whole-body sticking phase that ends at t: its interval and section point."""
+    k = mi[I_RS_N] % ring_all.shape[0]
+    ring_all[k, RA_T0] = mf[F_T_ALL]
+    ring_all[k, RA_T1] = t
+    ring_all[k, RA_X] = mf[F_X_ALL]
+    ring_all[k, RA_Y] = mf[F_Y_ALL]
+    ring_all[k, RA_SLIP] = mf[F_SLIP_ALL]
+    ring_all[k, RA_STEPS] = mf[F_STEPS_ALL]
+    mi[I_RS_N] += 1
 
 
 @kernel_jit
@@ -115,11 +166,11 @@ def monitor_begin(mf, mi, ring_all, ring_any, t, y, modes, nq, cycle_tol, cycle_
     mi[I_NQ] = nq
     mf[F_T_REV] = t
     mf[F_SLIP_REV] = 0.0
-    _update_phases(mf, mi, ring_all, ring_any, t, y, modes)
+    _update_phases(mf, mi, ring_all, ring_any, t, y, modes, 0.0, 0)
 
 
 @kernel_jit
-def _update_phases(mf, mi, ring_all, ring_any, t, y, modes):
+def _update_phases(mf, mi, ring_all, ring_any, t, y, modes, slip, steps):
     n_stick = 0
     for i in range(modes.shape[0]):
         if modes[i] == 1:
@@ -141,9 +192,12 @@ def _update_phases(mf, mi, ring_all, ring_any, t, y, modes):
         mi[I_REV_EVER_ALL] = 1
     if all_now and mi[I_ALL] == 0:
         _enter_body_stick(mf, mi, t, y)
+        mf[F_X_ALL] = y[0]
+        mf[F_Y_ALL] = y[1]
+        mf[F_SLIP_ALL] = slip
+        mf[F_STEPS_ALL] = steps
     if not all_now and mi[I_ALL] == 1:
-        _push(ring_all, mi[I_RS_N], mf[F_T_ALL], t)
-        mi[I_RS_N] += 1
+        _push_phase(mf, mi, ring_all, t)
         mf[F_T_ALL] = np.nan
         mf[F_RMAX] = _radius(y)
     mi[I_ALL] = 1 if all_now else 0
@@ -207,10 +261,11 @@ def monitor_step(mf, mi, y0, y1, h):
 
 
 @kernel_jit
-def monitor_switch(mf, mi, ring_all, ring_any, t, y, modes, n_switched):
-    """Register contact mode switches at time t (modes are the new modes)."""
+def monitor_switch(mf, mi, ring_all, ring_any, t, y, modes, n_switched, slip, steps):
+    """Register contact mode switches at time t (modes are the new modes; slip: the slip
+    integral [m] so far, NaN without the measure; steps: integrator steps so far)."""
     mi[I_NTRANS] += n_switched
-    _update_phases(mf, mi, ring_all, ring_any, t, y, modes)
+    _update_phases(mf, mi, ring_all, ring_any, t, y, modes, slip, steps)
 
 
 @kernel_jit
@@ -302,5 +357,12 @@ def monitor_revolution(mf, mi, rv, yrev, ring_all, t, y, slip, spin, rtol, atol,
     still_phi = abs(dphi) * arm <= n_steps * (atol + rtol * arm)
     rv[k, RV_STILL] = 1.0 if still_r and still_phi else 0.0
     rv[k, RV_STICK_T] = _overlap(ring_all, mi[I_RS_N], mf[F_T_ALL], mf[F_T_REV], t)
+    period = t - mf[F_T_REV]
+    scale = period / spin if spin > 0.0 else 1.0  # 1 / omega_m [s]
+    rv[k, RV_X] = y[0]
+    rv[k, RV_Y] = y[1]
+    rv[k, RV_U] = y[nq] * scale
+    rv[k, RV_V] = y[nq + 1] * scale
+    rv[k, RV_W] = y[nq + 2] * arm * scale if nq == 3 else 0.0
     mi[I_NREV] += 1
     begin_revolution(mf, mi, t, y, slip, yrev, steps)

@@ -25,7 +25,19 @@ F_REMAIN = 16  # predicted slip still to come under geometric decay [m]
 F_ARM = 17  # longest contact arm max |p_i| [m] (0 for the pin)
 F_SLIP_TOL = 18  # slip per revolution that counts as none: atol + eps T [m]
 F_S_INF = 19  # extrapolated limit of the slip per revolution [m]
-N_MF = 20
+F_X_ALL = 20  # slave centre x at the onset of the current whole-body sticking phase [m]
+F_Y_ALL = 21  # ... and y [m]
+F_SLIP_ALL = 22  # slip integral at that onset [m]
+F_STEPS_ALL = 23  # integrator steps before that onset
+F_RTOL = 24  # the integrator's rtol and atol [m], for the section tolerances
+F_ATOL = 25
+F_EV_D = 26  # newest section distance behind the evidence [m]
+F_EV_Q = 27  # its contraction ratio per step (distance / the one before)
+F_EV_QUP = 28  # the extrapolated bound on that ratio (EV_CONTRACT)
+F_EV_LIMIT = (
+    29  # extrapolated limit of the slip per step [m] (EV_SHAKEDOWN) or remaining travel [m]
+)
+N_MF = 30
 
 # mi indices
 I_ALL = 0  # 1 while every contact sticks
@@ -44,7 +56,12 @@ I_REV_NTRANS = 12  # mode switches before the current revolution
 I_REV_EVER_ALL = 13  # 1 once every contact stuck at some instant of the current revolution
 I_VERDICT = 14  # the last corotation_verdict (VERDICT_*)
 I_REV_STEPS = 15  # integrator steps before the current revolution
-N_MI = 16
+I_EVIDENCE = 16  # the section evidence of the last check (kernel/sections.py EV_*)
+I_EV_SOURCE = 17  # which section gave it: SOURCE_CYCLES or SOURCE_REVOLUTIONS
+I_EV_LAG = 18  # sticking phases (or revolutions) per period of the cycle behind EV_REPEAT
+I_EV_STEPS = 19  # section points behind the evidence
+I_OBSERVE = 20  # 1: verdicts only on what the run shows, no extrapolation (numerics.evidence)
+N_MI = 21
 
 # Columns of the revolution ring rv (one row per completed revolution, newest at
 # (I_NREV - 1) % REV_RING)
@@ -58,13 +75,43 @@ RV_ANY_STUCK = 6  # 1 if some contact stuck at every instant of the revolution
 RV_EVER_ALL = 7  # 1 if every contact stuck at some instant of the revolution
 RV_STILL = 8  # 1 if centre and spin phase repeated within the integrator's tolerance
 RV_STICK_T = 9  # time with every contact stuck during the revolution [s]
-N_RV = 10
-REV_RING = 64
+# the state at the end of the revolution, all in metres (the revolution's section point):
+RV_X = 10  # slave centre x [m]
+RV_Y = 11  # slave centre y [m]
+RV_U = 12  # x velocity / omega_m [m]
+RV_V = 13  # y velocity / omega_m [m]
+RV_W = 14  # spin rate x longest arm / omega_m [m] (0 for the pin)
+N_RV = 15
+# Revolutions kept: enough for log-spaced extrapolation over the horizon budget
+# (8 x 30 s at the fastest master of the studies, T = 2.5 s, is 96 revolutions).
+REV_RING = 512
 
 # corotation_verdict
 VERDICT_NONE = 0
 VERDICT_STICK = 1
 VERDICT_CREEP = 2
+VERDICT_SHAKEN = 3  # stick by the shakedown of the section's slip (kernel/sections.py)
 
 # rows of each sticking-interval ring (ring_all, ring_any)
 RING = 16384
+# Columns of the sticking-interval rings: ring_any holds (start, end) of every phase with
+# some contact stuck; ring_all holds, per whole-body sticking phase, also its section point
+# (the slave centre at its onset) and the slip integral and step count at its onset.
+RA_T0 = 0  # onset [s]
+RA_T1 = 1  # end [s]
+RA_X = 2  # slave centre x at the onset [m]
+RA_Y = 3  # slave centre y at the onset [m]
+RA_SLIP = 4  # slip integral at the onset [m] (NaN without the slip measure)
+RA_STEPS = 5  # integrator steps before the onset
+N_RA = 6
+
+# Section evidence (kernel/sections.py): what the motion's own section shows
+EV_NONE = 0  # nothing yet: the run must go on (or end undetermined)
+EV_REPEAT = 1  # the section repeats within tolerance: a cycle reached (not stick)
+EV_CONTRACT = 2  # the section contracts geometrically to a cycle with slip (not stick)
+EV_DEPART = 3  # slip grows and sticking time shrinks step after step (not stick)
+EV_SHAKEDOWN = 4  # slip per step falls to an extrapolated limit <= tolerance (stick)
+EV_CANNOT = 5  # no co-rotating state can be held: mu F_n below the spring's or brake's pull
+EV_SLIDING = 6  # slides as a whole, its slip per revolution not falling revolution by revolution
+SOURCE_CYCLES = 1  # the onsets of whole-body sticking phases
+SOURCE_REVOLUTIONS = 2  # the state at every whole master revolution

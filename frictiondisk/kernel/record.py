@@ -80,7 +80,7 @@ class KernelRun:
             rec_m=np.empty((cap, ncon), dtype=np.int8),
             mf=np.empty(mon.N_MF),
             mi=np.empty(mon.N_MI, dtype=np.int64),
-            ring_all=np.empty((mon.RING, 2)),
+            ring_all=np.empty((mon.RING, mon.N_RA)),
             ring_any=np.empty((mon.RING, 2)),
             rv=np.zeros((mon.REV_RING, mon.N_RV)) if revolutions else None,
             yrev=np.empty_like(y) if revolutions else None,

@@ -1,31 +1,48 @@
-"""The co-rotation verdict and the tests on a run still settling (numba).
+"""The co-rotation verdict and the evidence a run needs to end without sticking (numba).
 
 From the revolution ring rv that the monitor fills (kernel/monitor.py, monitor_revolution):
 `corotation_verdict` decides permanent co-rotation (`stick`) against ratcheting (`creep`)
-under stick_rule corotation; `still_settling` and `trend_to_stick` tell whether a run
-without a verdict at its horizon is still on its way to one. The thresholds of these rules
-are the constants below.
+under stick_rule corotation. `shaken_down` decides `stick` from the motion's own section
+(kernel/sections.py): a slip per cycle or revolution that falls to nothing.
+`horizon_evidence` tells whether a run without a verdict at its horizon may end as not
+stick: only on evidence from the section (a cycle reached, a geometric approach to one, a
+departure from sticking); otherwise it must go on. The thresholds of
+these rules are the constants below and in kernel/sections.py.
 """
 
 import math
 
+from . import sections as sec
 from .jit import kernel_jit
+from .model import P_BETAB, P_BETAI, P_CS, P_EPS, P_FNI, P_MU, P_OMEGA, P_XMS
 from .monitor_slots import (
+    EV_CANNOT,
+    EV_NONE,
+    EV_REPEAT,
+    EV_SHAKEDOWN,
+    EV_SLIDING,
+    F_ARM,
     F_LAMBDA,
     F_LAMBDA_SE,
     F_REMAIN,
     F_S_INF,
     F_SLIP_TOL,
+    I_EV_SOURCE,
+    I_EVIDENCE,
     I_NREV,
+    I_OBSERVE,
+    I_RS_N,
     I_VERDICT,
+    RA_T0,
     REV_RING,
     RV_ALL_STUCK,
     RV_ANY_STUCK,
     RV_EVER_ALL,
     RV_SLIP,
-    RV_STICK_T,
     RV_STILL,
     RV_T,
+    SOURCE_CYCLES,
+    SOURCE_REVOLUTIONS,
     VERDICT_CREEP,
     VERDICT_NONE,
     VERDICT_STICK,
@@ -34,14 +51,11 @@ from .monitor_slots import (
 # Revolutions behind a verdict on the slip trend. Five give four decay ratios, enough for
 # a standard error; fewer make one grazing contact's lumpy slip look like a trend.
 VERDICT_REVS = 5
+# Revolutions of whole-body sliding behind EV_SLIDING: a slip that fell at every one of
+# them is an approach to sticking; one that did not wanders or grows.
+SLIDE_REVS = 8
 # Standard errors by which a decay must be established (about 97.5 % one-sided).
 VERDICT_Z = 2.0
-# Stationarity (trend_to_stick): two windows of TREND_REVS revolutions each are compared.
-# Three revolutions average the stick-slip cycle's beat against the master revolution; a
-# slow measure that moves towards stick by more than TREND_REL of its size (slip) or of a
-# revolution (stick time) from one window to the next is a trend.
-TREND_REVS = 3
-TREND_REL = 0.02
 # Spacing (revolutions) below which Aitken's limit is not trusted: measured on the braked
 # disk, spacings of 2 revolutions still mistake the last fast transient for the limit
 # (from rest, beta_b = 0.005, mu = 0.22: limit 4.5e-8 m read at 51 s, true limit 0).
@@ -131,11 +145,7 @@ def corotation_verdict(mf, mi, rv):
     n_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0)
     if n_orbit < VERDICT_REVS:
         return VERDICT_NONE  # not (long enough) on the small orbit
-    quiet = True
-    for back in range(VERDICT_REVS):
-        row = _row(mi, back)
-        quiet = quiet and rv[row, RV_SLIP] <= tol and rv[row, RV_STILL] == 1.0
-    if quiet:
+    if _quiet(mf, mi, rv):
         mf[F_REMAIN] = 0.0
         mi[I_VERDICT] = VERDICT_STICK  # grazing contacts, but no slip to resolve
         return VERDICT_STICK
@@ -151,6 +161,8 @@ def corotation_verdict(mf, mi, rv):
             return VERDICT_CREEP
         return VERDICT_NONE
     mf[F_REMAIN] = slip * q / (1.0 - q)
+    if mi[I_OBSERVE] == 1:
+        return VERDICT_NONE  # a limit is an extrapolation: only what is seen counts
     if s_inf > tol and s_inf >= 0.5 * slip:
         # most of today's slip persists in the limit: the ratchet has settled
         mi[I_VERDICT] = VERDICT_CREEP
@@ -159,6 +171,16 @@ def corotation_verdict(mf, mi, rv):
         mi[I_VERDICT] = VERDICT_STICK  # geometric decay to no slip: shakedown
         return VERDICT_STICK
     return VERDICT_NONE
+
+
+@kernel_jit
+def _quiet(mf, mi, rv):
+    """The last VERDICT_REVS revolutions each slipped <= atol + eps T and moved nothing."""
+    for back in range(VERDICT_REVS):
+        row = _row(mi, back)
+        if not (rv[row, RV_SLIP] <= mf[F_SLIP_TOL] and rv[row, RV_STILL] == 1.0):
+            return False
+    return True
 
 
 @kernel_jit
@@ -174,72 +196,137 @@ def _run_length(mi, rv, column, value):
 
 @kernel_jit
 def still_settling(mf, mi, rv, corotation):
-    """Whether an undecided run at its horizon is still on its way to a decision: sliding
-    as a whole (never all contacts stuck) for VERDICT_REVS revolutions with its slip per
-    revolution decaying towards a sticking circle (not settling at a steady sliding rate,
-    by the same Aitken limit as corotation_verdict's), or (corotation: the stick_rule) before
-    VERDICT_REVS revolutions, or on the small orbit (some contact stuck at every instant of
-    the last revolution), where corotation_verdict has not spoken yet."""
-    if corotation and mi[I_VERDICT] != VERDICT_NONE:
+    """Whether an undecided run at its horizon is still on its way to a verdict of the
+    co-rotation rule: (corotation) before VERDICT_REVS revolutions, or on the small orbit
+    (some contact stuck at every instant of the last revolution), where
+    corotation_verdict decides every orbit in time."""
+    if not corotation or mi[I_VERDICT] != VERDICT_NONE:
         return False
-    if corotation and mi[I_NREV] < VERDICT_REVS:
+    if mi[I_NREV] < VERDICT_REVS:
         return True  # too few revolutions to tell any of the outcomes apart
-    if mi[I_NREV] < 1:
+    return _run_length(mi, rv, RV_ANY_STUCK, 1.0) > 0
+
+
+@kernel_jit
+def steady_sliding(mf, mi, rv):
+    """Whether the run has slid as a whole (no whole-body stick) for SLIDE_REVS revolutions
+    at a slip per revolution that did not fall at every one of them (a slip falling
+    revolution after revolution is an approach to sticking, however slowly it falls: a
+    Stribeck disk spinning up slides 0.2 m a revolution, 1 % less each time, and sticks
+    at 97 s) and whose decay over the last VERDICT_REVS is not established at VERDICT_Z
+    standard errors: a sliding orbit whose slip wanders about a level (its period not the
+    master's) or grows."""
+    if _run_length(mi, rv, RV_EVER_ALL, 0.0) < SLIDE_REVS:
         return False
-    on_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0) if corotation else 0
-    sliding = _run_length(mi, rv, RV_EVER_ALL, 0.0)
-    if on_orbit > 0:
-        return True  # corotation_verdict decides every orbit in time; until then, wait
-    if sliding < VERDICT_REVS:
+    falling = True
+    for back in range(SLIDE_REVS - 1):
+        falling = falling and rv[_row(mi, back), RV_SLIP] < rv[_row(mi, back + 1), RV_SLIP]
+    if falling:
         return False
     lam, se = _slip_trend(mf, mi, rv)
-    if math.isnan(lam) or lam + VERDICT_Z * se >= 0.0:
-        return False  # steady (or growing) sliding
-    # falling: towards a sticking circle (limit 0), unless it visibly settles at a steady
-    # sliding rate that already holds most of it (limit > tol)
-    s_inf, _ = _limit_slip(mi, rv, sliding)
-    slip = rv[_row(mi, 0), RV_SLIP]
-    return not (s_inf > mf[F_SLIP_TOL] and s_inf >= 0.5 * slip)
+    return math.isnan(lam) or lam + VERDICT_Z * se >= 0.0
 
 
 @kernel_jit
-def _window_change(mi, rv, column, m):
-    """Mean of `column` over the newest m revolutions minus its mean over the m before, and
-    the standard error of that difference from the scatter within the windows."""
-    new = 0.0
-    old = 0.0
-    for back in range(m):
-        new += rv[_row(mi, back), column]
-        old += rv[_row(mi, back + m), column]
-    new /= m
-    old /= m
-    scatter = 0.0
-    for back in range(m):
-        scatter += (rv[_row(mi, back), column] - new) ** 2
-        scatter += (rv[_row(mi, back + m), column] - old) ** 2
-    variance = scatter / (2 * (m - 1))  # pooled, per revolution
-    return new - old, old, math.sqrt(2.0 * variance / m)
+def _cycles_recent(mi, ring_all, rv):
+    """Whether the newest whole-body sticking phase began within the last two revolutions
+    (older cycles say nothing about the motion now)."""
+    if mi[I_RS_N] < 1 or mi[I_NREV] < 2:
+        return False
+    newest = ring_all[(mi[I_RS_N] - 1) % ring_all.shape[0], RA_T0]
+    return newest >= rv[_row(mi, 1), RV_T] - (rv[_row(mi, 0), RV_T] - rv[_row(mi, 1), RV_T])
 
 
 @kernel_jit
-def trend_to_stick(mf, mi, rv):
-    """Whether a run without a verdict is not yet shown stationary: fewer than
-    2 TREND_REVS revolutions, or from the older to the newer window of TREND_REVS
-    revolutions a slow measure moved towards permanent stick: the slip per revolution fell
-    (by more than TREND_REL of it and more than the slip tolerance), or the whole-body
-    stick time per revolution grew (by more than TREND_REL of a revolution). A change
-    counts only beyond VERDICT_Z standard errors of the scatter within the windows: a
-    converged stick-slip cycle whose period is not the master's beats against the
-    revolutions, and that beat is no trend. A disk spinning up while it slides shows in
-    its falling slip. The spin drift alone is no evidence: a self-centred disk spins up
-    towards omega_m for ever at a steady slip per revolution and never sticks. A run that
-    is steady, or moves away from stick, is not trending to stick."""
-    m = TREND_REVS
-    if mi[I_NREV] < 2 * m:
-        return True
-    change, old, se = _window_change(mi, rv, RV_SLIP, m)
-    if -change > max(TREND_REL * old, mf[F_SLIP_TOL], VERDICT_Z * se):
-        return True
-    period = rv[_row(mi, 0), RV_T] - rv[_row(mi, 1), RV_T]
-    change, old, se = _window_change(mi, rv, RV_STICK_T, m)
-    return change > max(TREND_REL * period, VERDICT_Z * se)
+def _section(mf, mi, ring_all, rv, omega, hold, seq, source):
+    """The evidence of the cycle or revolution section (kernel/sections.py); seq: scratch
+    (sections.SEQ_MAX, sections.N_SEQ)."""
+    if source == SOURCE_CYCLES:
+        if not _cycles_recent(mi, ring_all, rv):
+            return EV_NONE
+        n = sec.cycle_sequence(mi, ring_all, omega, seq)
+    else:
+        n = sec.revolution_sequence(mi, rv, seq)
+    if n < 2:
+        return EV_NONE
+    period = sec.newest_period(mi, ring_all, rv, source == SOURCE_CYCLES)
+    return sec.section_evidence(mf, mi, seq, n, sec.slip_tolerance(mf, period, hold))
+
+
+@kernel_jit
+def shaken_down(mf, mi, ring_all, rv, omega, hold, seq):
+    """Whether the slip per cycle (whole-body sticking onsets, while they are recent) or per
+    revolution falls to an extrapolated limit within tolerance: `stick` by shakedown
+    (kernel/sections.py, EV_SHAKEDOWN). Sets the monitor's evidence slots."""
+    if mi[I_OBSERVE] == 1:
+        return False  # a limit is an extrapolation: only what is seen counts
+    for source in (SOURCE_CYCLES, SOURCE_REVOLUTIONS):
+        if _section(mf, mi, ring_all, rv, omega, hold, seq, source) == EV_SHAKEDOWN:
+            mi[I_EVIDENCE] = EV_SHAKEDOWN
+            mi[I_EV_SOURCE] = source
+            return True
+    return False
+
+
+@kernel_jit
+def horizon_evidence(mf, mi, ring_all, rv, omega, hold, seq):
+    """The evidence (EV_*) on which an undecided run at its horizon may end as not stick:
+    the section of its recent whole-body sticking onsets or of its revolutions shows a
+    cycle reached, a geometric approach to one or a departure from sticking (a sliding
+    slave's revolutions are its section: a steady sliding state repeats or is approached
+    geometrically), or it slides on without approaching sticking (EV_SLIDING). EV_NONE: it
+    must go on (or end undetermined). A shakedown found here is EV_SHAKEDOWN (stick).
+    Sets the monitor's evidence slots."""
+    best = EV_NONE
+    observe = mi[I_OBSERVE] == 1
+    for source in (SOURCE_CYCLES, SOURCE_REVOLUTIONS):
+        ev = _section(mf, mi, ring_all, rv, omega, hold, seq, source)
+        if ev == EV_REPEAT or (ev != EV_NONE and not observe):
+            best = ev
+            mi[I_EV_SOURCE] = source
+            break
+    if best == EV_NONE and not observe and steady_sliding(mf, mi, rv):
+        best = EV_SLIDING
+        mi[I_EV_SOURCE] = SOURCE_REVOLUTIONS
+    mi[I_EVIDENCE] = best
+    return best
+
+
+@kernel_jit
+def cannot_corotate(p, pts, arm):
+    """Whether no permanent co-rotation can be held at all, whatever the circle: a rigidly
+    co-rotating slave needs a contact force whose largest value over a revolution is at
+    least the spring's pull c_s |x_ms| (the preload sweeps every direction; docs/model.md
+    section 7), and a torque beta_b omega_m that no contact force pattern within mu F_n
+    can carry beyond a lever of the longest arm. Below either, the slave can never stick:
+    a bound, not a measurement (kernel/sections.py EV_CANNOT). The band beta eps of the
+    stuck contacts is added to the friction limit. arm: longest contact arm [m] (0: pin)."""
+    hold = 0.0
+    for i in range(pts.shape[0]):
+        hold += (p[P_MU] * p[P_FNI] + p[P_BETAI] * p[P_EPS]) * pts[i, 2]
+    pull = p[P_CS] * abs(p[P_XMS])
+    if arm > 0.0:
+        pull = max(pull, abs(p[P_BETAB] * p[P_OMEGA]) / arm)
+    return hold < pull
+
+
+@kernel_jit
+def evidence_at_horizon(p, pts, mf, mi, ring_all, rv, omega, hold, seq, corotation, held):
+    """What an undecided run at its horizon may end on (EV_*; EV_NONE: it must go on): a
+    bound that no co-rotation can pass (EV_CANNOT), its section (horizon_evidence), or,
+    stick_rule contacts, a sticking phase already held or open (then EV_REPEAT: the rule's
+    own decision follows in the driver). A run still settling towards a co-rotation verdict
+    (still_settling) goes on. Under stick_rule contacts a shakedown to co-rotation with
+    grazing contacts is no `stick` (that rule needs every contact stuck for a revolution)
+    and counts as not-stick evidence."""
+    if cannot_corotate(p, pts, mf[F_ARM]):
+        mi[I_EVIDENCE] = EV_CANNOT
+        return EV_CANNOT
+    if held:
+        return EV_REPEAT
+    evidence = horizon_evidence(mf, mi, ring_all, rv, omega, hold, seq)
+    if evidence == EV_SHAKEDOWN and corotation:
+        return EV_SHAKEDOWN
+    if still_settling(mf, mi, rv, corotation):
+        return EV_NONE
+    return evidence

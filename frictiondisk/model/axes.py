@@ -136,7 +136,7 @@ def axes_problems(
         got = f"{len(axes)} keys ({', '.join(axes)})" if axes else "no keys"
         problems.append(((), f"{got} given: vary {allowed} {noun}"))
     for key, values in axes.items():
-        text = taken.get(key) or key_problem(key)
+        text = taken.get(key) or key_problem(key, base)
         if text:
             problems.append((key, text))
         elif base is not None:

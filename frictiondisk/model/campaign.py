@@ -14,6 +14,8 @@ A campaign file holds a `name`, a base scene (the keys of a scene file: `scene`,
   line or grid of scene keys, the fraction of each outcome over initial states drawn from
   `sample` (a fixed count, or adaptively to a target standard error); or, with `grid`
   instead of `sample`, one run per cell of a grid of 1 or 2 initial-state keys (a basin map).
+- `trace`: follow every jump curve through a plane of one scene key and mu (a first look
+  finds the curves, each is followed with adaptive steps, folds located; docs/trace.md).
 
 Varied values are a list of numbers or `{start, stop, num}` (numpy.linspace). Any numeric
 scene key may be varied, numerics ones included (`numerics.rtol`, `contact.stiffness`).
@@ -55,6 +57,7 @@ from frictiondisk.model.campaign_spec import (
 from frictiondisk.model.scene import ConfigError, SceneConfig, scene_from_dict
 from frictiondisk.model.schema import error_lines, problems_of
 from frictiondisk.model.schema import show as _show
+from frictiondisk.model.trace_spec import Trace
 from frictiondisk.model.varied import scene_value
 from frictiondisk.model.yamlio import StrictDumper, load_yaml_text, read_text_file
 
@@ -66,6 +69,7 @@ __all__ = [
     "Point",
     "Prescan",
     "Scan",
+    "Trace",
     "Trajectory",
     "campaign_from_dict",
     "campaign_from_text",
@@ -97,12 +101,12 @@ class Campaign:
 
     name: str
     base: SceneConfig
-    task: FindJump | Scan | Trajectory | Basin
+    task: FindJump | Scan | Trajectory | Basin | Trace
     text: str = dataclasses.field(default="", compare=False, repr=False)
 
     @property
     def kind(self) -> str:
-        """ "find_jump", "scan", "trajectory" or "basin"."""
+        """ "find_jump", "scan", "trajectory", "basin" or "trace"."""
         return self.task.kind
 
     @property

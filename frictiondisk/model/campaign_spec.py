@@ -30,6 +30,7 @@ from frictiondisk.model.axes import (
 )
 from frictiondisk.model.schema import Spec, canonical, field, joined, merged, rule, within
 from frictiondisk.model.search_settings import Certify
+from frictiondisk.model.trace_spec import Trace
 from frictiondisk.model.varied import INITIAL_STATE_KEYS, initial_state_problem, value_problems
 
 MAX_SPLIT = 64
@@ -66,7 +67,9 @@ class Prescan(Spec):
     """Values of mu run at every point before bisecting, in numerics.mode `mode`; every
     change between neighbours is then bisected (frictiondisk.search.jumps.JumpSearch). `stride`:
     run every stride-th value first and refine where needed (frictiondisk.search.prescan); None
-    picks `prescan.stride_of` (1, dense, for converge mode and stick_rule contacts)."""
+    picks `prescan.stride_of` (1, dense, for converge mode and stick_rule contacts). Every
+    value below the headline is run in the end, and the headline must stick over `persist`
+    tol above its bracket (docs/model.md section 7)."""
 
     mu: Values = field(..., "1", "values of mu run first, at least 2 (sorted)", VALUES_MUST)
     mode: Literal["decide", "converge"] = field("decide", None, "numerics.mode of these runs")
@@ -76,6 +79,14 @@ class Prescan(Spec):
         "run every stride-th value first; not given: frictiondisk.search.prescan",
         "an integer >= 1 and <= len(mu) - 1",
         ge=1,
+    )
+    persist: float = field(
+        3.0,
+        "1",
+        "width above a rising jump's mu_hi, in units of tol, over which it must stick to be "
+        "the headline (else it is a window)",
+        gt=0,
+        le=1000,
     )
 
     @field_validator("mu")
@@ -170,12 +181,6 @@ class FindJump(Spec):
         if problems:
             raise rule(*problems)
         return spec
-
-    @field_validator("certify", mode="before")
-    @classmethod
-    def _certify(cls, value: Any) -> Any:
-        """true: the default certification; false: none."""
-        return {True: {}, False: {"levels": 0}}[value] if isinstance(value, bool) else value
 
     @field_validator("along")
     @classmethod
@@ -410,8 +415,14 @@ class Basin(Spec):
 # --- the file -------------------------------------------------------------------------------
 
 SCENE_KEYS = ("scene", "params", "contact", "numerics")
-TASK_KEYS = ("find_jump", "scan", "trajectory", "basin")
-TASKS = {"find_jump": FindJump, "scan": Scan, "trajectory": Trajectory, "basin": Basin}
+TASK_KEYS = ("find_jump", "scan", "trajectory", "basin", "trace")
+TASKS = {
+    "find_jump": FindJump,
+    "scan": Scan,
+    "trajectory": Trajectory,
+    "basin": Basin,
+    "trace": Trace,
+}
 _SCENE_DOC = "the base scene's {} (validated as in a scene file; see the scene keys)"
 
 
@@ -433,6 +444,7 @@ class CampaignFile(Spec):
     scan: Scan = field(None, None, "task: run every point of a grid of mu")
     trajectory: Trajectory = field(None, None, "task: one recorded run of the base scene")
     basin: Basin = field(None, None, "task: basin stability or a basin map")
+    trace: Trace = field(None, None, "task: follow every jump curve through a (key, mu) plane")
 
     @field_validator("trajectory", mode="before")
     @classmethod

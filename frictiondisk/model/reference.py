@@ -14,10 +14,13 @@ from pydantic_core import PydanticUndefined
 from frictiondisk.model.axes import Linspace
 from frictiondisk.model.campaign_spec import TASKS, CampaignFile, Distribution
 from frictiondisk.model.scene import SceneConfig, scene_from_dict
+from frictiondisk.model.scene_keys import unused_keys
 from frictiondisk.model.schema import _is_model, _strip, extra_of, requirement
 from frictiondisk.model.yamlio import StrictDumper
 
 __all__ = ["annotated_scene", "annotated_task", "reference_markdown"]
+
+_DISK_ONLY = unused_keys("pin", "ring")  # the scene keys a pin refuses
 
 
 def annotated_scene(scene: str) -> str:
@@ -72,7 +75,9 @@ def reference_markdown() -> str:
         "",
         "## Scene keys",
         "",
-        "A scene file, and the base scene of a campaign file.",
+        "A scene file, and the base scene of a campaign file. A scene takes only the keys it",
+        "uses: a pin refuses the keys marked *disk only* (it has no spin and one contact, at",
+        "its centre), and a disk refuses the keys of a `contact.layout` other than its own.",
         "",
         *_table(SceneConfig, ""),
         "",
@@ -121,6 +126,8 @@ def _rows(model: type[BaseModel], prefix: str, skip: tuple[str, ...] = ()) -> li
         unit = extra_of(info).get("unit") or ""
         doc = _doc(info).removesuffix(f" [{unit}]")  # the unit has its own column
         text = f"{doc}; {requirement(info)}".replace("|", "\\|")
+        if model is not CampaignFile and f"{prefix}{name}" in _DISK_ONLY:
+            text = f"*disk only*: {text}"
         rows.append(f"| `{prefix}{name}` | {unit} | `{shown}` | {text} |")
     return rows
 

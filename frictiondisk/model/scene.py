@@ -20,7 +20,15 @@ from pydantic_core import PydanticCustomError
 
 from frictiondisk.model import layouts
 from frictiondisk.model.overrides import apply_overrides, parse_override
-from frictiondisk.model.schema import INT64_MAX, MODEL_CONFIG, extra_of, field_at, problems_of
+from frictiondisk.model.scene_keys import drop_unused, without_unused
+from frictiondisk.model.schema import (
+    INT64_MAX,
+    MODEL_CONFIG,
+    extra_of,
+    field_at,
+    merged,
+    problems_of,
+)
 from frictiondisk.model.schema import field as _field
 from frictiondisk.model.yamlio import ConfigError, dump_yaml, load_yaml_file
 
@@ -154,17 +162,12 @@ class Contact(BaseModel):
 
     @model_validator(mode="after")
     def _layout_fields(self) -> Contact:
-        """Each layout's own fields are given, the other layouts' are not."""
+        """Each layout's own fields are given (the other layouts' are refused by SceneConfig,
+        frictiondisk.model.scene_keys)."""
         own = {"annulus": ("inner_radius", "outer_radius"), "points": ("positions",)}
-        for layout, names in own.items():
-            for name in names:
-                value = getattr(self, name)
-                if layout == self.layout and value is None:
-                    _layout_error(name, value, f"layout {layout!r} needs it")
-                if layout != self.layout and value is not None:
-                    _layout_error(name, value, f"only used by layout {layout!r}")
-        if self.weights is not None and self.layout != "points":
-            _layout_error("weights", self.weights, "only used by layout 'points'")
+        for name in own.get(self.layout, ()):
+            if getattr(self, name) is None:
+                _layout_error(name, None, f"layout {self.layout!r} needs it")
         if self.layout == "annulus" and self.outer_radius <= self.inner_radius:
             _layout_error(
                 "outer_radius",
@@ -262,6 +265,14 @@ class Numerics(BaseModel):
         "slip (slip per revolution decays to zero; docs/model.md); contacts = every contact "
         "stays in stick mode for one whole revolution",
     )
+    evidence: Literal["extrapolate", "observe"] = _field(
+        "extrapolate",
+        None,
+        "what a verdict may rest on (docs/model.md section 6): extrapolate = also a section "
+        "that contracts geometrically to a cycle, departs from sticking, or a slip that "
+        "extrapolates to nothing (shakedown); observe = only what the run shows: it sticks, "
+        "or its section repeats (for settling disputes with long runs)",
+    )
     horizon_budget: float = _field(
         8.0,
         "1",
@@ -305,12 +316,6 @@ class SceneConfig(BaseModel):
 
     @model_validator(mode="after")
     def _pin_has_one_contact(self) -> SceneConfig:
-        if self.scene == "pin" and self.contact.layout != "ring":
-            raise PydanticCustomError(
-                "scene_rule",
-                "a pin has exactly one contact, at its centre; use layout 'ring'",
-                {"path": "contact.layout", "value": self.contact.layout, "scene": self.scene},
-            )
         if self.scene == "pin" and self.contact.points not in (None, 1):
             raise PydanticCustomError(
                 "scene_rule",
@@ -335,6 +340,17 @@ class SceneConfig(BaseModel):
                 {"path": "numerics.method", "value": "coulomb", "scene": self.scene},
             )
         return self
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _only_keys_the_scene_uses(cls, data: Any, handler: Any) -> SceneConfig:
+        """A key the scene does not use (a pin's spin or contact layout, another layout's
+        keys on a disk) is refused, next to the problems of the other keys (defined after
+        the rules above, so that it wraps them)."""
+        if not isinstance(data, Mapping):
+            return handler(data)
+        data, problems = without_unused(data)
+        return merged(handler, data, problems, list(cls.model_fields))
 
     @property
     def n_contacts(self) -> int:
@@ -378,18 +394,12 @@ class SceneConfig(BaseModel):
     def canonical(self) -> dict[str, Any]:
         """Plain JSON-able dict, every default filled in, `points` resolved, keys sorted.
 
-        Only the fields of the chosen `contact.layout` are kept (ring: ring_radius;
-        annulus: inner_radius, outer_radius; points: positions and weights, null weights
-        written out as equal ones)."""
-        data = self.model_dump(mode="json")
+        Only the keys the scene uses are kept (frictiondisk.model.scene_keys): a pin has no
+        spin and no layout keys; a disk keeps the fields of its `contact.layout` (ring:
+        ring_radius; annulus: inner_radius, outer_radius; points: positions and weights,
+        null weights written out as equal ones)."""
+        data = drop_unused(self.model_dump(mode="json"), self.scene, self.contact.layout)
         data["contact"]["points"] = self.n_contacts
-        unused = {
-            "ring": ("inner_radius", "outer_radius", "positions", "weights"),
-            "annulus": ("ring_radius", "positions", "weights"),
-            "points": ("ring_radius", "inner_radius", "outer_radius"),
-        }
-        for name in unused[self.contact.layout]:
-            del data["contact"][name]
         if self.contact.layout == "points" and self.contact.weights is None:
             data["contact"]["weights"] = [1.0] * self.n_contacts
         # the preset is resolved into concrete values; its name is not content
@@ -409,14 +419,19 @@ class SceneConfig(BaseModel):
         """New validated config with dotted keys set, e.g. {"params.mu": 0.12}.
 
         Setting "numerics.preset" sets every key of that preset too (the values of this
-        config are all explicit by now), except keys given in the same `overrides`.
+        config are all explicit by now), except keys given in the same `overrides`. The
+        keys of this config that the new scene does not use are dropped (a disk made a
+        pin loses its spin); an override naming one is refused.
         """
         name = overrides.get("numerics.preset")
         if isinstance(name, str) and name in NUMERICS_PRESETS:
             implied = {f"numerics.{key}": value for key, value in NUMERICS_PRESETS[name].items()}
             overrides = {**implied, **overrides}
         origins = {key: f"override {key}" for key in overrides}
-        data = apply_overrides(self.model_dump(), overrides.items(), "<overrides>")
+        scene = overrides.get("scene", self.scene)
+        layout = overrides.get("contact.layout", self.contact.layout)
+        data = drop_unused(self.model_dump(), scene, layout)
+        data = apply_overrides(data, overrides.items(), "<overrides>")
         return _validate(data, "<overrides>", origins)
 
 
@@ -428,7 +443,10 @@ def scene_from_dict(
     Raises ConfigError listing every problem as `dotted.path: message`.
     """
     if isinstance(overrides, str):
-        raise TypeError("overrides must be a sequence of 'KEY=VALUE' strings, not one string")
+        raise TypeError(
+            "overrides must be a sequence of 'KEY=VALUE' strings, not one string: "
+            f"write [{overrides!r}]"
+        )
     pairs, problems = [], []
     for text in overrides:
         try:

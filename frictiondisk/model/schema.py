@@ -85,12 +85,14 @@ def joined(
     problems: Sequence[tuple[Any, str]],
     order: Sequence[str] = (),
 ) -> ValidationError:
-    """The errors of `err` (None: none) and `problems` (`(at, text)`) as one error; with
-    `order` (field names) sorted by the field each is under, unknown keys first."""
+    """The errors of `err` (None: none) and `problems` (`(at, text)`, or `(at, error)`
+    with a PydanticCustomError of its own) as one error; with `order` (field names) sorted
+    by the field each is under, unknown keys first."""
     details = [_init_details(error) for error in err.errors(include_url=False)] if err else []
     for at, text in problems:
         at = at if isinstance(at, tuple) else (at,)
-        details.append(InitErrorDetails(type=rule(text), loc=at, input=data))
+        kind = text if isinstance(text, PydanticCustomError) else rule(text)
+        details.append(InitErrorDetails(type=kind, loc=at, input=data))
     rank = {name: i for i, name in enumerate(order)}
     details.sort(key=lambda detail: rank.get(detail["loc"][0], -1) if detail["loc"] else -1)
     return ValidationError.from_exception_data(err.title if err else "rule", details)

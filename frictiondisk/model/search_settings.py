@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from pydantic import BaseModel
+from pydantic import BaseModel, model_validator
 
 from frictiondisk.model.schema import MODEL_CONFIG, field
 
@@ -22,12 +22,22 @@ class Certify(BaseModel):
     rtol: float = field(0.1, "1", "factor on numerics.rtol per level", gt=0, le=1)
     levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
 
+    @model_validator(mode="before")
+    @classmethod
+    def _switch(cls, value: Any) -> Any:
+        """true: the default certification; false: none."""
+        return {True: {}, False: {"levels": 0}}[value] if isinstance(value, bool) else value
+
     @property
     def enabled(self) -> bool:
         return self.levels > 0
 
     def canonical(self) -> dict[str, Any]:
-        return {"horizon": self.horizon, "levels": self.levels, "rtol": self.rtol}
+        return {
+            "horizon": self.horizon,
+            "levels": self.levels,
+            "rtol": self.rtol,
+        }
 
 
 OFF = Certify(levels=0)

@@ -12,15 +12,17 @@ from pydantic.fields import FieldInfo
 
 from frictiondisk.model.overrides import _DOTTED_KEY
 from frictiondisk.model.scene import MAX_HORIZON, ConfigError, SceneConfig
+from frictiondisk.model.scene_keys import unused_key_problem
 from frictiondisk.model.schema import _is_model, requirement
 from frictiondisk.model.schema import show as _show
 
-# Initial-state keys a basin samples or maps (params.phidot0: disk only).
+# Initial-state keys a basin samples or maps (params.phidot0: disk only, scene_keys.py).
 INITIAL_STATE_KEYS = ("params.x0", "params.y0", "params.vx0", "params.vy0", "params.phidot0")
 
 
-def key_problem(key: str) -> str | None:
-    """What is wrong with varying dotted scene `key` (None: a numeric scene key)."""
+def key_problem(key: str, base: SceneConfig | None = None) -> str | None:
+    """What is wrong with varying dotted scene `key` (None: a numeric scene key that the
+    scene `base` uses, if given)."""
     if not _DOTTED_KEY.fullmatch(key):
         return "not a dotted scene key, e.g. params.x_ms"
     model: Any = SceneConfig
@@ -44,7 +46,7 @@ def key_problem(key: str) -> str | None:
         return (
             f"not a numeric scene key (it must be {requirement(info)}); only numbers can be varied"
         )
-    return None
+    return None if base is None else unused_key_problem(key, base.scene, base.contact.layout)
 
 
 def value_problems(base: SceneConfig, key: str, value: float) -> list[str]:
@@ -69,9 +71,7 @@ def initial_state_problem(key: str, base: SceneConfig | None) -> str | None:
     """What is wrong with sampling or mapping `key` (None: an initial-state key)."""
     if key not in INITIAL_STATE_KEYS:
         return f"not an initial-state key; allowed: {', '.join(INITIAL_STATE_KEYS)}"
-    if key == "params.phidot0" and base is not None and base.scene != "disk":
-        return f"the spin of a slave disk; scene {base.scene!r} has none"
-    return None
+    return None if base is None else unused_key_problem(key, base.scene, base.contact.layout)
 
 
 def retry_problem(base: SceneConfig, modes: set[str], retries: int, factor: float) -> str | None:

@@ -35,6 +35,75 @@ class Revolutions:
 
 
 @dataclasses.dataclass(frozen=True)
+class Evidence:
+    """What the motion's own section showed at the last check (kernel/sections.py)."""
+
+    kind: int  # monitor_slots.EV_*
+    source: int  # monitor_slots.SOURCE_CYCLES or SOURCE_REVOLUTIONS (0: none)
+    distance: float  # newest section distance [m]
+    ratio: float  # its contraction ratio per step (distance / the one before)
+    ratio_bound: float  # the extrapolated bound on that ratio (EV_CONTRACT)
+    limit: float  # slip limit [m] (EV_SHAKEDOWN) or travel still to come [m] (EV_CONTRACT)
+    lag: int  # sticking phases (revolutions) per period of a repeating cycle
+    points: int  # section points read
+
+    @property
+    def step(self) -> str:
+        return "cycle" if self.source == mon.SOURCE_CYCLES else "revolution"
+
+    @property
+    def section(self) -> str:
+        return (
+            "the onsets of whole-body sticking"
+            if self.source == mon.SOURCE_CYCLES
+            else "the state at every master revolution"
+        )
+
+    def describe(self) -> str:
+        """The evidence in words, with its measures."""
+        kind = self.kind
+        if kind == mon.EV_REPEAT:
+            every = "" if self.lag == 1 else f" every {self.lag} {self.step}s"
+            return (
+                f"the section at {self.section} repeats{every} within "
+                f"{self.distance:.3g} m: a cycle reached"
+            )
+        if kind == mon.EV_CONTRACT:
+            return (
+                f"the section at {self.section} contracts geometrically by {self.ratio:.3g} "
+                f"per {self.step} (bound {self.ratio_bound:.3g}), {self.limit:.3g} m still to "
+                "travel, towards a cycle that still slips"
+            )
+        if kind == mon.EV_DEPART:
+            return (
+                f"the section at {self.section} moves away from sticking: slip per {self.step} "
+                f"growing, sticking time shrinking, steps of {self.distance:.3g} m (ratio "
+                f"{self.ratio:.3g})"
+            )
+        if kind == mon.EV_SLIDING:
+            return (
+                "slides as a whole, its slip per revolution not falling revolution after "
+                "revolution (no approach to sticking)"
+            )
+        if kind == mon.EV_CANNOT:
+            return (
+                "no co-rotation can hold: mu F_n is below the spring's pull c_s |x_ms| (or the "
+                "brake torque over the longest arm) on every sticking circle"
+            )
+        if kind == mon.EV_SHAKEDOWN:
+            return (
+                f"its slip per {self.step} falls at every {self.step} to an extrapolated limit "
+                f"of {self.limit:.3g} m"
+            )
+        if math.isnan(self.ratio):
+            return f"no evidence from its section yet ({self.points} section points)"
+        return (
+            f"no evidence from its section: contraction {self.ratio:.3g} per step "
+            f"(bound {self.ratio_bound:.3g}), newest step {self.distance:.3g} m"
+        )
+
+
+@dataclasses.dataclass(frozen=True)
 class RunFacts:
     """What the kernel reports about one run, in the units of the model (s, m)."""
 
@@ -50,6 +119,7 @@ class RunFacts:
     max_events: int
     stick_rule: str = "contacts"  # numerics.stick_rule
     revs: Revolutions | None = None
+    evidence: Evidence | None = None
 
 
 def _rates(r: Revolutions) -> str:
@@ -88,6 +158,12 @@ def classify(facts: RunFacts) -> tuple[str, str]:
             f"co-rotates with the master without net slip at t = {t:.6g} s: last revolution "
             f"{_rates(revs)}; {how}"
         )
+    if facts.status == st.SHAKEN_DOWN:
+        ev = facts.evidence
+        return "stick", (
+            f"shakes down to co-rotation at t = {t:.6g} s: {ev.describe()} <= "
+            f"atol + eps T = {revs.tol:.3g} m a revolution (last revolution {_rates(revs)})"
+        )
     if facts.status == st.CREEPING:
         limit = "" if math.isnan(revs.limit) else f", extrapolated limit {revs.limit:.3g} m"
         return "creep", (
@@ -113,21 +189,28 @@ def classify(facts: RunFacts) -> tuple[str, str]:
         elif revs.on_orbit and facts.stick_rule == "corotation":
             where = "on its small orbit, co-rotation not yet decided"
         else:
-            where = (
-                "not shown stationary: its slip or spin drift per revolution still falls, "
-                "or its sticking time per revolution still grows, towards permanent stick"
-            )
+            evidence = facts.evidence.describe() if facts.evidence else "no evidence"
+            where = f"without evidence that it will not stick: {evidence}"
         return "undetermined", (
             f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}; "
             f"{_trend(revs)} (raise numerics.horizon_budget or t_decide)"
         )
+    why = ""
+    if facts.evidence is not None and facts.evidence.kind == mon.EV_SHAKEDOWN:
+        why = (
+            f"; {facts.evidence.describe()}: co-rotation with grazing contacts, which "
+            "stick_rule contacts does not count as stick"
+        )
+    elif facts.evidence is not None and facts.evidence.kind != mon.EV_NONE:
+        why = f"; {facts.evidence.describe()}"
     if facts.frac_all == 0.0:
         # outcome, stick_fraction and size all mean whole-body sticking (every contact)
         partial = (
             f"; single contacts stuck {facts.frac_any:.3g} of it" if facts.frac_any > 0 else ""
         )
         return "slide", (
-            f"the slave never stuck as a whole in the final window [{lo:.6g}, {hi:.6g}] s{partial}"
+            f"the slave never stuck as a whole in the final window [{lo:.6g}, {hi:.6g}] s"
+            f"{partial}{why}"
         )
     if facts.status == st.TMAX_REACHED:
         return "undetermined", (
@@ -137,7 +220,7 @@ def classify(facts: RunFacts) -> tuple[str, str]:
     if facts.status == st.HORIZON_REACHED:
         return "stick_slip", (
             f"sticking and sliding alternate in the final window [{lo:.6g}, {hi:.6g}] s "
-            f"(stick fraction {facts.frac_all:.3g})"
+            f"(stick fraction {facts.frac_all:.3g}){why}"
         )
     return "undetermined", f"unknown kernel status {facts.status} at t = {t:.6g} s"
 

@@ -86,6 +86,8 @@ class SimulationResult:
     trajectory: Trajectory | None = None
     # per-revolution measures of the last revolutions (kernel/monitor.py RV_* columns)
     revolutions: np.ndarray | None = None
+    # the last whole-body sticking phases, oldest first (kernel/monitor_slots.py RA_* columns)
+    sections: np.ndarray | None = None
     # Energy balance E(t_end) - E(0) = energy_in - energy_dissipated (kernel/energy.py);
     # NaN for integrators without the diagnostic (scipy-radau, coulomb).
     energy_in: float = math.nan  # work the driven master put in [J]
@@ -99,7 +101,7 @@ class SimulationResult:
     )  # net plastic slip of the mean contact, sum_i w_i int |w_i'| dt [m]
     drift_per_rev: float = math.nan  # drift of the slave centre in the master frame [m]
     spin_drift_per_rev: float = math.nan  # drift of the spin phase phi - omega_m t [rad]
-    slip_decay: float = math.nan  # mean log ratio of successive slips per revolution [1/rev]
+    slip_decay: float = math.nan  # mean log ratio of successive revolutions' slips [1]
     slip_limit: float = math.nan  # extrapolated limit of slip_per_rev (Aitken) [m]
     slip_total: float = math.nan  # net plastic slip over the whole run [m]
     # mu - demand(R1) / F_n: > 0 where the first sticking circle holds (frictiondisk/outcome/reserve.py)
@@ -109,7 +111,7 @@ class SimulationResult:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
         out: dict[str, Any] = {}
         for field in dataclasses.fields(self):
-            if field.name in ("trajectory", "revolutions"):
+            if field.name in ("trajectory", "revolutions", "sections"):
                 continue
             value = getattr(self, field.name)
             if isinstance(value, float) and not math.isfinite(value):

@@ -13,7 +13,7 @@ import numpy as np
 
 from frictiondisk.kernel import monitor as mon
 from frictiondisk.kernel.record import KernelRun
-from frictiondisk.outcome.classify import Revolutions, RunFacts, classify, revolution
+from frictiondisk.outcome.classify import Evidence, Revolutions, RunFacts, classify, revolution
 from frictiondisk.outcome.reserve import friction_reserve
 from frictiondisk.outcome.result import SimulationResult, Trajectory
 
@@ -65,6 +65,7 @@ def build_result(
         max_events=num.max_events,
         stick_rule=num.stick_rule,
         revs=_revolutions(config, run) if ring else None,
+        evidence=_evidence(mf, mi) if ring else None,
     )
     outcome, reason = classify(facts)
     revs = facts.revs
@@ -101,6 +102,7 @@ def build_result(
         method=num.method,
         trajectory=trajectory,
         revolutions=revolution_log(run.rv, mi) if ring else None,
+        sections=section_log(run.ring_all, mi),
         slip_total=run.slip_total,
         reserve=friction_reserve(config, R1),
         **_revolution_measures(revs),
@@ -128,6 +130,20 @@ def _revolutions(config, run: KernelRun) -> Revolutions:
     )
 
 
+def _evidence(mf: np.ndarray, mi: np.ndarray) -> Evidence:
+    """The section evidence of the run's last check (kernel/sections.py)."""
+    return Evidence(
+        kind=int(mi[mon.I_EVIDENCE]),
+        source=int(mi[mon.I_EV_SOURCE]),
+        distance=float(mf[mon.F_EV_D]),
+        ratio=float(mf[mon.F_EV_Q]),
+        ratio_bound=float(mf[mon.F_EV_QUP]),
+        limit=float(mf[mon.F_EV_LIMIT]),
+        lag=int(mi[mon.I_EV_LAG]),
+        points=int(mi[mon.I_EV_STEPS]),
+    )
+
+
 def _revolution_measures(revs: Revolutions | None) -> dict[str, float | int]:
     if revs is None:
         return {}
@@ -147,3 +163,12 @@ def revolution_log(rv: np.ndarray, mi: np.ndarray) -> np.ndarray:
     keep = min(n, mon.REV_RING)
     order = [(n - keep + j) % mon.REV_RING for j in range(keep)]
     return rv[order].copy()
+
+
+def section_log(ring_all: np.ndarray, mi: np.ndarray, keep: int = 256) -> np.ndarray:
+    """The last `keep` completed whole-body sticking phases (monitor.RA_* columns), oldest
+    first."""
+    n = int(mi[mon.I_RS_N])
+    keep = min(n, keep, ring_all.shape[0])
+    order = [(n - keep + j) % ring_all.shape[0] for j in range(keep)]
+    return ring_all[order].copy()

@@ -387,7 +387,7 @@ class _RadauRun:
                 t_last_event = t
                 n_sw += self._switch(t, y, seg)
             if n_sw > 0:
-                mon.monitor_switch(*self.out.monitor(), t, y, self.modes, n_sw)
+                mon.monitor_switch(*self.out.monitor(), t, y, self.modes, n_sw, math.nan, 0)
                 self.n_events += n_sw
                 self._rec(t, y)
 

@@ -109,6 +109,7 @@ def _simulate_numba(config, record: bool, dt_out: float, dense_lu: bool) -> Simu
     iopt[driver.O_RECORD] = 1 if record else 0
     iopt[driver.O_STICK_RULE] = STICK_RULE_CODES[num.stick_rule]
     iopt[driver.O_DENSE_LU] = 1 if dense_lu else 0
+    iopt[driver.O_OBSERVE] = 1 if num.evidence == "observe" else 0
     fopt = run.fopt
     fopt[driver.O_RTOL] = num.rtol
     fopt[driver.O_ATOL] = num.atol

@@ -23,14 +23,13 @@ from frictiondisk.search import basin_stats
 from frictiondisk.search.basin_sampling import STICK, SampleRequest, not_stick_outcomes
 from frictiondisk.store import cf
 from frictiondisk.store.datasets import (
-    RUN_MEASURES,
     _coords,
     _key_attrs,
-    _num,
     campaign_attrs,
     dim_names,
     run_columns,
 )
+from frictiondisk.store.measures import RUN_MEASURES, num
 
 NOT_STICK_TEXT = "every determined outcome but stick"
 
@@ -156,7 +155,7 @@ def _map_results(campaign, planner, outcomes: tuple[str, ...]) -> xr.Dataset:
         "n_samples": ((), np.int64(cells.size), {"long_name": "grid cells (one run each)"}),
     }
     for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([_num(r.get(name)) for r in runs]).reshape(shape)
+        values = np.asarray([num(r.get(name)) for r in runs]).reshape(shape)
         data_vars[name] = (dims, values, {"units": units, "long_name": long_name})
     coords = {**_coords(campaign), "outcome": ("outcome", np.asarray(outcomes, dtype=str))}
     return xr.Dataset(data_vars, coords=coords, attrs=_basin_attrs(campaign, outcomes))

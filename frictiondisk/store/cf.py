@@ -1,5 +1,5 @@
 """CF metadata (Climate and Forecast conventions, CF-1.10) for every netCDF file we write:
-results.nc, runs.nc, trajectory.nc and accuracy.nc.
+results.nc (of every task, a trace's included), runs.nc, trajectory.nc and accuracy.nc.
 
 `complete(ds, title)` adds the global attributes (`Conventions`, `title`, `institution`,
 `source`, `history`, `references`) and, per variable, what the builder left out: the flag
@@ -15,6 +15,7 @@ run or resume, and the same campaign must give identical files whatever the work
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from typing import Any
 
 import numpy as np
@@ -36,6 +37,7 @@ FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
     "warm_start": ((0, 1), "bracket_from_campaign bracket_predicted"),
     "cycle_converged": ((0, 1), "not_converged converged"),
     "jump_rising": ((-1, 0, 1), "no_jump falling rising"),
+    "window_narrow": ((-1, 0, 1), "no_window wider_than_persistence narrower_than_persistence"),
     "is_reference": ((0, 1), "not_reference reference"),
     "in_ladder": ((0, 1), "not_in_ladder in_ladder"),
     "mode": ((0, 1), "slide stick"),  # trajectory.nc: contact mode
@@ -47,6 +49,13 @@ FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
         tuple(range(-1, len(CERTIFICATION_FLAGS))),
         " ".join(("no_jump", *CERTIFICATION_FLAGS)),
     ),
+    # trace results.nc
+    "bisected": ((0, 1), "mu key"),
+    "stick_high": ((0, 1), "stick_at_low_end stick_at_high_end"),
+    "rising": ((0, 1), "falling rising"),
+    "curve_closed": ((0, 1), "open closed"),
+    "fold_window": ((0, 1), "gap_closes sticking_window_closes"),
+    "fold_certification": (tuple(range(len(CERTIFICATION_FLAGS))), " ".join(CERTIFICATION_FLAGS)),
 }
 
 # text variable -> (long_name if the builder gave none, comment)
@@ -63,6 +72,10 @@ TEXT: dict[str, tuple[str, str]] = {
     "jump_status": ("status of the jump", "converged or failed; empty: no jump"),
     "mode": ("numerics.mode of the run", "decide or converge"),
     "key": ("journal key", "sha256 of the canonical scene and the numerics version"),
+    "purpose": ("what the run served", "first_look, curve or fold (trace)"),
+    "fold_status": ("status of the fold", "located or not located"),
+    "curve_first_end": ("why the curve's first end stopped", "edge, joined, closed, limit, failed"),
+    "curve_last_end": ("why the curve's last end stopped", "edge, joined, closed, limit, failed"),
 }
 
 # integer counters and indices that the builders leave without units
@@ -74,6 +87,7 @@ DIMENSIONLESS = {
     "setting",
     "contact",
     "n_jumps",
+    "n_windows",
     "sample",
     "n_samples",
 }
@@ -144,13 +158,16 @@ def complete(ds: xr.Dataset, title: str, what: str) -> xr.Dataset:
     return ds
 
 
-def scene_attrs(config: Any) -> dict[str, Any]:
+def scene_attrs(config: Any, unfixed: Collection[str] = ()) -> dict[str, Any]:
     """The resolved physical parameters of a scene as attributes: `scene_yaml` (every key,
-    defaults filled in) and one `param_<name>` per physical parameter, in SI units."""
+    defaults filled in) and one `param_<name>` per physical parameter, in SI units, but
+    none for the dotted keys `unfixed` (varied, sampled or searched: no one value holds)."""
     canonical = config.canonical()
     attrs: dict[str, Any] = {"scene_yaml": str(config.to_yaml())}
     for name, value in canonical["params"].items():
-        attrs[f"param_{name}"] = float(value)
-    attrs["param_contact_points"] = int(canonical["contact"]["points"])
-    attrs["param_contact_stiffness"] = float(canonical["contact"]["stiffness"])
+        if f"params.{name}" not in unfixed:
+            attrs[f"param_{name}"] = float(value)
+    for name, kind in (("points", int), ("stiffness", float)):
+        if f"contact.{name}" not in unfixed:
+            attrs[f"param_contact_{name}"] = kind(canonical["contact"][name])
     return attrs

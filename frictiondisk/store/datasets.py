@@ -6,7 +6,6 @@ worker count; wall times are in runs.nc.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -21,35 +20,10 @@ from frictiondisk.search.jumps import RUN_ROLES, run_role
 from frictiondisk.search.requests import run_config
 from frictiondisk.store import cf
 from frictiondisk.store.journal import kernel_version
+from frictiondisk.store.jump_datasets import all_jumps
+from frictiondisk.store.measures import RUN_MEASURES, num
 from frictiondisk.store.partial import PENDING
 from frictiondisk.version import __version__
-
-RUN_MEASURES = {  # summary field -> (units, long name)
-    "R1": ("m", "first sticking radius |r|"),
-    "t_R1": ("s", "time of first sticking"),
-    "size": ("m", "radius of the sticking circle or of the cycle's sticking segment"),
-    "a": ("m", "largest excess |r| - R_stick while sliding on the cycle"),
-    "n_transitions": ("1", "stick/slide switches, all contacts"),
-    "stick_fraction": ("1", "fraction of the final window with every contact sticking"),
-    "t_end": ("s", "simulated time reached"),
-    "n_steps": ("1", "accepted integrator steps"),
-    "n_refused": ("1", "refused slide->stick entries"),
-    # integration quality of each run (kernel/energy.py); NaN for scipy-radau and coulomb
-    "energy_residual": ("1", "relative residual of the energy balance over the run"),
-    # co-rotation measures over the last whole master revolution (kernel/monitor.py);
-    # NaN for scipy-radau and coulomb
-    "n_revolutions": ("1", "whole master revolutions completed"),
-    "slip_per_rev": ("m", "net plastic slip over the last revolution"),
-    "drift_per_rev": ("m", "drift of the slave centre over the last revolution, master frame"),
-    "spin_drift_per_rev": (
-        "rad",
-        "drift of the spin phase phi - omega_m t over the last revolution",
-    ),
-    "slip_decay": ("1", "mean log ratio of successive slips per revolution"),
-    "slip_limit": ("m", "extrapolated limit of the slip per revolution"),
-    # the search's continuous signal (frictiondisk/outcome/reserve.py); NaN if never stuck
-    "reserve": ("1", "friction reserve mu - demand(R1) / F_n of the first sticking circle"),
-}
 
 
 def dim_names(campaign) -> dict[str, str]:
@@ -87,12 +61,15 @@ def campaign_attrs(campaign) -> dict[str, Any]:
         "numerics_yaml": dump_yaml(campaign.base.canonical()["numerics"]),
         "frictiondisk_version": __version__,
         "kernel_version": kernel_version(),
-        **cf.scene_attrs(campaign.base),
+        **cf.scene_attrs(campaign.base, unfixed_keys(campaign)),
     }
 
 
-def _num(value) -> float:
-    return math.nan if value is None else float(value)
+def unfixed_keys(campaign) -> set[str]:
+    """The scene keys without one value in the files: varied (the coordinates), sampled
+    (a basin) and params.mu where a find_jump searches it."""
+    keys = set(campaign.dims) | set(getattr(campaign.task, "sample", {}))
+    return keys | ({"params.mu"} if campaign.kind == "find_jump" else set())
 
 
 def results_dataset(campaign, planner) -> xr.Dataset:
@@ -142,9 +119,9 @@ def _jump_results(campaign, planner) -> xr.Dataset:
         cols["mu_hi"].append(res.mu_hi)
         cols["outcome_lo"].append(lo.get("outcome", ""))
         cols["outcome_hi"].append(hi.get("outcome", ""))
-        cols["size_lo"].append(_num(lo.get("size")))
-        cols["size_hi"].append(_num(hi.get("size")))
-        cols["R1_hi"].append(_num(hi.get("R1")))
+        cols["size_lo"].append(num(lo.get("size")))
+        cols["size_hi"].append(num(hi.get("size")))
+        cols["R1_hi"].append(num(hi.get("R1")))
         cols["n_runs"].append(len(res.runs))
         roles = [_role_of(res, run.request) for run in res.runs]
         for role in RUN_ROLES:
@@ -216,7 +193,7 @@ def _jump_results(campaign, planner) -> xr.Dataset:
         },
     )
     if campaign.task.prescan is not None:
-        ds = ds.assign(_all_jumps(campaign, planner, dims))
+        ds = ds.assign(all_jumps(campaign, planner, dims))
         ds = ds.assign_coords(
             scan_mu=(
                 "scan_mu",
@@ -228,7 +205,6 @@ def _jump_results(campaign, planner) -> xr.Dataset:
     return ds
 
 
-CERTIFICATION_FILL = -1  # a padded jump slot (a point with fewer jumps than the most)
 CERTIFICATION_PENDING = -1  # a point not finished yet (partial results)
 
 
@@ -249,83 +225,6 @@ def verdict_numerics(point_config, task, strict: int) -> tuple[float, float]:
     request = RunRequest(point_config.params.mu, strict=strict)
     config = run_config(point_config, request, task.horizon_factor, task.certify)
     return horizon_of(config), config.numerics.rtol
-
-
-def _all_jumps(campaign, planner, dims: tuple[str, ...]) -> dict[str, Any]:
-    """Every jump of every point (dim `jump`, NaN-padded) and the prescan runs (dim
-    `scan_mu`) of a find_jump with a prescan (frictiondisk.search.jumps)."""
-    shape = campaign.shape
-    results = [planner.results[i] for i in range(len(planner.points))]
-    n_jump = max([1, *(len(r.jumps) for r in results)])
-    scan_mu = campaign.task.prescan.mu
-    lo = np.full((len(results), n_jump), np.nan)
-    hi = np.full((len(results), n_jump), np.nan)
-    rising = np.full((len(results), n_jump), -1, np.int8)
-    status = np.full((len(results), n_jump), "", dtype=object)
-    certified = np.full((len(results), n_jump), CERTIFICATION_FILL, np.int8)
-    outcome = np.full((len(results), len(scan_mu)), "", dtype=object)
-    measures = {name: np.full((len(results), len(scan_mu)), np.nan) for name in ("size", "a")}
-    for i, res in enumerate(results):
-        for j, jump in enumerate(res.jumps):
-            lo[i, j], hi[i, j] = jump.mu_lo, jump.mu_hi
-            rising[i, j] = int(jump.rising)
-            status[i, j] = jump.status
-            certified[i, j] = CERTIFICATION_FLAGS.index(jump.certification)
-        for run in res.scan:
-            k = scan_mu.index(run.request.mu)
-            outcome[i, k] = run.outcome
-            for name in measures:
-                measures[name][i, k] = _num(run.result.get(name))
-    jdims = (*dims, "jump")
-    sdims = (*dims, "scan_mu")
-
-    def shaped(values, last):
-        return np.asarray(values).reshape((*shape, last))
-
-    return {
-        "n_jumps": (
-            dims,
-            np.asarray([len(r.jumps) for r in results], np.int64).reshape(shape),
-            {"units": "1", "long_name": "jumps found by the prescan and bisected"},
-        ),
-        "jump_mu_lo": (jdims, shaped(lo, n_jump), {"units": "1", "long_name": "jump bracket low"}),
-        "jump_mu_hi": (jdims, shaped(hi, n_jump), {"units": "1", "long_name": "jump bracket high"}),
-        "jump_mu_star": (
-            jdims,
-            shaped(0.5 * (lo + hi), n_jump),
-            {"units": "1", "long_name": "jump mu* (bracket midpoint)"},
-        ),
-        "jump_rising": (
-            jdims,
-            shaped(rising, n_jump),
-            {"long_name": "1: not stick below, stick above; 0: the reverse; -1: no jump"},
-        ),
-        "jump_status": (
-            jdims,
-            shaped(status.astype(str), n_jump),
-            {"long_name": "converged or failed"},
-        ),
-        "jump_certification": (
-            jdims,
-            shaped(certified, n_jump),
-            {"long_name": "certification of the jump (frictiondisk.search.certify)"},
-        ),
-        "scan_outcome": (
-            sdims,
-            shaped(outcome.astype(str), len(scan_mu)),
-            {"long_name": "outcome of the prescan run"},
-        ),
-        "scan_size": (
-            sdims,
-            shaped(measures["size"], len(scan_mu)),
-            {"units": "m", "long_name": RUN_MEASURES["size"][1] + " (prescan)"},
-        ),
-        "scan_a": (
-            sdims,
-            shaped(measures["a"], len(scan_mu)),
-            {"units": "m", "long_name": RUN_MEASURES["a"][1] + " (prescan)"},
-        ),
-    }
 
 
 def _scan_results(campaign, planner) -> xr.Dataset:
@@ -350,7 +249,7 @@ def _scan_results(campaign, planner) -> xr.Dataset:
         ),
     }
     for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([_num(r.get(name)) for r in results]).reshape(shape)
+        values = np.asarray([num(r.get(name)) for r in results]).reshape(shape)
         data_vars[name] = (dims, values, {"units": units, "long_name": long_name})
     return xr.Dataset(data_vars, coords=_coords(campaign), attrs=campaign_attrs(campaign))
 
@@ -383,7 +282,7 @@ def run_columns(campaign, planner, points, results, keys) -> dict[str, Any]:
         ),
         "wall_s": (
             "run",
-            np.asarray([_num(r.get("wall_s")) for r in results]),
+            np.asarray([num(r.get("wall_s")) for r in results]),
             {"units": "s", "long_name": "wall time of the kernel run"},
         ),
     }
@@ -393,7 +292,7 @@ def run_columns(campaign, planner, points, results, keys) -> dict[str, Any]:
         values = [planner.points[i].coords[key] for i in points]
         columns[names[key]] = ("run", np.asarray(values, float), _key_attrs(key))
     for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([_num(r.get(name)) for r in results])
+        values = np.asarray([num(r.get(name)) for r in results])
         columns[name] = ("run", values, {"units": units, "long_name": long_name})
     return columns
 

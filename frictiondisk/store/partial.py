@@ -29,6 +29,9 @@ class PendingJump:
     runs: tuple = ()
     jumps: tuple = ()
     scan: tuple = ()
+    checks: tuple = ()
+    windows: tuple = ()
+    grid_below: None = None
     primary: None = None
     strict: int = 0
 

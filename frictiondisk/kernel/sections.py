@@ -1,0 +1,374 @@
+"""Evidence from the motion's own section (numba): is a run that has not stuck converging
+to a cycle, moving away from sticking, or shaking down to sticking? (docs/model.md
+section 6, "Evidence from the section").
+
+The monitor keeps two sections of the motion:
+
+* cycles: the onset of every whole-body sticking phase (ring_all): the slave centre there,
+  the arc it then sticks for, and the slip and time to the next onset;
+* revolutions: the state at the end of every whole master revolution (rv): centre,
+  velocity and spin rate, all in metres.
+
+Each gives a sequence of section points p_n [m] with the slip s_n [m] and the sticking
+time tau_n [s] of each step between them. The rules read those sequences only; averages
+over windows are never evidence, because a transient's scatter hides its trend.
+
+* EV_REPEAT: the last REPEAT_COUNT distances |p_n - p_{n-L}| lie within the integrator's
+  own tolerance accumulated over a step (L = 1 .. MAX_LAG: a cycle that sticks L times
+  per period): the motion has reached its cycle.
+* EV_CONTRACT: the distances |p_n - p_{n-1}| shrink by a ratio q whose own changes shrink
+  (or are tiny), and the ratio extrapolated from them stays <= Q_MAX: a geometric
+  approach to a cycle, whose slip per step extrapolates to a limit above the slip
+  tolerance (a cycle, not an approach to sticking). An approach with a growing ratio (a
+  slow passage, or sticking ahead) is no evidence.
+* EV_DEPART: for DEPART_STEPS steps the slip per step grows, the sticking time shrinks and
+  the distances do not shrink: the motion moves away from sticking, ever faster.
+* EV_SHAKEDOWN (stick): the slip per step falls at every step over the newer three
+  quarters of the sequence, and extrapolates to a limit <= the slip tolerance: Aitken's
+  limit over equally spaced steps (geometric decay), or over steps n/4, n/2, n (a power
+  law, the slow creep onto a grazing sticking circle). Both are exact for their model.
+"""
+
+import math
+
+from .jit import kernel_jit
+from .monitor_slots import (
+    EV_CONTRACT,
+    EV_DEPART,
+    EV_NONE,
+    EV_REPEAT,
+    EV_SHAKEDOWN,
+    F_ATOL,
+    F_CYCLE_TOL,
+    F_EV_D,
+    F_EV_LIMIT,
+    F_EV_Q,
+    F_EV_QUP,
+    F_RTOL,
+    F_SLIP_TOL,
+    I_EV_LAG,
+    I_EV_STEPS,
+    I_NREV,
+    I_RS_N,
+    RA_SLIP,
+    RA_T0,
+    RA_T1,
+    RA_X,
+    RA_Y,
+    REV_RING,
+    RV_SLIP,
+    RV_STICK_T,
+    RV_T,
+    RV_U,
+    RV_V,
+    RV_W,
+    RV_X,
+    RV_Y,
+)
+
+SEQ_MAX = 512  # newest section points read (the revolution ring's length)
+N_COORD = 5  # coordinates of a section point [m]: columns 0 .. 4 of a sequence
+SEQ_SLIP = 5  # column of the slip per step [m]
+SEQ_STICK = 6  # column of the whole-body sticking time per step [s]
+N_SEQ = 7  # columns of a sequence (the driver's scratch array, SEQ_MAX rows)
+REPEAT_COUNT = 3  # distances within tolerance that make a repeat
+MAX_LAG = 3  # sticking phases per period of a cycle recognised by EV_REPEAT
+CONTRACT_DISTANCES = 5  # distances behind a contraction ratio and its trend
+Q_MAX = 0.98  # largest extrapolated contraction ratio accepted as convergence
+RHO_MAX = 0.9  # the ratio's own changes must shrink at least this fast ...
+Q_STEADY = 0.01  # ... unless each of them is below this
+GEOMETRIC_KEEP = 0.75  # 1 - q now must keep this share of 1 - q half the sequence ago
+CONTRACT_SLIP_FALL = 0.1  # share of the slip per step that may still fall on the way
+DEPART_STEPS = 4  # steps of growing slip and shrinking sticking time behind EV_DEPART
+STICK_NOISE = 1e-9  # [s] sticking times closer than this are equal (event location ~1e-11 s)
+APPROACH_STEPS = 8  # steps over which a creep onto a sticking circle is recognised ...
+APPROACH_FALL = 1e-3  # ... by a fall of the slip per step by more than this share of it
+SHAKEDOWN_STEPS = 8  # steps needed before a slip limit is extrapolated
+# Smallest spacing (steps) of an equally spaced Aitken triple: at spacings of 2 the last
+# fast transient of an approach is mistaken for the limit (kernel/verdict.py).
+MIN_SPACING = 4
+# Over log-spaced steps n/4, n/2, n the fall must at least halve (S ~ n^-p with p >= 1,
+# a finite slip still to come): a slower fall gives no well-conditioned limit.
+LOG_SLOWING = 0.5
+
+
+@kernel_jit
+def cycle_sequence(mi, ring_all, omega, seq):
+    """Fill seq (oldest first) with the section of the whole-body sticking onsets: point
+    (x, y, omega |r| tau) [m], slip to the next onset [m], sticking time tau [s]. The
+    newest onset closes the last step. Returns the count."""
+    n_phases = min(mi[I_RS_N], ring_all.shape[0], SEQ_MAX + 1)
+    n = n_phases - 1
+    if n < 1:
+        return 0
+    first = mi[I_RS_N] - n_phases
+    for j in range(n):
+        a = (first + j) % ring_all.shape[0]
+        b = (first + j + 1) % ring_all.shape[0]
+        tau = ring_all[a, RA_T1] - ring_all[a, RA_T0]
+        seq[j, 0] = ring_all[a, RA_X]
+        seq[j, 1] = ring_all[a, RA_Y]
+        seq[j, 2] = omega * math.hypot(ring_all[a, RA_X], ring_all[a, RA_Y]) * tau
+        seq[j, 3] = 0.0
+        seq[j, 4] = 0.0
+        seq[j, SEQ_SLIP] = ring_all[b, RA_SLIP] - ring_all[a, RA_SLIP]
+        seq[j, SEQ_STICK] = tau
+    return n
+
+
+@kernel_jit
+def revolution_sequence(mi, rv, seq):
+    """Fill seq (oldest first) with the section of the whole master revolutions: the state
+    at each revolution's end [m], its slip [m] and whole-body sticking time [s]. Returns
+    the count."""
+    n = min(mi[I_NREV], REV_RING, SEQ_MAX)
+    first = mi[I_NREV] - n
+    for j in range(n):
+        r = (first + j) % REV_RING
+        seq[j, 0] = rv[r, RV_X]
+        seq[j, 1] = rv[r, RV_Y]
+        seq[j, 2] = rv[r, RV_U]
+        seq[j, 3] = rv[r, RV_V]
+        seq[j, 4] = rv[r, RV_W]
+        seq[j, SEQ_SLIP] = rv[r, RV_SLIP]
+        seq[j, SEQ_STICK] = rv[r, RV_STICK_T]
+    return n
+
+
+@kernel_jit
+def _distance(pts, i, j):
+    acc = 0.0
+    for c in range(N_COORD):
+        d = pts[i, c] - pts[j, c]
+        acc += d * d
+    return math.sqrt(acc)
+
+
+@kernel_jit
+def _repeat_tolerance(mf, pts, i):
+    """How far section point i may move between repeats of a converged cycle [m]:
+    numerics.cycle_tol, or the integrator's tolerance atol + rtol |p| if larger. The
+    integration error of a periodic orbit repeats with it, so a converged cycle moves far
+    less than its accumulated error bound (measured: 1e-10 m at rtol 1e-6)."""
+    size = 0.0
+    for c in range(N_COORD):
+        size = max(size, abs(pts[i, c]))
+    return max(mf[F_CYCLE_TOL], mf[F_ATOL] + mf[F_RTOL] * size)
+
+
+@kernel_jit
+def _approaching(mf, slip, stick, n):
+    """Whether, over the newest APPROACH_STEPS steps, the slip per step fell by more than
+    APPROACH_FALL of itself (and atol) while the sticking time grew (beyond STICK_NOISE):
+    a slave creeping onto a sticking circle, however little its section moves per step."""
+    back = min(APPROACH_STEPS, n - 1)
+    if back < 1:
+        return False
+    old = n - 1 - back
+    fell = slip[n - 1] < slip[old] * (1.0 - APPROACH_FALL) - mf[F_ATOL]
+    return fell and stick[n - 1] > stick[old] + STICK_NOISE
+
+
+@kernel_jit
+def _repeats(mf, mi, pts, slip, stick, n):
+    """EV_REPEAT: the newest REPEAT_COUNT distances at some lag L <= MAX_LAG within
+    tolerance, and, where they still shrink step after step, the travel still to come
+    (geometric tail) within tolerance too: a slow algebraic approach moves little per
+    step but far in all. Never while the motion creeps towards sticking (_approaching)."""
+    if _approaching(mf, slip, stick, n):
+        return False
+    for lag in range(1, MAX_LAG + 1):
+        if n < lag + REPEAT_COUNT + 1:
+            break
+        ok = True
+        shrinking = True
+        worst = 0.0
+        newest = _distance(pts, n - 1, n - 1 - lag)
+        d_prev = 0.0
+        tol = _repeat_tolerance(mf, pts, n - 1)
+        for back in range(REPEAT_COUNT + 1):
+            i = n - 1 - back
+            d = _distance(pts, i, i - lag)
+            if back < REPEAT_COUNT:
+                worst = max(worst, d)
+                ok = ok and d <= tol
+            if back > 0:
+                shrinking = shrinking and d_prev < d  # the newer distance is the smaller
+            d_prev = d
+        if ok and shrinking:
+            older = _distance(pts, n - 2, n - 2 - lag)
+            q = newest / older
+            ok = q < 1.0 and newest * q / (1.0 - q) <= tol
+        if ok:
+            mf[F_EV_D] = worst
+            mi[I_EV_LAG] = lag
+            return True
+    return False
+
+
+@kernel_jit
+def _contracts(mf, pts, slip, n, s0):
+    """EV_CONTRACT: the newest CONTRACT_DISTANCES distances shrink geometrically at an
+    established ratio, towards a cycle whose slip per step stays above s0."""
+    m = CONTRACT_DISTANCES
+    if n < m + 1:
+        return False
+    d_prev = _distance(pts, n - m, n - m - 1)
+    q_prev = math.nan
+    dq_prev = math.nan
+    rho = 0.0
+    small = True
+    q = math.nan
+    dq = 0.0
+    for k in range(m - 1):
+        i = n - m + 1 + k
+        d = _distance(pts, i, i - 1)
+        if not (d > 0.0 and d_prev > 0.0):
+            return False
+        q = d / d_prev
+        if not math.isnan(q_prev):
+            dq = q - q_prev
+            small = small and abs(dq) <= Q_STEADY
+            if not math.isnan(dq_prev):
+                if dq * dq_prev < 0.0 and not (abs(dq) <= Q_STEADY and abs(dq_prev) <= Q_STEADY):
+                    return False  # the ratio turns back and forth: no steady contraction
+                if dq_prev != 0.0:
+                    rho = max(rho, abs(dq / dq_prev))
+            dq_prev = dq
+        q_prev = q
+        d_prev = d
+    # the ratio still grows by dq a step, each change rho times the last: its limit (no
+    # bound where its changes do not shrink fast enough)
+    q_up = math.inf
+    if small or rho <= RHO_MAX:
+        grow = max(0.0, dq) * (rho / (1.0 - rho) if rho < 1.0 else 2.0)
+        q_up = q + grow + (2.0 * Q_STEADY if small else 0.0)
+    mf[F_EV_D] = d_prev
+    mf[F_EV_Q] = q
+    mf[F_EV_QUP] = q_up
+    if not q_up <= Q_MAX:
+        return False
+    # geometric, not algebraic: 1 - q stays put from half the sequence ago to now (a power
+    # law S ~ n^-p has 1 - q ~ p / n, which halves)
+    half = n // 2
+    if half < 2:
+        return False
+    q_half = _distance(pts, half, half - 1) / max(_distance(pts, half - 1, half - 2), 1e-300)
+    if not (q_half < 1.0 and (1.0 - q) >= GEOMETRIC_KEEP * (1.0 - q_half)):
+        return False
+    # the cycle it converges to still slips, nearly as much as now: the slip per step,
+    # extrapolated the same way, keeps all but CONTRACT_SLIP_FALL of itself (a slip that
+    # still falls by much is an approach to sticking, whatever its section's ratio: a
+    # Stribeck disk spinning up contracts at 0.88 a revolution, then sticks for good)
+    tail = q_up / (1.0 - q_up)
+    fall = max(0.0, slip[n - 2] - slip[n - 1]) * tail
+    mf[F_EV_LIMIT] = d_prev * tail
+    return slip[n - 1] - fall > s0 and fall <= CONTRACT_SLIP_FALL * slip[n - 1]
+
+
+@kernel_jit
+def _departs(mf, pts, slip, stick, n):
+    """EV_DEPART: for DEPART_STEPS steps the slip per step did not fall and the sticking
+    time did not grow (beyond atol and STICK_NOISE), and the distances did not shrink: a
+    departure from sticking, accelerating or steady (a slow ratchet away)."""
+    m = DEPART_STEPS
+    if n < m + 1:
+        return False
+    for back in range(m - 1):
+        i = n - 1 - back
+        if not (slip[i] >= slip[i - 1] - mf[F_ATOL] and stick[i] <= stick[i - 1] + STICK_NOISE):
+            return False
+    d_new = _distance(pts, n - 1, n - 2)
+    for back in range(1, m - 1):
+        i = n - 1 - back
+        d_old = _distance(pts, i, i - 1)
+        if d_new < d_old:
+            return False
+        d_new = d_old
+    mf[F_EV_D] = _distance(pts, n - 1, n - 2)
+    mf[F_EV_Q] = mf[F_EV_D] / max(_distance(pts, n - 2, n - 3), 1e-300)
+    return True
+
+
+@kernel_jit
+def _aitken(s_a, s_b, s_c, slowing):
+    """Aitken's limit of three terms: NaN unless they fall and their fall slows down to at
+    most `slowing` times the fall before."""
+    d1 = s_a - s_b
+    d2 = s_b - s_c
+    if not (d1 > d2 > 0.0 and d2 <= slowing * d1):
+        return math.nan
+    return max(0.0, s_c - d2 * d2 / (d1 - d2))
+
+
+@kernel_jit
+def shakedown_limit(slip, stick, n):
+    """The extrapolated limit [m] of a slip per step that falls at every step over the
+    newer three quarters of the sequence while the sticking time does not fall: the
+    smaller of Aitken's limits over steps (n - 2m, n - m, n) with m = n // 4 (geometric
+    decay) and over steps (n/4, n/2, n) (a power law). NaN if the slip does not fall so."""
+    if n < SHAKEDOWN_STEPS:
+        return math.nan
+    start = n // 4
+    for i in range(start + 1, n):
+        if not slip[i] < slip[i - 1]:
+            return math.nan
+    if stick[n - 1] < stick[start]:
+        return math.nan  # sticking less and less: no approach to sticking
+    m = n // 4
+    limit = math.nan
+    if m >= MIN_SPACING:
+        limit = _aitken(slip[n - 1 - 2 * m], slip[n - 1 - m], slip[n - 1], 1.0)
+    log_spaced = _aitken(slip[n // 4 - 1], slip[n // 2 - 1], slip[n - 1], LOG_SLOWING)
+    if math.isnan(limit) or log_spaced < limit:
+        limit = log_spaced
+    return limit
+
+
+@kernel_jit
+def section_evidence(mf, mi, seq, n, s0):
+    """The evidence (EV_*) of the section sequence in the first n rows of seq; diagnostics
+    go to the monitor's F_EV_* and I_EV_* slots. s0: the slip per step that counts as none
+    [m]."""
+    mf[F_EV_D] = math.nan
+    mf[F_EV_Q] = math.nan
+    mf[F_EV_QUP] = math.nan
+    mf[F_EV_LIMIT] = math.nan
+    mi[I_EV_LAG] = 0
+    mi[I_EV_STEPS] = n
+    if n < 2:
+        return EV_NONE
+    pts = seq[:, :N_COORD]
+    slip = seq[:, SEQ_SLIP]
+    stick = seq[:, SEQ_STICK]
+    limit = shakedown_limit(slip, stick, n)
+    if limit <= s0:
+        mf[F_EV_LIMIT] = limit
+        return EV_SHAKEDOWN
+    if _repeats(mf, mi, pts, slip, stick, n):
+        return EV_REPEAT
+    if _contracts(mf, pts, slip, n, s0):
+        return EV_CONTRACT
+    if _departs(mf, pts, slip, stick, n):
+        return EV_DEPART
+    return EV_NONE
+
+
+@kernel_jit
+def slip_tolerance(mf, period, hold):
+    """The slip over a section step of `period` [s] that counts as none [m]: the per
+    revolution tolerance atol + eps T (monitor F_SLIP_TOL) scaled to the step."""
+    return mf[F_SLIP_TOL] * max(period, 1e-300) / hold
+
+
+@kernel_jit
+def newest_period(mi, ring_all, rv, cycles):
+    """Duration [s] of the newest step of the cycle (cycles) or revolution section."""
+    if cycles:
+        k = mi[I_RS_N] - 1
+        a = (k - 1) % ring_all.shape[0]
+        b = k % ring_all.shape[0]
+        return ring_all[b, RA_T0] - ring_all[a, RA_T0]
+    k = (mi[I_NREV] - 1) % REV_RING
+    j = (mi[I_NREV] - 2) % REV_RING
+    return rv[k, RV_T] - rv[j, RV_T]

@@ -1,0 +1,234 @@
+"""What a `JumpSearch` found at one point: its jumps, windows, headline and how much of the
+grid below the headline is certified. Pure Python."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+from frictiondisk.search.bisection import (
+    STICK,
+    UNDETERMINED,
+    BisectionResult,
+    RunRecord,
+    RunRequest,
+)
+from frictiondisk.search.certify import point_certification
+
+RUN_ROLES = ("search", "prescan", "certification")
+
+
+def run_role(request: RunRequest) -> str:
+    """The role of a run of a bisection: `certification` at stricter numerics, else `search`."""
+    return "certification" if request.strict > 0 else "search"
+
+
+@dataclasses.dataclass(frozen=True)
+class Window:
+    """A sticking interval closed on both sides: a rising jump and the falling jump above it."""
+
+    lo: float  # the rising jump's mu*
+    hi: float  # the falling jump's mu*
+    narrow: bool  # narrower than the persistence width: never a headline
+
+    @property
+    def width(self) -> float:
+        return self.hi - self.lo
+
+
+@dataclasses.dataclass(frozen=True)
+class GridBelow:
+    """The prescan grid below the headline: how much of it has a decided verdict (prescan
+    or fill runs; a not-stick verdict always with the evidence of its own section, and a
+    value that sticks always inside a bisected window), and the largest gap between
+    decided values there, below which a window could still hide."""
+
+    decided: int  # grid values below the headline with a decided verdict
+    total: int  # grid values below the headline
+    resolution: float  # largest gap between decided values below the headline [1]
+
+    @property
+    def share(self) -> float:
+        return self.decided / self.total if self.total else 1.0
+
+
+@dataclasses.dataclass(frozen=True)
+class JumpSearchResult:
+    """All jumps of one point. The attributes of `BisectionResult` describe the *primary*
+    jump (the headline: the lowest rising jump that persists; else the lowest jump), so
+    code written for one jump keeps working; `jumps` holds every one, in increasing mu."""
+
+    status: str  # "converged" if the prescan settled and every jump converged
+    reason: str
+    jumps: tuple[BisectionResult, ...]
+    scan: tuple[RunRecord, ...]  # the prescan runs, one per mu (its last retry level)
+    runs: tuple[RunRecord, ...]  # every run made: prescan, bisections, checks
+    primary: BisectionResult | None
+    prescan_runs: tuple[RunRecord, ...] = ()  # every prescan run, retries included
+    windows: tuple[Window, ...] = ()
+    grid_below: GridBelow | None = None  # None: no headline
+    checks: tuple[RunRecord, ...] = ()  # persistence and fill runs (settled)
+    roles: dict[RunRequest, str] = dataclasses.field(default_factory=dict)
+    grid_flag: str = "off"  # certification of the grid below the headline
+
+    @property
+    def mu_lo(self) -> float:
+        return self.primary.mu_lo if self.primary else float("nan")
+
+    @property
+    def mu_hi(self) -> float:
+        return self.primary.mu_hi if self.primary else float("nan")
+
+    @property
+    def mu_star(self) -> float:
+        return 0.5 * (self.mu_lo + self.mu_hi)
+
+    @property
+    def contradictions(self) -> tuple[tuple[float, float], ...]:
+        return tuple(c for jump in self.jumps for c in jump.contradictions)
+
+    @property
+    def monotone(self) -> bool:
+        """One rising jump and nothing that contradicts it."""
+        return len(self.jumps) == 1 and self.jumps[0].rising and not self.contradictions
+
+    def end_result(self, which: str) -> dict[str, Any] | None:
+        return self.primary.end_result(which) if self.primary else None
+
+    def role(self, request: RunRequest) -> str:
+        """`prescan` (with the grid values filled below the headline), `search` (bisections,
+        persistence runs) or `certification` (stricter numerics)."""
+        return self.roles.get(request) or run_role(request)
+
+    @property
+    def certification(self) -> str:
+        """The weakest certification of the point's jumps and of the grid below its
+        headline (`failed` if it has no jump)."""
+        if self.status != "converged":
+            return "failed"
+        flags = [j.certification for j in self.jumps]
+        if self.grid_flag != "off":
+            flags.append(self.grid_flag)
+        return point_certification(flags)
+
+
+def _windows(jumps, persist_width: float) -> tuple[Window, ...]:
+    """Every rising jump followed directly by a falling one: a closed sticking interval."""
+    found = []
+    for below, above in zip(jumps, jumps[1:], strict=False):
+        if below.rising and not above.rising and below.status == above.status == "converged":
+            found.append(
+                Window(below.mu_star, above.mu_star, above.mu_lo - below.mu_hi < persist_width)
+            )
+    return tuple(found)
+
+
+def _grid_below(search, head: BisectionResult | None) -> GridBelow | None:
+    if head is None:
+        return None
+    decided = {}
+    for source in (search._last_scan(), search.checks()):
+        for mu, run in source.items():
+            if run.outcome != UNDETERMINED:
+                decided[mu] = run.outcome == STICK
+    below = [mu for mu in search.mus if mu < head.mu_lo]
+    seen = sorted(mu for mu in decided if mu < head.mu_lo) + [head.mu_lo]
+    gaps = [b - a for a, b in zip([search.mus[0], *seen], seen, strict=False)]
+    return GridBelow(sum(mu in decided for mu in below), len(below), max(gaps) if gaps else 0.0)
+
+
+def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
+    """The result of a finished `JumpSearch` (frictiondisk.search.jumps)."""
+    found = sorted((b.result() for b in search.bisections), key=lambda j: (j.mu_lo, j.mu_hi))
+    # a jump that stricter numerics showed to be an artefact of the short horizon is dropped
+    jumps = tuple(j for j in found if j.certification != "vanished")
+    vanished = len(found) - len(jumps)
+    last = search._last_scan()
+    scan = tuple(last[mu] for mu in search.mus if mu in last)
+    lost = [k for k in search._grid.wanted if search.mus[k] not in last]
+    # an undetermined prescan value inside a converged jump's bracket is that jump's
+    # slow approach (bisection.Bisection.undecided), not a gap in the scan
+    undetermined = [
+        r.request.mu
+        for r in scan
+        if r.outcome == UNDETERMINED
+        and not any(j.status == "converged" and j.mu_lo < r.request.mu < j.mu_hi for j in jumps)
+    ]
+    failed = [j for j in jumps if j.status != "converged"]
+    rising = [j for j in jumps if j.rising]
+    head = search.headline()
+    primary = head or (rising or list(jumps) or [None])[0]
+    persist_width = search.persist * search.tol
+    windows = _windows(jumps, persist_width)
+    grid = _grid_below(search, head)
+    problems = []
+    if search._failure:
+        problems.append(search._failure)
+    if lost:
+        problems.append(f"{len(lost)} prescan value(s) never ran")
+    if undetermined:
+        mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
+        problems.append(f"prescan undetermined at mu = {mus} after every retry")
+    problems += [f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" for j in failed]
+    if not jumps and not problems:
+        kinds = {r.outcome == STICK for r in scan}
+        which = "stick" if kinds == {True} else "not stick"
+        problems.append(
+            f"no jump: every prescan value from mu = {search.mus[0]:.6g} to "
+            f"{search.mus[-1]:.6g} gave {which}"
+        )
+    if not jumps and vanished and not problems:
+        problems.append(
+            f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"
+        )
+    if problems:
+        status, reason = "failed", "; ".join(problems)
+    else:
+        kinds = ", ".join(
+            f"{'rising' if j.rising else 'falling'} at {j.mu_star:.6g}"
+            + ("" if j.certification == "off" else f" ({j.certification})")
+            for j in jumps
+        )
+        status = "converged"
+        reason = f"{len(jumps)} jump(s) to tol {search.tol:.3g}: {kinds}"
+        if windows:
+            reason += "; sticking windows " + ", ".join(
+                f"[{w.lo:.6g}, {w.hi:.6g}]" + (" (narrow)" if w.narrow else "") for w in windows
+            )
+        if grid is not None:
+            reason += (
+                f"; {grid.decided} of {grid.total} prescan values below mu* decided "
+                f"(resolution {grid.resolution:.3g})"
+            )
+            if search.persists_nowhere:
+                reason += (
+                    f"; no rising jump persists over {search.persist:g} tol (every sticking "
+                    "set found is that narrow): the lowest one is taken, uncertain"
+                )
+            elif not search.headline_judged():
+                reason += "; the persistence run above mu* stayed undetermined"
+        if len(scan) < len(search.mus):
+            reason += f"; adaptive prescan ran {len(scan)} of {len(search.mus)} values"
+        if vanished:
+            reason += f"; {vanished} more vanished at stricter numerics"
+    grid_flag = "off"
+    if search.certify.enabled and grid is not None:
+        whole = grid.decided == grid.total and search.headline_judged()
+        grid_flag = "certified" if whole else "uncertain"
+    elif search.persists_nowhere:
+        grid_flag = "uncertain"
+    roles = {run.request: search.role(run.request) for run in runs}
+    return JumpSearchResult(
+        status,
+        reason,
+        jumps,
+        scan,
+        runs,
+        primary,
+        tuple(sorted(search._scan_runs, key=search._order)),
+        windows,
+        grid,
+        tuple(run for _, run in sorted(search.checks().items())),
+        roles,
+        grid_flag,
+    )

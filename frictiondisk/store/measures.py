@@ -1,0 +1,37 @@
+"""The per-run measures written to runs.nc, with units and long names, and the number
+conversion every dataset builder shares."""
+
+from __future__ import annotations
+
+import math
+
+RUN_MEASURES = {  # summary field -> (units, long name)
+    "R1": ("m", "first sticking radius |r|"),
+    "t_R1": ("s", "time of first sticking"),
+    "size": ("m", "radius of the sticking circle or of the cycle's sticking segment"),
+    "a": ("m", "largest excess |r| - R_stick while sliding on the cycle"),
+    "n_transitions": ("1", "stick/slide switches, all contacts"),
+    "stick_fraction": ("1", "fraction of the final window with every contact sticking"),
+    "t_end": ("s", "simulated time reached"),
+    "n_steps": ("1", "accepted integrator steps"),
+    "n_refused": ("1", "refused slide->stick entries"),
+    # integration quality of each run (kernel/energy.py); NaN for scipy-radau and coulomb
+    "energy_residual": ("1", "relative residual of the energy balance over the run"),
+    # co-rotation measures over the last whole master revolution (kernel/monitor.py);
+    # NaN for scipy-radau and coulomb
+    "n_revolutions": ("1", "whole master revolutions completed"),
+    "slip_per_rev": ("m", "net plastic slip over the last revolution"),
+    "drift_per_rev": ("m", "drift of the slave centre over the last revolution, master frame"),
+    "spin_drift_per_rev": (
+        "rad",
+        "drift of the spin phase phi - omega_m t over the last revolution",
+    ),
+    "slip_decay": ("1", "mean log ratio of successive slips per revolution"),
+    "slip_limit": ("m", "extrapolated limit of the slip per revolution"),
+    # the search's continuous signal (frictiondisk/outcome/reserve.py); NaN if never stuck
+    "reserve": ("1", "friction reserve mu - demand(R1) / F_n of the first sticking circle"),
+}
+
+
+def num(value) -> float:
+    return math.nan if value is None else float(value)

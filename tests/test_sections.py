@@ -1,0 +1,163 @@
+"""Evidence from the motion's own section (frictiondisk/kernel/sections.py, docs/model.md
+section 6): synthetic section sequences with a known future, and the runs of a Stribeck
+pin whose transient the old trend test let through."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from frictiondisk.kernel import monitor_slots as ms
+from frictiondisk.kernel import sections as sec
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import simulate
+
+S0 = 1e-8  # slip per step that counts as none [m]
+
+
+def evidence(points, slip, stick, rtol=1e-6):
+    """The EV_* code of a sequence: points (n, <= 5) [m], slip (n) [m], stick (n) [s]."""
+    n = len(slip)
+    seq = np.zeros((max(n, 1), sec.N_SEQ))
+    seq[:n, : np.shape(points)[1]] = points
+    seq[:n, sec.SEQ_SLIP] = slip
+    seq[:n, sec.SEQ_STICK] = stick
+    mf = np.full(ms.N_MF, np.nan)
+    mi = np.zeros(ms.N_MI, dtype=np.int64)
+    mf[ms.F_CYCLE_TOL], mf[ms.F_ATOL], mf[ms.F_RTOL], mf[ms.F_SLIP_TOL] = 1e-6, 1e-9, rtol, S0
+    return int(sec.section_evidence(mf, mi, seq, n, S0)), mf
+
+
+def along(distances, start=(0.05, 0.03)):
+    """Section points stepping by `distances` [m] along a fixed direction."""
+    travel = np.concatenate([[0.0], np.cumsum(distances)])
+    return np.column_stack([start[0] + 0.6 * travel, start[1] + 0.8 * travel])
+
+
+def test_a_section_still_moving_towards_sticking_is_no_evidence():
+    # the issue's transient: the section still moves 0.076 m a cycle, the slip per cycle
+    # falls and the sticking time grows (as a Stribeck pin's does on its way to sticking)
+    n = 10
+    steps = 0.076 * 0.97 ** np.arange(n - 1)
+    slip = 0.2 * 0.9 ** np.arange(n)
+    stick = 2.0 + 0.3 * np.arange(n)
+    code, _ = evidence(along(steps), slip, stick)
+    assert code == ms.EV_NONE
+
+
+def test_a_slow_passage_with_a_growing_ratio_is_no_contraction():
+    # distances shrink, but by a ratio that grows towards and past 1 (a ghost of a fold)
+    ratios = 0.6 + 0.06 * np.arange(9)
+    steps = 0.02 * np.cumprod(ratios)
+    slip = np.full(len(steps) + 1, 0.1) - 1e-3 * np.arange(len(steps) + 1)
+    code, mf = evidence(along(steps), slip, np.full(len(slip), 1.4))
+    assert code == ms.EV_NONE and mf[ms.F_EV_QUP] > sec.Q_MAX
+
+
+def test_a_geometric_contraction_to_a_slipping_cycle_is_evidence():
+    q = 0.78
+    steps = 0.01 * q ** np.arange(14)
+    slip = 0.1 + 0.08 * q ** np.arange(15)  # converges to 0.1 m a cycle
+    stick = 1.237 + 0.1 * q ** np.arange(15)  # the sticking time falls to its limit
+    code, mf = evidence(along(steps), slip, stick)
+    assert code == ms.EV_CONTRACT
+    assert mf[ms.F_EV_Q] == pytest.approx(q, rel=1e-9)
+    # the travel still to come is the geometric tail of the newest step
+    assert mf[ms.F_EV_LIMIT] == pytest.approx(steps[-1] * mf[ms.F_EV_QUP] / (1 - mf[ms.F_EV_QUP]))
+
+
+def test_an_algebraic_contraction_is_not_taken_for_a_geometric_one():
+    # distances ~ n^-3: the ratio creeps towards 1 like 1 - 3/n
+    k = np.arange(10, 30)
+    steps = 1e-2 * (k / 10.0) ** -3.0
+    slip = 0.05 + 1e-3 * (k[0] / np.append(k, k[-1] + 1)) ** 2
+    code, _ = evidence(along(steps), slip, np.full(len(slip), 1.0))
+    assert code != ms.EV_CONTRACT
+
+
+def test_a_repeating_section_is_a_cycle_and_a_moving_one_is_not():
+    rng = np.random.default_rng(0)
+    noise = 1e-10 * rng.standard_normal((12, 2))
+    slip = 0.1 + 1e-9 * rng.standard_normal(12)
+    code, mf = evidence(np.array([0.0355, 0.0302]) + noise, slip, np.full(12, 1.237))
+    assert code == ms.EV_REPEAT and mf[ms.F_EV_D] < 1e-9
+    # a period-2 cycle repeats every second step
+    two = np.array([[0.03, 0.02], [0.05, -0.01]] * 6) + noise
+    code, _ = evidence(two, slip, np.full(12, 1.2))
+    assert code == ms.EV_REPEAT
+    # steps of 1e-5 m (ten times cycle_tol) are no repeat
+    code, _ = evidence(along(np.full(11, 1e-5)), slip, np.full(12, 1.2))
+    assert code != ms.EV_REPEAT
+
+
+def test_a_creep_onto_a_sticking_circle_never_repeats():
+    # the section moves 4e-8 m a step (within cycle_tol) while the slip per step still
+    # falls by 0.7 % and the sticking time grows: an algebraic approach, not a cycle
+    n = 12
+    slip = 1.7e-7 * (1 - 0.007) ** np.arange(n)
+    stick = 10.08 + 1e-3 * np.arange(n)
+    code, _ = evidence(along(np.full(n - 1, 4e-8)), slip, stick)
+    assert code == ms.EV_NONE
+
+
+def test_a_growing_slip_and_shrinking_sticking_time_is_a_departure():
+    n = 6
+    steps = 0.0175 * 1.09 ** np.arange(n - 1)
+    slip = 0.0073 * 1.25 ** np.arange(n)
+    stick = 3.52 - 0.12 * np.arange(n)
+    code, _ = evidence(along(steps), slip, stick)
+    assert code == ms.EV_DEPART
+    # the same section approaching sticking (slip falling, sticking longer) is not
+    code, _ = evidence(along(steps), slip[::-1], stick[::-1])
+    assert code == ms.EV_NONE
+
+
+@pytest.mark.parametrize("law", ["geometric", "power"])
+def test_a_slip_that_falls_to_nothing_is_shakedown(law):
+    k = np.arange(1, 41)
+    slip = 1e-3 * 0.8**k if law == "geometric" else 1e-3 * k**-2.0
+    stick = 10.0 - 5.0 * slip / slip[0]
+    code, mf = evidence(along(np.full(len(k) - 1, 1e-4)), slip, stick)
+    assert code == ms.EV_SHAKEDOWN and mf[ms.F_EV_LIMIT] <= S0
+    # the same fall towards a slip that stays (a cycle) is no shakedown
+    code, _ = evidence(along(np.full(len(k) - 1, 1e-4)), slip + 1e-4, stick)
+    assert code != ms.EV_SHAKEDOWN
+
+
+# A Stribeck pin of the well-posedness study (seed 2, scene 18). At mu = 0.0885 its
+# stick-slip cycle drifts onto sticking: the section moves 2e-3 m a cycle, the slip per
+# cycle falls and the sticking time grows, and it sticks for good at t = 141.7 s. The old
+# trend test called it stick_slip at t = 91 s. At mu = 0.0875 the cycle converges.
+STRIBECK_PIN = {
+    "scene": "pin",
+    "params": {
+        "x_ms": 0.0831730301512242,
+        "x0": 0.016238610057472506,
+        "m_s": 1.156135679724225,
+        "omega_m": 0.620894193870852,
+    },
+    "contact": {"stribeck": {"r": 0.812197287277602, "v_s": 0.027744485632723612}},
+}
+
+
+def stribeck_pin(mu, **numerics):
+    data = {**STRIBECK_PIN, "params": {**STRIBECK_PIN["params"], "mu": mu}, "numerics": numerics}
+    return simulate(scene_from_dict(data))
+
+
+def test_a_transient_towards_sticking_is_extended_not_classified():
+    res = stribeck_pin(0.0885)
+    assert res.outcome == "stick", res.reason
+    assert res.t_end > 4 * 30.0  # extended far past t_decide, one revolution at a time
+    # with too small a budget it is undetermined, never guessed
+    short = stribeck_pin(0.0885, horizon_budget=2.0)
+    assert short.outcome == "undetermined" and "without evidence" in short.reason
+    assert short.t_end <= 2 * 30.0 + 2 * math.pi / 0.620894193870852 + 1e-9
+
+
+def test_a_converging_cycle_is_decided_on_its_contraction():
+    res = stribeck_pin(0.0875)
+    assert res.outcome == "stick_slip"
+    assert "contracts geometrically" in res.reason or "repeats" in res.reason
