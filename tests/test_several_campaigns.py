@@ -14,7 +14,7 @@ from conftest import points_done, start_campaign_until
 
 from frictiondisk import run_campaigns
 from frictiondisk.cli import main
-from frictiondisk.engine.runner import run_campaign
+from frictiondisk.engine.runner import _partial_note, run_campaign
 from frictiondisk.model.campaign import campaign_from_text
 
 PIN = """\
@@ -39,6 +39,19 @@ scene: pin
 numerics: {t_decide: 5.0}
 scan: {mu: [0.1, 0.2]}
 """
+# a trace: its progress counts curve points, its files are built by store/trace_datasets
+TRACE = """\
+name: traced
+scene: pin
+numerics: {t_decide: 8.0}
+trace:
+  key: params.x_ms
+  range: [0.08, 0.12]
+  mu: [0.05, 0.25]
+  tol: 1.0e-3
+  resolution: 0.5
+  first_look: {keys: 2, mu: 6}
+"""
 # 12 points at tol 1e-8, one in flight at a time: seconds each, long enough to stop both
 LONG = """\
 name: {name}
@@ -57,6 +70,7 @@ def _campaigns():
         PIN.format(name="second", values="[0.06, 0.12]"),
         ORBIT,
         SCAN,
+        TRACE,
     ]
     return [campaign_from_text(text, "<test>") for text in texts]
 
@@ -87,12 +101,12 @@ def test_campaigns_run_together_write_what_each_writes_on_its_own(tmp_path):
     assert all(0 < s.wall_s <= max(x.wall_s for x in summaries) for s in summaries)
 
     again = run_campaigns(None, tmp_path / "together")  # resume: all from the journals
-    assert [s.runs_computed for s in again] == [0, 0, 0, 0]
+    assert [s.runs_computed for s in again] == [0] * len(campaigns)
 
     status = CliRunner().invoke(main, ["status", str(tmp_path / "together")])
     assert status.exit_code == 0, status.output
-    assert "4 campaigns: first, second, orbit, sizes" in status.output
-    assert status.output.count("state:     complete") == 4
+    assert "5 campaigns: first, second, orbit, sizes, traced" in status.output
+    assert status.output.count("state:     complete") == 5
 
 
 def test_two_campaigns_of_one_name_and_mixed_folders_are_refused(tmp_path):
@@ -164,3 +178,19 @@ def test_sigterm_stops_every_campaign_and_resume_finishes_them_identically(long_
         with xr.open_dataset(out / name / "results.nc") as a:
             assert "partial" not in a.attrs
         _same_files(out / name, whole / name)
+
+
+def test_a_stop_says_where_the_partial_results_are():
+    """A stopped run names the partial results.nc of its campaigns, also those written
+    before their first point was finished (every point pending)."""
+    assert _partial_note({}, 1) == ""
+    assert _partial_note({"a": 3}, 1) == ", the 3 finished points in results.nc (partial)"
+    assert _partial_note({"a": 0}, 1) == (
+        "; no point is finished yet (results.nc: every point pending)"
+    )
+    assert _partial_note({"a": 2, "b": 0}, 2) == (
+        ", the finished points in each campaign's results.nc (partial: a 2, b 0)"
+    )
+    assert _partial_note({"a": 0, "b": 0}, 2) == (
+        "; no point is finished yet (each campaign's results.nc: every point pending)"
+    )
