@@ -206,6 +206,7 @@ def run(
     ymid = np.empty(n)
     jac, lu, piv = stage_workspace(n, nq, iopt[O_DENSE_LU] == 1)
     seq = np.empty((sec.SEQ_MAX, sec.N_SEQ))  # scratch for the section (kernel/sections.py)
+    # below this bound no co-rotation can hold: no shakedown is extrapolated there
     omega = p[P_OMEGA]
     wk = np.empty((N_WORK_ROWS, n))
     fresh = np.zeros(ncon, dtype=np.int8)
@@ -234,6 +235,7 @@ def run(
     if nq == 3:
         for i in range(ncon):
             mf[mon.F_ARM] = max(mf[mon.F_ARM], math.hypot(pts[i, 0], pts[i, 1]))
+    cannot_stick = mon.cannot_corotate(p, pts, mf[mon.F_ARM])
     t_rev = hold  # end of the current revolution [s]
     if record:
         _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
@@ -271,6 +273,7 @@ def run(
             if (
                 corotation
                 and verdict == mon.VERDICT_NONE
+                and not cannot_stick
                 and mon.shaken_down(mf, mi, ring_all, rv, omega, hold, seq)
             ):
                 verdict = mon.VERDICT_SHAKEN

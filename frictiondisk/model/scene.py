@@ -55,6 +55,7 @@ MAX_LENGTH = 1.0e3  # [m]
 MAX_SPEED = 1.0e4  # [m/s]
 MAX_OMEGA = 1.0e4  # [rad/s]
 MAX_HORIZON = 1.0e9  # [s] simulated time of one run, retries included
+MAX_HORIZON_BUDGET = 1000.0  # largest numerics.horizon_budget (certification levels included)
 
 
 def _layout_error(name: str, value: Any, message: str) -> None:
@@ -279,7 +280,7 @@ class Numerics(BaseModel):
         "stick_rule corotation: a run still settling at its horizon may extend it, one "
         "revolution at a time, up to this multiple of t_decide (t_max in mode converge)",
         ge=1,
-        le=1000,
+        le=MAX_HORIZON_BUDGET,
     )
     max_steps: int = _field(2_000_000, "1", "step budget of one run", ge=1, le=INT64_MAX)
     max_events: int = _field(

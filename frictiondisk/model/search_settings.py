@@ -13,12 +13,15 @@ ROOT_FINDERS = ("itp", "bisect")
 
 
 class Certify(BaseModel):
-    """How a jump is certified: each level multiplies the decision horizon by `horizon`
-    and rtol by `rtol`; `levels` is the strictest level a point may reach (0: off)."""
+    """How a jump is certified: each level multiplies rtol by `rtol` and the horizon budget
+    (how far a run may extend to find its evidence) by `horizon`; `levels` is the strictest
+    level a point may reach (0: off)."""
 
     model_config = MODEL_CONFIG
 
-    horizon: float = field(4.0, "1", "factor on the decision horizon per level", gt=1)
+    horizon: float = field(
+        4.0, "1", "factor on numerics.horizon_budget per level (the evidence's patience)", gt=1
+    )
     rtol: float = field(0.1, "1", "factor on numerics.rtol per level", gt=0, le=1)
     levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
 

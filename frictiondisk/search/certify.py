@@ -2,7 +2,7 @@
 
 A bisection ends with a bracket [mu_lo, mu_hi] whose ends were decided with the point's
 numerics. `CertifiedBisection` then re-runs both ends at the next certification level
-(horizon x `Certify.horizon`, rtol x `Certify.rtol`, docs/model.md section 7):
+(rtol x `Certify.rtol`, horizon budget x `Certify.horizon`, docs/model.md section 7):
 
 * both verdicts hold: the jump is `certified` (`recertified` after a re-search);
 * an end flips: the jump moved. While a stricter level is left, the search starts again
@@ -225,6 +225,6 @@ class CertifiedBisection:
     def _describe(self) -> str:
         level = self.search.strict + (1 if self._verdict != "vanished" else 0)
         return (
-            f"ends re-run at horizon x {self.certify.horizon**level:g}, "
-            f"rtol x {self.certify.rtol**level:g}"
+            f"ends re-run at rtol x {self.certify.rtol**level:g}, "
+            f"horizon budget x {self.certify.horizon**level:g}"
         )

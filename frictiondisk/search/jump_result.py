@@ -170,16 +170,16 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
         problems.append(f"prescan undetermined at mu = {mus} after every retry")
     problems += [f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" for j in failed]
+    if not jumps and vanished and not problems:
+        problems.append(
+            f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"
+        )
     if not jumps and not problems:
         kinds = {r.outcome == STICK for r in scan}
         which = "stick" if kinds == {True} else "not stick"
         problems.append(
             f"no jump: every prescan value from mu = {search.mus[0]:.6g} to "
             f"{search.mus[-1]:.6g} gave {which}"
-        )
-    if not jumps and vanished and not problems:
-        problems.append(
-            f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"
         )
     if problems:
         status, reason = "failed", "; ".join(problems)

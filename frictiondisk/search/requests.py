@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from frictiondisk.model.scene import MAX_HORIZON_BUDGET
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.outcome.horizon import horizon_key, horizon_of
 from frictiondisk.search.bisection import RunRequest
@@ -15,7 +16,8 @@ from frictiondisk.search.bisection import RunRequest
 def run_config(point_config, request: RunRequest, horizon_factor: float, certify: Certify = OFF):
     """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
     set, horizon lengthened by the retry level; at certification level `request.strict`
-    the horizon is multiplied by certify.horizon and rtol by certify.rtol once per level."""
+    rtol is multiplied by certify.rtol and the horizon budget by certify.horizon once per
+    level."""
     num = point_config.numerics
     mode = request.mode or num.mode
     key = f"numerics.{horizon_key(mode)}"
@@ -23,8 +25,12 @@ def run_config(point_config, request: RunRequest, horizon_factor: float, certify
     overrides: dict[str, Any] = {"params.mu": request.mu}
     if mode != num.mode:
         overrides["numerics.mode"] = mode
-    if request.level or request.strict:
-        overrides[key] = horizon * horizon_factor**request.level * certify.horizon**request.strict
+    if request.level:
+        overrides[key] = horizon * horizon_factor**request.level
     if request.strict:
+        # a stricter run observes from the same horizon on, with rtol x certify.rtol and
+        # certify.horizon times the budget to find its evidence (docs/model.md section 7)
         overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
+        budget = num.horizon_budget * certify.horizon**request.strict
+        overrides["numerics.horizon_budget"] = min(budget, MAX_HORIZON_BUDGET)
     return point_config.with_overrides(overrides)

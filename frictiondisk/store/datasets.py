@@ -312,7 +312,7 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             "run",
             np.asarray([r[1].strict for r in rows], np.int64),
             {
-                "long_name": "certification level (horizon x certify.horizon**strict, "
+                "long_name": "certification level (horizon budget x certify.horizon**strict, "
                 "rtol x certify.rtol**strict)"
             },
         ),

@@ -324,7 +324,7 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             "run",
             np.asarray([r.request.strict for r in runs], np.int64),
             {
-                "long_name": "certification level (horizon x certify.horizon**strict, rtol x certify.rtol**strict)"
+                "long_name": "certification level (horizon budget x certify.horizon**strict, rtol x certify.rtol**strict)"
             },
         ),
         "role": (
