@@ -3,13 +3,16 @@
 #   make demo    create .venv, install from the lock file, locate mu* along the demo lines
 #                (the pin, and the paper's disk from rest), print the mu* tables, draw the
 #                mu* lines and one orbit, show where the outputs are
+#   make install create .venv, install from the lock file, compile the numba kernel once
 #   make test    create .venv if needed, install from the lock file, run the test suite
 #   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows;
 #                LOCK_ARGS= keeps the pinned versions and only adds what is new)
 #   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
 #                run alongside; bench_layouts: cost per step against N, arrow vs dense LU),
 #                runs per mu* (bench_runs: the search against plain bisection), start-up
-#                (bench_startup: warm simulate, the fixed cost of run)
+#                (bench_startup: warm simulate, the fixed cost of run), the six figure
+#                campaigns one by one against one run of all six (bench_together;
+#                BENCH_TOGETHER_ARGS=--quick for a smoke check)
 #                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml, and the traced Fig 11)
 #                into out/figures/
@@ -24,21 +27,23 @@ VENV ?= .venv
 PYTHON ?= python3
 PYTEST_ARGS ?=
 BENCH_SCALING_ARGS ?= --quick
+BENCH_TOGETHER_ARGS ?= --repeat 2
 
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.frictiondisk-installed
 LINT_PATHS := frictiondisk tests benchmarks
 
+DEMO_FOLDER := out/demo
 DEMO_SCENE := campaigns/demo_pin.yaml
-DEMO_DIR := out/demo
+DEMO_DIR := $(DEMO_FOLDER)/orbit
 DEMO_NC := $(DEMO_DIR)/trajectory.nc
 DEMO_PNG := $(DEMO_DIR)/orbit.png
 DEMO_JSON := $(DEMO_DIR)/summary.json
 DEMO_CAMPAIGN := campaigns/demo_line.yaml
-DEMO_CAMPAIGN_DIR := out/demo_line
+DEMO_CAMPAIGN_DIR := $(DEMO_FOLDER)/demo_line
 DEMO_LINE_PNG := $(DEMO_CAMPAIGN_DIR)/mu_star.png
 DEMO_DISK_CAMPAIGN := campaigns/demo_disk_line.yaml
-DEMO_DISK_DIR := out/demo_disk_line
+DEMO_DISK_DIR := $(DEMO_FOLDER)/demo_disk_line
 DEMO_DISK_PNG := $(DEMO_DISK_DIR)/mu_star.png
 LOCK := requirements/lock.txt
 LOCK_ARGS ?= --upgrade
@@ -49,11 +54,14 @@ all: test
 
 # (Re)install whenever pyproject.toml or the lock file changes; an existing .venv is reused,
 # never recreated. Every dependency comes from the lock file (exact versions and hashes);
-# the project itself is installed without resolving dependencies again.
+# the project itself is installed without resolving dependencies again. Then the numba
+# kernel is compiled into its cache (frictiondisk/kernel/__pycache__), so that the first
+# campaign or simulate loads it instead of compiling it (docs/benchmarks.md, compile).
 $(STAMP): pyproject.toml $(LOCK)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -r $(LOCK)
 	$(BIN)/python -m pip install --no-deps -e .
+	$(BIN)/python -c "from frictiondisk.engine.tasks import warm_up; warm_up()"
 	touch $@
 
 install: $(STAMP)
@@ -66,12 +74,12 @@ lock:
 	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --extra dashboard $(LOCK_ARGS) --generate-hashes \
 		--python-version 3.11 --python-platform x86_64-unknown-linux-gnu -o $(LOCK)
 
-# The main job: locate the jump mu* along a line of axes offsets (resumes if interrupted),
-# then one orbit of the demo scene.
+# The main job: locate the jump mu* along two lines of axes offsets, the pin's and the
+# disk's, in one run (each campaign into out/demo/<name>/; resumes if interrupted), then
+# one orbit of the demo scene.
 demo: $(STAMP)
-	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) -o $(DEMO_CAMPAIGN_DIR)
+	$(BIN)/frictiondisk run $(DEMO_CAMPAIGN) $(DEMO_DISK_CAMPAIGN) -o $(DEMO_FOLDER)
 	$(BIN)/frictiondisk plot $(DEMO_CAMPAIGN_DIR) -o $(DEMO_LINE_PNG)
-	$(BIN)/frictiondisk run $(DEMO_DISK_CAMPAIGN) -o $(DEMO_DISK_DIR)
 	$(BIN)/frictiondisk plot $(DEMO_DISK_DIR) -o $(DEMO_DISK_PNG)
 	@mkdir -p $(DEMO_DIR)
 	$(BIN)/frictiondisk simulate $(DEMO_SCENE) --json -o $(DEMO_NC) --plot $(DEMO_PNG) > $(DEMO_JSON)
@@ -95,6 +103,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_layouts.py
 	$(BIN)/python benchmarks/bench_runs.py
 	$(BIN)/python benchmarks/bench_startup.py
+	$(BIN)/python benchmarks/bench_together.py $(BENCH_TOGETHER_ARGS)
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)

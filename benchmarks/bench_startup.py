@@ -4,14 +4,12 @@
   wall time of the whole command, best of 5, and the run's own kernel time;
 * the fixed start-up of `frictiondisk run`: wall time of a one-point campaign minus the
   kernel time of its runs (imports, loading the compiled kernel, the local Dask cluster,
-  the netCDF files), best of 5: in a process of its own, and handed to a warm server
-  (`frictiondisk serve`, started for this benchmark in a private directory of its own);
+  the netCDF files), best of 5 (several campaigns in one `run` pay it once:
+  benchmarks/bench_together.py);
 * for scale, measured alongside: a bare `python -c pass`, and `import numba` and
   `import dask.distributed` on their own (every run pays these).
 
 Targets (issue 23): warm simulate <= 0.6 s; fixed start-up of run <= 0.7 s.
-simulate is never handed to a server; every command but the served ones runs with
-FRICTIONDISK_NO_SERVER=1, so that a server the user left running changes nothing.
 
     python benchmarks/bench_startup.py
 """
@@ -19,7 +17,6 @@ FRICTIONDISK_NO_SERVER=1, so that a server the user left running changes nothing
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 import tempfile
@@ -41,12 +38,9 @@ find_jump:
 REPEATS = 5
 
 
-ALONE = {**os.environ, "FRICTIONDISK_NO_SERVER": "1"}
-
-
-def wall(cmd: list[str], env: dict | None = None) -> float:
+def wall(cmd: list[str]) -> float:
     t0 = time.perf_counter()
-    subprocess.run(cmd, check=True, capture_output=True, cwd=ROOT, env=env or ALONE)
+    subprocess.run(cmd, check=True, capture_output=True, cwd=ROOT)
     return time.perf_counter() - t0
 
 
@@ -62,7 +56,7 @@ def simulate_times() -> tuple[float, float]:
     return best(cmd), float(json.loads(out)["wall_s"])
 
 
-def run_fixed(env: dict | None = None) -> tuple[float, float]:
+def run_fixed() -> tuple[float, float]:
     """(best wall time of a one-point campaign [s], its fixed part: wall - kernel [s])."""
     results = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -70,26 +64,11 @@ def run_fixed(env: dict | None = None) -> tuple[float, float]:
         spec.write_text(TINY)
         for k in range(REPEATS):
             out = Path(tmp) / f"o{k}"
-            t = wall([*CLI, "run", str(spec), "-o", str(out)], env)
+            t = wall([*CLI, "run", str(spec), "-o", str(out)])
             with xr.open_dataset(out / "runs.nc") as runs:
                 kernel = float(runs["wall_s"].sum())
             results.append((t, t - kernel))
     return min(results)
-
-
-def served_run_fixed() -> tuple[float, float, float]:
-    """run_fixed() of commands handed to a warm server, and the server's own start [s]."""
-    with tempfile.TemporaryDirectory() as servers:
-        env = {**os.environ, "FRICTIONDISK_SERVER_DIR": servers}
-        env.pop("FRICTIONDISK_NO_SERVER", None)
-        t0 = time.perf_counter()
-        serve = [*CLI, "serve", "--detach", "--idle-timeout", "600"]
-        subprocess.run(serve, check=True, capture_output=True, cwd=ROOT, env=env)
-        started = time.perf_counter() - t0
-        try:
-            return (*run_fixed(env), started)
-        finally:
-            subprocess.run([*CLI, "serve", "--stop"], capture_output=True, cwd=ROOT, env=env)
 
 
 def main() -> int:
@@ -98,7 +77,6 @@ def main() -> int:
     dask = best([sys.executable, "-c", "import dask.distributed"]) - bare
     sim_wall, sim_kernel = simulate_times()
     run_wall, fixed = run_fixed()
-    served_wall, served_fixed, server_start = served_run_fixed()
     print(f"python -c pass            {bare:6.3f} s")
     print(f"import numba              {numba:6.3f} s   (beyond python's own start)")
     print(f"import dask.distributed   {dask:6.3f} s")
@@ -109,11 +87,6 @@ def main() -> int:
     print(
         f"run, one-point campaign   {run_wall:6.3f} s   fixed start-up {fixed:.3f} s   "
         f"target <= 0.7 s: ratio {fixed / 0.7:.2f}"
-    )
-    print(
-        f"  handed to a warm server {served_wall:6.3f} s   fixed start-up {served_fixed:.3f} s   "
-        f"target <= 0.7 s: ratio {served_fixed / 0.7:.2f}   "
-        f"(the server started in {server_start:.2f} s, once)"
     )
     return 0
 

@@ -9,6 +9,7 @@ stays cheap)::
     result = simulate(scene)                 # result.outcome, result.reason, result.summary()
     campaign = load_campaign("campaigns/demo_line.yaml")   # or a dict: the parsed YAML
     run_campaign(campaign, "out/demo_line")  # resumes if the directory holds a journal
+    run_campaigns(["campaigns/fig07_pin_xms.yaml", "campaigns/fig08_pin_x0.yaml"], "out/figs")
     results = open_results("out/demo_line")  # results.nc as an xarray.Dataset
     fig = plot_results("out/demo_line")      # what `frictiondisk plot DIR` draws
     fig = plot_orbit(simulate(scene, record=True, dt_out=0.05), scene)
@@ -29,7 +30,7 @@ from frictiondisk.version import __version__
 if TYPE_CHECKING:
     import xarray as xr
 
-    from frictiondisk.engine.driver import RunSummary
+    from frictiondisk.engine.campaign_run import RunSummary
     from frictiondisk.model.campaign import Campaign
     from frictiondisk.model.scene import SceneConfig
     from frictiondisk.outcome.result import SimulationResult
@@ -42,6 +43,7 @@ __all__ = [
     "plot_orbit",
     "plot_results",
     "run_campaign",
+    "run_campaigns",
     "simulate",
 ]
 
@@ -98,6 +100,23 @@ def run_campaign(
     if campaign is not None and not hasattr(campaign, "task"):
         campaign = load_campaign(campaign)
     return _run_campaign(campaign, Path(out_dir), workers=workers, progress=progress)
+
+
+def run_campaigns(
+    campaigns: list[Campaign | str | PathLike[str]] | None,
+    out_dir: str | PathLike[str],
+    workers: int = 2,
+    progress: bool = False,
+) -> list[RunSummary]:
+    """Run several campaigns (each a `Campaign` or the path of its YAML file) in this
+    process, each into out_dir/<its name>/, their runs scheduled together on one set of
+    workers, resuming whatever their journals already hold; campaigns=None resumes every
+    campaign of out_dir. Names must differ. Returns each campaign's summary, in order."""
+    from frictiondisk.engine.runner import run_campaigns as _run_campaigns
+
+    if campaigns is not None:
+        campaigns = [c if hasattr(c, "task") else load_campaign(c) for c in campaigns]
+    return _run_campaigns(campaigns, Path(out_dir), workers=workers, progress=progress)
 
 
 def open_results(path: str | PathLike[str], name: str = "results") -> xr.Dataset:

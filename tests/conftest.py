@@ -23,15 +23,6 @@ def coulomb_mu_star(
     return (c_s * x_ms + g_factor(c_s=c_s, **kw) * radius) / F_n
 
 
-def pytest_configure(config) -> None:
-    """The tests' subprocesses never meet a warm server (`frictiondisk serve`) left
-    running by the developer: they look for one in a fresh private directory."""
-    import os
-    import tempfile
-
-    os.environ["FRICTIONDISK_SERVER_DIR"] = tempfile.mkdtemp(prefix="frictiondisk-test-servers-")
-
-
 # 24 points at tol 1e-8: long enough (about 5 s) to be stopped after its second point
 LONG_CAMPAIGN = """\
 name: stop_line
@@ -73,21 +64,20 @@ def wait_for_cpu(pid: int, seconds: float, timeout: float = 300.0) -> None:
         return
 
 
-def start_campaign_until(spec, out, points: int = 2, env=None, cwd=None, until=None):
+def start_campaign_until(spec, out, points: int = 2, until=None):
     """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
     returned once `points` points are done (or once `until()`, if given, is true); fails
-    if it ended before."""
+    if it ended before. spec: one campaign file, or a list of them (a folder of campaigns)."""
     import subprocess
     import sys
     import time
 
+    specs = [str(path) for path in spec] if isinstance(spec, list | tuple) else [str(spec)]
     proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
+        [sys.executable, "-m", "frictiondisk.cli", "run", *specs, "-o", str(out)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
-        env=env,
-        cwd=cwd,
     )
     t0 = time.time()
     ready = until or (lambda: points_done(out) >= points)

@@ -8,6 +8,7 @@ import shutil
 from pathlib import Path
 
 import numba
+import numpy as np
 
 from frictiondisk.kernel import jit
 
@@ -45,3 +46,74 @@ def test_a_new_kernel_file_moves_the_cache(tmp_path, monkeypatch):
     before = jit.kernel_cache_dir(sources)
     (sources / "helpers.py").write_text("X = 1\n")
     assert jit.kernel_cache_dir(sources) != before
+
+
+def test_a_constant_argument_compiles_the_callee_once():
+    """numba compiles a callee once per literal a jitted caller passes it (Literal[int](0),
+    a module constant) besides its plain type; the kernel's decorator types calls by their
+    plain types, so each kernel function has one signature."""
+
+    def pick(a, k):
+        return a[k]
+
+    def caller(pick):
+        @numba.njit
+        def total(a, n):
+            s = pick(a, 0) + pick(a, n) + pick(a, FIRST)
+            count = 0  # typed Literal[int](0) on its first pass
+            for _ in range(n):
+                s += pick(a, count)
+                count += 1
+            return s
+
+        return total
+
+    values = np.arange(4.0)
+    plain = jit.plain_types(numba.njit(pick))
+    assert caller(plain)(values, 2) == 3.0
+    assert len(plain.signatures) == 1, plain.signatures
+    literal = numba.njit(pick)  # numba on its own: the specialisations this removes
+    assert caller(literal)(values, 2) == 3.0
+    assert len(literal.signatures) > 1
+
+
+FIRST = 0
+
+
+SIGNATURES = """
+import importlib, json, pathlib
+import numba
+from frictiondisk.kernel import jit
+from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.simulation.simulate import simulate
+
+for scene in ("pin", "disk"):
+    config = scene_from_dict({"scene": scene, "numerics": {"t_decide": 0.5}})
+    simulate(config)
+    simulate(config, record=True, dt_out=0.01)
+several = {}
+for source in pathlib.Path(jit.__file__).parent.glob("*.py"):
+    module = importlib.import_module(f"frictiondisk.kernel.{source.stem}")
+    for name, value in vars(module).items():
+        if isinstance(value, numba.core.dispatcher.Dispatcher) and len(value.signatures) > 1:
+            several[f"{source.stem}.{name}"] = [str(s) for s in value.signatures]
+from frictiondisk.kernel import model
+print(json.dumps({"several": several, "mode": str(model.switch_value.signatures[0][-1])}))
+"""
+
+
+def test_every_kernel_function_keeps_one_signature():
+    """A pin, a disk and a recorded run call the kernel from Python with one set of
+    argument types (e.g. a mode as int8, as the kernel holds it): one compiled (or loaded)
+    signature per kernel function. In a process of its own: tests call kernel functions
+    directly with other types."""
+    import json
+    import subprocess
+    import sys
+
+    done = subprocess.run(
+        [sys.executable, "-c", SIGNATURES], capture_output=True, text=True, check=True
+    )
+    seen = json.loads(done.stdout.splitlines()[-1])
+    assert seen["several"] == {}
+    assert seen["mode"] == "int8"  # as the kernel holds modes: its own calls compile no other

@@ -38,7 +38,8 @@ def test_simulate_stays_the_function_after_the_simulation_package_is_imported():
     assert callable(pack_parameters)
     assert frictiondisk.simulate is simulate and callable(frictiondisk.simulate)
     public = "__version__ load_campaign load_scene open_results plot_orbit plot_results"
-    assert sorted(frictiondisk.__all__) == sorted([*public.split(), "run_campaign", "simulate"])
+    api = [*public.split(), "run_campaign", "run_campaigns", "simulate"]
+    assert sorted(frictiondisk.__all__) == sorted(api)
 
 
 def test_load_scene_and_simulate(tmp_path):

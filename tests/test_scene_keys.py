@@ -14,6 +14,7 @@ from click.testing import CliRunner
 
 from frictiondisk.cli import main
 from frictiondisk.model.campaign import campaign_from_dict, load_campaign
+from frictiondisk.model.campaign_spec import TASK_KEYS
 from frictiondisk.model.scene import ConfigError, load_scene, scene_from_dict
 
 CAMPAIGNS = Path(__file__).resolve().parents[1] / "campaigns"
@@ -189,7 +190,7 @@ def test_a_pin_s_canonical_form_round_trips_without_the_disk_keys(tmp_path):
 
 def _is_campaign(path: Path) -> bool:
     data = yaml.safe_load(path.read_text())
-    return any(task in data for task in ("find_jump", "scan", "trajectory", "basin"))
+    return any(task in data for task in TASK_KEYS)
 
 
 @pytest.mark.parametrize("path", sorted(CAMPAIGNS.glob("*.yaml")), ids=lambda p: p.name)

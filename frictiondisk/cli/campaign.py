@@ -1,8 +1,10 @@
-"""Campaign commands: `run`, `resume`, `status` (thin; the work is in frictiondisk/engine/).
+"""Campaign commands: `run`, `resume`, `status` (thin; the work is in frictiondisk/engine/),
+for one campaign in DIR or several in DIR/<name>/ (`run A.yaml B.yaml -o DIR`).
 
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
 path that cannot be written (named, with the cause), a symbolic link in DIR, an
-unreachable scheduler or a campaign over its size limits; 3 DIR is in use by another run,
+unreachable scheduler, a campaign over its size limits, two campaigns of one name in one
+run, or one campaign into a folder of several (or the reverse); 3 DIR is in use by another run,
 130 interrupted (Ctrl-C), 143 terminated (SIGTERM), 129 hung up (SIGHUP: the terminal
 closed). A stop journals the runs in flight that finish within 30 s and writes results.nc
 with the finished points, marked partial; resume continues.
@@ -56,7 +58,7 @@ def _signals_stop_the_campaign():
 
 
 def _execute(
-    campaign,
+    campaigns: list | None,
     out_dir: Path,
     workers: int,
     scheduler: str | None,
@@ -64,32 +66,48 @@ def _execute(
     worker_wait: float,
     force: bool = False,
     dashboard: bool = False,
+    several: bool = False,
 ):
+    """Run (campaigns None: resume) one campaign into out_dir, or with `several`, each
+    of `campaigns` into out_dir/<name>/ in this process (engine/runner.py); report the
+    outcome, or fail with the documented exit code."""
     from frictiondisk.engine.cluster import SchedulerFailed
-    from frictiondisk.engine.directory import CampaignChanged
+    from frictiondisk.engine.directory import CampaignChanged, FolderDamaged
     from frictiondisk.engine.preflight import preflight
-    from frictiondisk.engine.runner import run_campaign
+    from frictiondisk.engine.runner import CampaignsClash, run_campaign, run_campaigns
     from frictiondisk.engine.signals import CampaignInterrupted, describe_stop
     from frictiondisk.model.scene import ConfigError
     from frictiondisk.store.lock import CampaignLocked
     from frictiondisk.store.paths import describe_os_error
 
-    problems = preflight(campaign, out_dir, workers, scheduler, force)
+    problems = []
+    for k, campaign in enumerate(campaigns or [None]):
+        where = out_dir / campaign.name if several and campaign is not None else out_dir
+        # the scheduler is probed once: the campaigns share it
+        problems += preflight(campaign, where, workers, scheduler if k == 0 else None, force)
     if problems:
-        fail(f"{out_dir}: cannot start (nothing was created)", problems)
+        fail(f"{out_dir}: cannot start (nothing was created)", list(dict.fromkeys(problems)))
+    options = dict(worker_wait=worker_wait, dashboard=dashboard)
     try:
         with _signals_stop_the_campaign():
-            summary = run_campaign(
-                campaign,
-                out_dir,
-                workers,
-                scheduler,
-                processes,
-                worker_wait=worker_wait,
-                dashboard=dashboard,
-            )
+            if several:
+                summaries = run_campaigns(
+                    campaigns, out_dir, workers, scheduler, processes, **options
+                )
+            else:
+                campaign = campaigns[0] if campaigns else None
+                summaries = [
+                    run_campaign(campaign, out_dir, workers, scheduler, processes, **options)
+                ]
     except CampaignChanged as exc:
-        fail(f"{out_dir}: the campaign differs from the one this directory holds", exc.differences)
+        fail(
+            f"{exc.out_dir}: the campaign differs from the one this directory holds",
+            exc.differences,
+        )
+    except CampaignsClash as exc:
+        fail(f"{out_dir}: refused (nothing was written)", exc.problems)
+    except FolderDamaged as exc:
+        fail(str(exc), [])
     except CampaignLocked as exc:
         fail(str(exc), [], EXIT_LOCKED)
     except CampaignInterrupted as exc:
@@ -113,6 +131,21 @@ def _execute(
             describe_os_error(exc, exc.filename or out_dir),
             [f"finished runs are in the journal; fix this, then: frictiondisk resume {out_dir}"],
         )
+    for summary in summaries:
+        if several:  # each campaign's lines under its name
+            name = summary.results.parent.name
+            click.echo(f"{name}:")
+            _echo_summary(summary, out_dir / name, indent="  ")
+        else:
+            _echo_summary(summary, out_dir)
+    if several:
+        wall = max((summary.wall_s for summary in summaries), default=0.0)
+        click.echo(f"all {len(summaries)} campaigns done, {wall:.1f} s")
+
+
+def _echo_summary(summary, out_dir: Path, indent: str = "") -> None:
+    """What a finished campaign prints: rejected journal entries, its counts, its files
+    and its closing lines (on stdout, each line after `indent`)."""
     for line in summary.moved_aside:
         click.echo(f"journal: rejected and recomputed: {line}", err=True)
     if summary.moved_aside:
@@ -122,17 +155,17 @@ def _execute(
             err=True,
         )
     click.echo(
-        f"done: {summary.points} points ({summary.points_failed} failed), "
+        f"{indent}done: {summary.points} points ({summary.points_failed} failed), "
         f"{summary.runs_total} runs used, {summary.runs_computed} computed now, "
         f"{summary.runs_saved_by_warm_start} saved by warm starts, {summary.wall_s:.1f} s"
     )
-    click.echo(f"results: {summary.results}")
+    click.echo(f"{indent}results: {summary.results}")
     label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
-    click.echo(f"{label} {summary.runs}")
-    _echo_closing(summary.results)
+    click.echo(f"{indent}{label} {summary.runs}")
+    _echo_closing(summary.results, indent)
 
 
-def _echo_closing(results_path: Path) -> None:
+def _echo_closing(results_path: Path, indent: str = "") -> None:
     """The closing lines of a finished campaign, read from results.nc once: the answer (a
     find_jump's mu* table, a scan's outcome per point), and for a find_jump with uncertain
     points their names (not an error, exit 0: the best bracket of each is kept, flagged
@@ -150,7 +183,7 @@ def _echo_closing(results_path: Path) -> None:
         if results.attrs.get("task") == "basin":
             lines += summary_lines(results.load())
     for line in lines:
-        click.echo(line)
+        click.echo(indent + line)
 
 
 _workers = click.option(
@@ -188,14 +221,21 @@ _processes = click.option(
 
 
 @click.command()
-@click.argument("campaign_file", type=click.Path(dir_okay=False, path_type=Path))
+@click.argument(
+    "campaign_files",
+    metavar="CAMPAIGN_FILE...",
+    nargs=-1,
+    required=True,
+    type=click.Path(dir_okay=False, path_type=Path),
+)
 @click.option(
     "-o",
     "--out",
     "out_dir",
     type=click.Path(file_okay=False, path_type=Path),
     required=True,
-    help="Campaign directory (journal, results.nc, runs.nc).",
+    help="Campaign directory (journal, results.nc, runs.nc); with several files, the "
+    "folder that holds one such directory per campaign, DIR/<name>/.",
 )
 @_workers
 @_scheduler
@@ -208,7 +248,7 @@ _processes = click.option(
     help="Run a campaign over the size limits (points, runs, memory) anyway.",
 )
 def run(
-    campaign_file: Path,
+    campaign_files: tuple[Path, ...],
     out_dir: Path,
     workers: int,
     scheduler,
@@ -220,17 +260,27 @@ def run(
     """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it.
 
     At the end it prints the answer: the mu* table of a find_jump (failed points with
-    their reasons), the outcome and size per point of a scan, a basin's fractions."""
+    their reasons), the outcome and size per point of a scan, a basin's fractions.
+
+    With several files, each campaign runs into DIR/<its name>/ (names must differ), all
+    in this one process on one set of workers: their runs are scheduled together, so one
+    campaign's last points overlap the next one's first. Each keeps its own journal, lock
+    and files; `resume DIR` and `status DIR` take the folder."""
     from frictiondisk.model.campaign import load_campaign
     from frictiondisk.model.scene import ConfigError
 
-    if not campaign_file.is_file():
-        fail(str(campaign_file), [f"campaign file not found: {campaign_file}"])
-    try:
-        campaign = load_campaign(campaign_file)
-    except ConfigError as exc:
-        fail(str(campaign_file), list(exc.problems))
-    _execute(campaign, out_dir, workers, scheduler, processes, worker_wait, force, dashboard)
+    campaigns = []
+    for campaign_file in campaign_files:
+        if not campaign_file.is_file():
+            fail(str(campaign_file), [f"campaign file not found: {campaign_file}"])
+        try:
+            campaigns.append(load_campaign(campaign_file))
+        except ConfigError as exc:
+            fail(str(campaign_file), list(exc.problems))
+    several = len(campaigns) > 1
+    _execute(
+        campaigns, out_dir, workers, scheduler, processes, worker_wait, force, dashboard, several
+    )
 
 
 @click.command()
@@ -243,10 +293,23 @@ def run(
 def resume(
     out_dir: Path, workers: int, scheduler, worker_wait: float, processes: bool, dashboard: bool
 ) -> None:
-    """Continue the campaign in DIR from its journal (no finished run is computed again)."""
-    if not (out_dir / "campaign.yaml").is_file():
+    """Continue the campaign in DIR from its journal (no finished run is computed again);
+    in a folder of several campaigns (`run A.yaml B.yaml -o DIR`), every one of them."""
+    from frictiondisk.engine.directory import is_campaign_folder
+
+    several = is_campaign_folder(out_dir)
+    if not several and not (out_dir / "campaign.yaml").is_file():
         fail(f"{out_dir} is not a campaign directory (no campaign.yaml)", [])
-    _execute(None, out_dir, workers, scheduler, processes, worker_wait, dashboard=dashboard)
+    _execute(
+        None,
+        out_dir,
+        workers,
+        scheduler,
+        processes,
+        worker_wait,
+        dashboard=dashboard,
+        several=several,
+    )
 
 
 @click.command()
@@ -254,7 +317,24 @@ def resume(
 def status(out_dir: Path) -> None:
     """Report progress of the campaign in DIR: points, runs, failures, time left, and the
     answer so far (the mu* table with the reason of each failed point, a scan's outcome
-    and size per point)."""
+    and size per point); in a folder of several campaigns, of each of them."""
+    from frictiondisk.engine.directory import FolderDamaged, is_campaign_folder, read_manifest
+
+    if not is_campaign_folder(out_dir):
+        _report_status(out_dir)
+        return
+    try:
+        names = read_manifest(out_dir)
+    except FolderDamaged as exc:
+        fail(str(exc), [])
+    click.echo(f"folder:    {out_dir}, {len(names)} campaigns: {', '.join(names)}")
+    for name in names:
+        click.echo("")
+        _report_status(out_dir / name)
+
+
+def _report_status(out_dir: Path) -> None:
+    """Print the progress of the campaign in DIR (exit 2 if DIR holds none)."""
     from frictiondisk.engine.directory import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
     from frictiondisk.store.files import netcdf_is_valid
     from frictiondisk.store.journal import Journal

@@ -274,14 +274,13 @@ def show_defaults(scene: str, task: str | None) -> None:
 
 
 # Campaign commands live in frictiondisk/cli/campaign.py, `plot` in cli/plot.py,
-# `accuracy` in cli/accuracy.py, `serve` in cli/serve.py.
+# `accuracy` in cli/accuracy.py.
 def _add_campaign_commands() -> None:
     from frictiondisk.cli.accuracy import accuracy
     from frictiondisk.cli.campaign import resume, run, status
     from frictiondisk.cli.plot import plot
-    from frictiondisk.cli.serve import serve
 
-    for command in (run, resume, status, plot, accuracy, serve):
+    for command in (run, resume, status, plot, accuracy):
         main.add_command(command)
 
 

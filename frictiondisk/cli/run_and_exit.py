@@ -1,5 +1,5 @@
 """Run a click command line in this process, then leave with its exit code and without
-the interpreter's teardown (the console script, and a warm server's forked commands).
+the interpreter's teardown (the console script, cli/entry.py).
 
 Tearing down numba, llvmlite and Dask's modules took 0.12 s after a warm `simulate` of
 0.58 s (benchmarks/bench_startup.py). Nothing is lost by skipping it: every command

@@ -1,11 +1,14 @@
 """The campaign directory DIR: its file names, the campaign record check, the refusal of
-symbolic links, and status.json (see frictiondisk.engine.runner for the layout)."""
+symbolic links, and status.json (see frictiondisk.engine.runner for the layout); and a
+folder of several campaigns (`run A.yaml B.yaml -o DIR`): DIR/campaigns.json names its
+campaigns, each in DIR/<name>/."""
 
 from __future__ import annotations
 
 import hashlib
 import json
 import os
+import re
 import time
 from pathlib import Path
 
@@ -19,9 +22,12 @@ RECORD_FILE = "campaign.record.json"  # sha256 and canonical form of campaign.ya
 STATUS_FILE = "status.json"
 RESULTS_FILE = "results.nc"
 RUNS_FILE = "runs.nc"
+MANIFEST_FILE = "campaigns.json"  # a folder of several campaigns: their names, in order
+_NAME = re.compile(r"[A-Za-z0-9_-]+")  # a campaign's name (model/campaign_spec.py)
 # Every name the driver reads or writes in DIR: none may be a symbolic link.
 _DIR_NAMES = (
     "lock",
+    MANIFEST_FILE,
     CAMPAIGN_FILE,
     RECORD_FILE,
     STATUS_FILE,
@@ -38,6 +44,7 @@ class CampaignChanged(Exception):
     """The campaign file differs from the one DIR was started with."""
 
     def __init__(self, out_dir: Path, differences: list[str]):
+        self.out_dir = out_dir
         self.differences = differences
         super().__init__(
             f"{out_dir} holds a different campaign; refusing to mix results "
@@ -157,3 +164,37 @@ def write_status(
     # cost ~2 ms here); the final state is made durable
     data = json.dumps(status, indent=1).encode()
     atomic_write_bytes(out_dir / STATUS_FILE, data, durable=state != "running")
+
+
+class FolderDamaged(ValueError):
+    """DIR/campaigns.json cannot be read as a list of campaign names."""
+
+
+def is_campaign_folder(out_dir: Path) -> bool:
+    """Whether DIR holds several campaigns (DIR/campaigns.json), not one."""
+    return (out_dir / MANIFEST_FILE).is_file()
+
+
+def read_manifest(out_dir: Path) -> list[str]:
+    """The campaign names DIR/campaigns.json lists, in order (FolderDamaged if it cannot
+    be read as such)."""
+    path = out_dir / MANIFEST_FILE
+    try:
+        names = json.loads(refuse_symlink(path).read_text(encoding="utf-8"))["campaigns"]
+    except (ValueError, KeyError, TypeError) as err:
+        raise FolderDamaged(f"{path} is damaged ({type(err).__name__}: {err})") from None
+    if not isinstance(names, list) or not all(
+        isinstance(name, str) and _NAME.fullmatch(name) for name in names
+    ):
+        raise FolderDamaged(f"{path}: `campaigns` must be a list of campaign names")
+    return names
+
+
+def write_manifest(out_dir: Path, names: list[str]) -> list[str]:
+    """Add `names` to DIR/campaigns.json (kept in order, each once); returns them all.
+    The caller holds DIR's lock."""
+    known = read_manifest(out_dir) if (out_dir / MANIFEST_FILE).exists() else []
+    names = known + [name for name in names if name not in known]
+    text = json.dumps({"campaigns": names}, indent=1) + "\n"
+    atomic_write_text(out_dir / MANIFEST_FILE, text)
+    return names

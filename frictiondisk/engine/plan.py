@@ -1,4 +1,5 @@
-"""Which runs a campaign needs next: planners for `find_jump` and `scan` (pure Python).
+"""Which runs a campaign needs next: planners for `find_jump` and `scan` (pure Python;
+`basin` is in basin_plan.py, `trajectory` in orbit.py; planner_for picks one).
 
 A planner turns a campaign into requests `(point index, RunRequest)` and takes their
 results back (`requests`, `feed`: the driver answers them from the journal), and hands
@@ -378,6 +379,10 @@ class ScanPlanner:
 
 
 def planner_for(campaign):
+    if campaign.task.kind == "trajectory":
+        from frictiondisk.engine.orbit import TrajectoryPlanner  # xarray: only when needed
+
+        return TrajectoryPlanner(campaign)
     if campaign.task.kind == "basin":
         return BasinPlanner(campaign)
     if campaign.task.kind == "trace":

@@ -91,6 +91,15 @@ def run_bisection(
     return bisection, made
 
 
+def run_recorded(canonical: dict[str, Any], dt_out: float):
+    """Simulate the scene with its trajectory recorded every dt_out [s] (a trajectory
+    campaign's one run); returns the SimulationResult."""
+    from frictiondisk.model.scene import scene_from_dict
+    from frictiondisk.simulation.simulate import simulate
+
+    return simulate(scene_from_dict(canonical), record=True, dt_out=dt_out)
+
+
 def warm_up() -> None:
     """Compile (or load from the cache) the kernel for both scenes in this process."""
     from frictiondisk.simulation.compile_notice import announce_compile

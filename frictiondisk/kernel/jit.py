@@ -6,6 +6,13 @@ error_model="numpy": a division by zero yields inf/nan (caught by the
 driver's finiteness checks and reported as a status) instead of raising inside a kernel.
 Set NUMBA_DISABLE_JIT=1 to run the kernel as plain Python for debugging.
 
+One signature per function: numba types a constant argument of a call inside the kernel
+(`_row(mi, 0)`, a module constant such as KIND_SWITCH, a counter's first value `0`) as a
+literal, and compiles the callee once for every literal it meets besides its plain type:
+9 extra compilations of 8 functions in a cold compile (benchmarks/profile_compile.py,
+docs/benchmarks.md). `kernel_jit` types every argument of a call between kernel functions
+by its plain type (int64, bool, float64), so each compiles once.
+
 numba checks only the timestamp of a function's own file, so a cached driver.run would
 keep calling a stale copy of an edited monitor.py. The cache therefore lives in a folder
 named by a hash of every kernel source: any edit to any of them compiles afresh.
@@ -16,6 +23,7 @@ import os
 import pathlib
 
 import numba as nb
+from numba.core import types
 
 KERNEL_SOURCES = pathlib.Path(__file__).resolve().parent
 
@@ -33,4 +41,25 @@ def kernel_cache_dir(sources: pathlib.Path = KERNEL_SOURCES) -> str:
 
 nb.config.CACHE_DIR = kernel_cache_dir()
 
-kernel_jit = nb.njit(cache=True, nogil=True, error_model="numpy")
+_njit = nb.njit(cache=True, nogil=True, error_model="numpy")
+
+
+def kernel_jit(function):
+    """The kernel's numba decorator: `_njit`, typing the arguments of calls from other
+    kernel functions without literals."""
+    return plain_types(_njit(function))
+
+
+def plain_types(dispatcher):
+    """`dispatcher`, compiled for the plain type of each argument a jitted caller passes
+    (Literal[int](0) -> int64): one signature where numba would add one per literal."""
+    typing = getattr(dispatcher, "get_call_template", None)
+    if typing is None:  # NUMBA_DISABLE_JIT: the plain function
+        return dispatcher
+
+    def get_call_template(args, kws):
+        plain = tuple(types.unliteral(arg) for arg in args)
+        return typing(plain, {name: types.unliteral(arg) for name, arg in kws.items()})
+
+    dispatcher.get_call_template = get_call_template  # numba's typing of a call asks this
+    return dispatcher

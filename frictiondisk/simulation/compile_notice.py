@@ -1,11 +1,13 @@
 """The "compiling the kernel" notice.
 
 numba compiles the kernel on the first run in a process whose on-disk cache is cold (a new
-install, a new numba, an edited kernel), without output, which looks like a hang. The
-commands print one line to stderr before that happens. Every command compiles the same
-entry point (kernel/driver.py `run`), so one estimate serves them all: measured on the
-2-core development machine (2026-11-25), `simulate` of a pin, of a disk, with --record and
-a campaign's warm-up each took 22-24 s cold and about 1 s warm (process start included).
+numba, an edited kernel, a cleaned cache; `make install` compiles it once itself),
+without output, which looks like a hang. The commands print one line to stderr before
+that happens. Every command compiles the same entry points (kernel/driver.py `run` and
+the three small functions simulate.py calls), so one estimate serves them all: on a
+fresh clone of the 2-core development machine (issue 32), a cold `simulate` took 23-24 s
+of CPU time in four runs, which is its wall time on an idle machine (one core); shared
+with other jobs at a load of 7 it took 44-59 s (docs/benchmarks.md, compile).
 """
 
 from __future__ import annotations
@@ -13,9 +15,10 @@ from __future__ import annotations
 import sys
 from typing import Any, TextIO
 
-COMPILE_S = 25  # seconds, rounded up from the measurements above
+COMPILE_S = 25  # seconds of CPU time, rounded up from the measurements above
 MESSAGE = (
-    f"compiling the kernel (first run after an install or a kernel change, about {COMPILE_S} s)"
+    "compiling the kernel (once after an install or a kernel change, "
+    f"about {COMPILE_S} s on an idle core)"
 )
 
 

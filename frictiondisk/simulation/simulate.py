@@ -61,8 +61,9 @@ def pack_parameters(config) -> tuple[np.ndarray, np.ndarray]:
 def initial_modes(p: np.ndarray, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Stick iff |k_i(0)| < F_St,i (docs/model.md section 3)."""
     modes = np.empty(pts.shape[0], dtype=np.int8)
+    stick = np.int8(km.STICK)  # a mode as the kernel holds it: one compiled switch_value
     for i in range(pts.shape[0]):
-        modes[i] = km.STICK if km.switch_value(p, pts, y, i, km.STICK) < 0.0 else km.SLIDE
+        modes[i] = km.STICK if km.switch_value(p, pts, y, i, stick) < 0.0 else km.SLIDE
     return modes
 
 
