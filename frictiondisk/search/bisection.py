@@ -196,12 +196,12 @@ class Bisection:
 
     def _interior(self) -> list[float]:
         """The interior points of this round, increasing: lo + j (hi - lo) / parts; around
-        the undecided mu [u_lo, u_hi], the two points u_lo - (hi - lo) / 4 and
-        u_hi + (hi - lo) / 4, so that the bracket closes in on them from both sides."""
+        the undecided mu [u_lo, u_hi], the midpoints of (lo, u_lo) and (u_hi, hi), so that
+        the bracket closes in on them from both sides."""
         width = self.hi - self.lo
         u = self._straddled()
         if u is not None:
-            return [max(self.lo, u[0] - width / 4), min(self.hi, u[1] + width / 4)]
+            return [0.5 * (self.lo + u[0]), 0.5 * (u[1] + self.hi)]
         if self.split == 2 and self.root_finder == "itp":
             return [self._itp_probe()]
         parts = self.split
@@ -446,13 +446,10 @@ class Bisection:
 
     def _maybe_converged(self) -> None:
         """Converged at a width <= tol, or, around undecided mu, at a width of their span
-        plus tol, or once the probes around them would fall on the bracket's ends (the
-        straddle shrinks no further)."""
+        plus tol."""
         span = self._straddled()
         spread = 0.0 if span is None else span[1] - span[0]
         if self.hi - self.lo <= (self.tol + spread) * (1 + 1e-9):
-            self.phase = "converged"
-        elif span is not None and all(mu in (self.lo, self.hi) for mu in self._interior()):
             self.phase = "converged"
 
     # ---- the answer -------------------------------------------------------------------
