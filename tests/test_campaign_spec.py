@@ -130,7 +130,7 @@ def test_demo_campaigns_load(name):
 def test_demo_line_values():
     c = load_campaign(CAMPAIGNS / "demo_line.yaml")
     assert c.kind == "find_jump" and c.base.scene == "pin"
-    assert c.task.bracket == (0.05, 0.3) and c.task.tol == 1e-4
+    assert c.task.bracket == (0.04, 0.3) and c.task.tol == 1e-4
     np.testing.assert_allclose(c.coords["params.x_ms"], [0.05, 0.075, 0.1, 0.125, 0.15])
 
 

@@ -110,3 +110,34 @@ def test_no_persisting_jump_gives_the_lowest_one_flagged_uncertain():
         assert "no rising jump persists" in res.reason
         assert res.certification == "uncertain"
         assert [w.narrow for w in res.windows] == [True]
+
+
+ISOLATED = """\
+name: isolated_value
+scene: disk
+params: {x_ms: 0.065}
+numerics: {t_decide: 60.0}
+find_jump:
+  tol: 1.0e-4
+  prescan:
+    mu: [0.045, 0.055, 0.065, 0.075, 0.085]
+  along: {params.x0: [0.0]}
+"""
+
+
+def test_the_disk_s_isolated_sticking_value_is_a_window_and_the_jump_near_0_072_the_headline(
+    tmp_path,
+):
+    # a disk from rest at x_ms = 0.065 sticks at mu = c_s x_ms / F_n = 0.065 exactly (it
+    # creeps onto the master axis), not at 0.0653, and for good from about 0.072 on
+    from frictiondisk import open_results
+    from frictiondisk.engine.runner import run_campaign
+    from frictiondisk.model.campaign import campaign_from_text
+
+    run_campaign(campaign_from_text(ISOLATED, "<test>"), tmp_path, workers=2, progress=False)
+    res = open_results(tmp_path)
+    assert str(res.status.values[0]) == "converged", str(res.reason.values[0])
+    assert 0.0715 < float(res.mu_lo[0]) < float(res.mu_hi[0]) < 0.0725
+    narrow = res.window_narrow.values[0] == 1
+    lo, hi = res.window_mu_lo.values[0][narrow], res.window_mu_hi.values[0][narrow]
+    assert len(lo) == 1 and lo[0] < 0.065 < hi[0] and hi[0] - lo[0] < TOL

@@ -56,6 +56,7 @@ from .monitor_slots import (
     RA_X,
     RA_Y,
     REV_RING,
+    RV_EVER_ALL,
     RV_SLIP,
     RV_STICK_T,
     RV_T,
@@ -91,9 +92,12 @@ SHAKEDOWN_DEPTH = 1e-2
 # Smallest spacing (steps) of an equally spaced Aitken triple: at spacings of 2 the last
 # fast transient of an approach is mistaken for the limit (kernel/verdict.py).
 MIN_SPACING = 4
-# Over log-spaced steps n/4, n/2, n the fall must at least halve (S ~ n^-p with p >= 1,
-# a finite slip still to come): a slower fall gives no well-conditioned limit.
-LOG_SLOWING = 0.7
+# The fall between the second and third of an Aitken triple must be at most this share of
+# the fall before: a fall that hardly slows (a slip falling almost linearly) gives no
+# well-conditioned limit (a disk at x_ms 0.065, mu 0.0653 fell by 9.9e-4 and 8.4e-4 m over
+# two spans of 4 revolutions, which extrapolates to 0, then kept a cycle slipping 2e-3 m).
+# Over log-spaced steps n/4, n/2, n it means S ~ n^-p with p >= 0.5.
+AITKEN_SLOWING = 0.7
 
 
 @kernel_jit
@@ -122,10 +126,18 @@ def cycle_sequence(mi, ring_all, omega, seq):
 
 @kernel_jit
 def revolution_sequence(mi, rv, seq):
-    """Fill seq (oldest first) with the section of the whole master revolutions: the state
-    at each revolution's end [m], its slip [m] and whole-body sticking time [s]. Returns
-    the count."""
+    """Fill seq (oldest first) with the section of the whole master revolutions of the
+    current regime (the trailing revolutions that all did, or all did not, stick as a whole
+    at some instant: a slave that slid for ten revolutions and then began to stick has
+    changed its motion, and the sliding revolutions say nothing about the cycle now): the
+    state at each revolution's end [m], its slip [m] and whole-body sticking time [s].
+    Returns the count."""
     n = min(mi[I_NREV], REV_RING, SEQ_MAX)
+    newest = rv[(mi[I_NREV] - 1) % REV_RING, RV_EVER_ALL]
+    for back in range(n):
+        if rv[(mi[I_NREV] - 1 - back) % REV_RING, RV_EVER_ALL] != newest:
+            n = back
+            break
     first = mi[I_NREV] - n
     for j in range(n):
         r = (first + j) % REV_RING
@@ -308,10 +320,16 @@ def _aitken(s_a, s_b, s_c, slowing):
 @kernel_jit
 def shakedown_limit(slip, stick, n):
     """The extrapolated limit [m] of a slip per step that falls at every step over the
-    newer three quarters of the sequence while the sticking time does not fall: the
+    newer three quarters of the sequence while the slave sticks as a whole and its
+    sticking time does not fall: the
     smaller of Aitken's limits over steps (n - 2m, n - m, n) with m = n // 4 (geometric
     decay) and over steps (n/4, n/2, n) (a power law). NaN if the slip does not fall so."""
     if n < SHAKEDOWN_STEPS:
+        return math.nan
+    if not stick[n - 1] > 0.0:
+        # a slave that slides ever less must first stick as a whole; what it does then (a
+        # cycle, or co-rotation) decides: a disk at x_ms 0.065, mu 0.06505 slid 0.317 ->
+        # 2.7e-3 m a revolution, then kept a stick-slip cycle slipping 4e-4 m
         return math.nan
     start = n // 4
     for i in range(start + 1, n):
@@ -327,8 +345,8 @@ def shakedown_limit(slip, stick, n):
     m = n // 4
     limit = math.nan
     if m >= MIN_SPACING:
-        limit = _aitken(slip[n - 1 - 2 * m], slip[n - 1 - m], slip[n - 1], 1.0)
-    log_spaced = _aitken(slip[n // 4 - 1], slip[n // 2 - 1], slip[n - 1], LOG_SLOWING)
+        limit = _aitken(slip[n - 1 - 2 * m], slip[n - 1 - m], slip[n - 1], AITKEN_SLOWING)
+    log_spaced = _aitken(slip[n // 4 - 1], slip[n // 2 - 1], slip[n - 1], AITKEN_SLOWING)
     if math.isnan(limit) or log_spaced < limit:
         limit = log_spaced
     return limit
