@@ -166,9 +166,15 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         problems.append(search._failure)
     if lost:
         problems.append(f"{len(lost)} prescan value(s) never ran")
+    # an undetermined value between decided neighbours is a gap in the grid, not a failure:
+    # the changes are bisected between decided values, and a gap below the headline leaves
+    # its grid less than wholly decided (uncertain); without any jump it is a failure
+    undecided_note = ""
     if undetermined:
         mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
-        problems.append(f"prescan undetermined at mu = {mus} after every retry")
+        undecided_note = f"prescan undetermined at mu = {mus} after every retry"
+        if not jumps:
+            problems.append(undecided_note)
     problems += [f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" for j in failed]
     if not jumps and vanished and not problems:
         problems.append(
@@ -207,6 +213,8 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
                 )
             elif not search.headline_judged():
                 reason += "; the persistence run above mu* stayed undetermined"
+        if undecided_note:
+            reason += f"; {undecided_note}"
         if len(scan) < len(search.mus):
             reason += f"; adaptive prescan ran {len(scan)} of {len(search.mus)} values"
         if vanished:
