@@ -2,7 +2,8 @@
 
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
 path that cannot be written (named, with the cause), a symbolic link in DIR, an
-unreachable scheduler or a campaign over its size limits; 3 DIR is in use by another run,
+unreachable scheduler, a campaign over its size limits or (`run --strict`) numerics that
+cannot reach the tol; 3 DIR is in use by another run,
 130 interrupted (Ctrl-C), 143 terminated (SIGTERM), 129 hung up (SIGHUP: the terminal
 closed). A stop journals the runs in flight that finish within 30 s and writes results.nc
 with the finished points, marked partial; resume continues.
@@ -64,6 +65,7 @@ def _execute(
     worker_wait: float,
     force: bool = False,
     dashboard: bool = False,
+    strict: bool = False,
 ):
     from frictiondisk.engine.cluster import SchedulerFailed
     from frictiondisk.engine.directory import CampaignChanged
@@ -74,9 +76,10 @@ def _execute(
     from frictiondisk.store.lock import CampaignLocked
     from frictiondisk.store.paths import describe_os_error
 
-    problems = preflight(campaign, out_dir, workers, scheduler, force)
+    problems = preflight(campaign, out_dir, workers, scheduler, force, strict)
     if problems:
         fail(f"{out_dir}: cannot start (nothing was created)", problems)
+    _echo_numerics(campaign)
     try:
         with _signals_stop_the_campaign():
             summary = run_campaign(
@@ -130,6 +133,20 @@ def _execute(
     label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
     click.echo(f"{label} {summary.runs}")
     _echo_closing(summary.results)
+
+
+def _echo_numerics(campaign) -> None:
+    """The preflight line of a find_jump: its numerics and why (chosen from the tol, or
+    given), and a warning if they cannot reach the tol (stderr)."""
+    from frictiondisk.engine.preflight import numerics_warning
+
+    choice = getattr(campaign, "numerics_choice", None)
+    if choice is None:
+        return
+    click.echo(f"numerics: {choice.describe()}", err=True)
+    warning = numerics_warning(campaign)
+    if warning:
+        click.echo(f"warning: {warning} (run --strict refuses this)", err=True)
 
 
 def _echo_closing(results_path: Path) -> None:
@@ -206,6 +223,12 @@ _processes = click.option(
     is_flag=True,
     help="Run a campaign over the size limits (points, runs, memory) anyway.",
 )
+@click.option(
+    "--strict",
+    is_flag=True,
+    help="Refuse (exit 2, nothing run) a find_jump whose numerics cannot reach its tol "
+    "instead of warning.",
+)
 def run(
     campaign_file: Path,
     out_dir: Path,
@@ -215,8 +238,12 @@ def run(
     processes: bool,
     dashboard: bool,
     force: bool,
+    strict: bool,
 ) -> None:
-    """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it."""
+    """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it.
+
+    A find_jump's numerics keys not given (rtol, atol, t_decide) are chosen from its
+    tol; the line `numerics: ...` says what runs and why (docs/accuracy.md)."""
     from frictiondisk.model.campaign import load_campaign
     from frictiondisk.model.scene import ConfigError
 
@@ -226,7 +253,9 @@ def run(
         campaign = load_campaign(campaign_file)
     except ConfigError as exc:
         fail(str(campaign_file), list(exc.problems))
-    _execute(campaign, out_dir, workers, scheduler, processes, worker_wait, force, dashboard)
+    _execute(
+        campaign, out_dir, workers, scheduler, processes, worker_wait, force, dashboard, strict
+    )
 
 
 @click.command()

@@ -88,6 +88,7 @@ def campaign_attrs(campaign) -> dict[str, Any]:
         "frictiondisk_version": __version__,
         "kernel_version": kernel_version(),
         **cf.scene_attrs(campaign.base),
+        **(campaign.numerics_choice.attrs() if campaign.numerics_choice else {}),
     }
 
 
