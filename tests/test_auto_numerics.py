@@ -78,6 +78,24 @@ def test_the_horizon_follows_the_tol_where_the_kind_needs_it():
     assert auto.choose(1e-9, ["pin"], {}, SYNTHETIC).t_decide == 30.0
 
 
+def test_where_the_horizon_alone_misses_the_tol_the_numerics_stay_cheap():
+    # a disk whose mu* moves by 8e-7 between 120 s and the longest horizon: no numerics
+    # can make up for it, so they are chosen within a tenth of it, not the tightest
+    slow = table(
+        "disk_from_rest,rtol,1e-4,1e-10,30,converged,5e-8,10",
+        "disk_from_rest,rtol,1e-6,1e-12,30,converged,5e-9,30",
+        "disk_from_rest,rtol,1e-8,1e-14,30,converged,1e-11,90",
+        "disk_from_rest,t_decide,1e-8,1e-14,30,converged,1e-6,0",
+        "disk_from_rest,t_decide,1e-8,1e-14,120,converged,8e-7,0",
+    )
+    choice = auto.choose(1e-8, ["disk_from_rest"], {}, slow)
+    assert (choice.rtol, choice.atol, choice.t_decide) == (1e-4, 1e-10, 120.0)
+    assert not choice.reaches and choice.expected == pytest.approx(8.5e-7)
+    # where the horizon leaves room, the numerics fill what is left of the bound
+    choice = auto.choose(1e-5, ["disk_from_rest"], {}, slow)
+    assert (choice.rtol, choice.t_decide) == (1e-4, 30.0) and choice.reaches
+
+
 def test_a_point_of_several_kinds_is_rated_at_the_worst():
     choice = auto.choose(1e-6, ["pin", "disk_from_rest"], {}, SYNTHETIC)
     pin = SYNTHETIC.numerics_error("pin", choice.rtol, choice.atol)

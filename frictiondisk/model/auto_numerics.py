@@ -20,8 +20,10 @@ Rules (docs/accuracy.md, "Numerics from the tol"):
   campaign at the worst of its points;
 * keys given explicitly win (rtol, atol, t_decide, a `numerics.preset`, a method other
   than rodas4, a numerics key varied along the campaign); the rest is chosen: the horizon
-  first (the shortest measured one >= the default 30 s within half the bound), then the
-  cheapest measured rtol and atol within what is left (fewest steps per simulated second);
+  first (the shortest measured one >= the default 30 s within half the bound, else the
+  one with the least error), then the cheapest measured rtol and atol within what is left
+  (fewest steps per simulated second), or within a tenth of the horizon's error where the
+  horizon alone misses the bound (tighter numerics would not locate mu* better);
 * the expected error is a prediction, never a proof: certification (docs/model.md section
   7) still re-checks every bracket at stricter numerics, and a campaign whose numerics
   cannot reach its tol says so before it runs.
@@ -47,6 +49,7 @@ from frictiondisk.model.scene import AUTO, AUTO_KEYS
 ERROR_FRACTION = 0.25  # the expected mu* error is at most this x find_jump.tol
 TABLE = "numerics_error.csv"
 DEFAULT_T_DECIDE = 30.0  # [s] the field default: auto never chooses a shorter horizon
+NUMERICS_UNDER_HORIZON = 0.1  # numerics within this x the horizon's error, where it alone misses
 # the scene keys scene_kinds reads: a campaign varying one is rated at each of its values
 KIND_KEYS = ("params.beta_b", "params.phidot0", "params.omega_m", "contact.stribeck.r")
 
@@ -297,18 +300,22 @@ def choose(
     else:
         candidates = [t for t in model.horizons() if t >= DEFAULT_T_DECIDE * _EPS]
         fits = [t for t in candidates if _within(horizon_error(t), 0.5 * bound)]
-        t_decide = min(fits) if fits else max(candidates, default=DEFAULT_T_DECIDE)
-    t_error = horizon_error(t_decide)
-    left = bound - (t_error or 0.0)
+        # none fits: the horizon that locates mu* best (of equal error the shortest)
+        best = min(candidates, key=lambda t: (_key(horizon_error(t)), t), default=None)
+        t_decide = min(fits) if fits else best or DEFAULT_T_DECIDE
+    t_error = horizon_error(t_decide) or 0.0
+    # where the horizon alone misses the bound, numerics far more accurate than its
+    # error would not locate mu* better: they are chosen within a tenth of it
+    target = max(bound - t_error, NUMERICS_UNDER_HORIZON * t_error)
 
     settings = _settings(model, kinds, given)
     rated = [(numerics_error(r, a), cost, r, a) for r, a, cost in settings]
-    fits = [item for item in rated if _within(item[0], left)]
+    fits = [item for item in rated if _within(item[0], target)]
     if fits:  # the cheapest; of equal cost the loosest
         _, _, rtol, atol = min(fits, key=lambda item: (item[1], -item[2], -item[3]))
-    else:  # the most accurate there is
-        _, _, rtol, atol = min(rated, key=lambda item: (_key(item[0]), item[2], item[3]))
-    n_error = numerics_error(rtol, atol)
+    else:  # the most accurate there is; of equal error the cheapest
+        _, _, rtol, atol = min(rated, key=lambda item: (_key(item[0]), item[1]))
+    n_error, t_error = numerics_error(rtol, atol), horizon_error(t_decide)
     expected = None if n_error is None or t_error is None else n_error + t_error
     chosen = tuple(key for key in AUTO_KEYS if key not in given)
     values = {"rtol": rtol, "atol": atol, "t_decide": t_decide}
