@@ -2,7 +2,7 @@
 atol and the decision horizon, written to frictiondisk/model/numerics_error.csv.
 
 For every kind of frictiondisk.model.auto_numerics (KIND_SCENES below: the default slave
-at three axes offsets x_ms, x0 = 0) the jump is bisected (engine/accuracy_study.py
+at five axes offsets x_ms = 0.06 ... 0.14 m, x0 = 0) the jump is bisected (engine/accuracy_study.py
 bisect_setting: a bracket around it, the default limits and retries, no certification,
 no journal) to a study tol far below any campaign's, under two ladders:
 
@@ -29,7 +29,6 @@ import datetime
 import io
 import json
 import sys
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -46,30 +45,39 @@ DEFAULT_T = 30.0
 # kind -> (base scene, {x_ms: bracket}, study tol). The brackets of a disk not started
 # co-rotating hold its jump and leave out mu = c_s x_ms / F_n, where a disk from rest
 # self-centres ever more slowly (docs/model.md); they come from a bisection to 1e-4.
+_LINE = (0.06, 0.08, 0.1, 0.12, 0.14)  # axes offsets x_ms [m] of every kind
 KIND_SCENES = {
-    "pin": (
-        {"scene": "pin", "params": {"x0": 0.0}},
-        {0.06: [0.05, 0.3], 0.1: [0.05, 0.3], 0.14: [0.05, 0.3]},
-        1.0e-11,
-    ),
+    "pin": ({"scene": "pin", "params": {"x0": 0.0}}, dict.fromkeys(_LINE, [0.05, 0.3]), 1e-11),
     "disk_corotating": (
         {"scene": "disk", "params": {"x0": 0.0, "phidot0": 1.1}},
-        {0.06: [0.05, 0.3], 0.1: [0.05, 0.3], 0.14: [0.05, 0.3]},
+        dict.fromkeys(_LINE, [0.05, 0.3]),
         1.0e-11,
     ),
     "disk_from_rest": (
         {"scene": "disk", "params": {"x0": 0.0, "phidot0": 0.0}},
-        {0.06: [0.061, 0.075], 0.1: [0.105, 0.14], 0.14: [0.145, 0.185]},
+        {
+            0.06: [0.061, 0.075],
+            0.08: [0.081, 0.1],
+            0.1: [0.105, 0.14],
+            0.12: [0.121, 0.16],
+            0.14: [0.145, 0.185],
+        },
         1.0e-10,
     ),
     "disk_braked": (
         {"scene": "disk", "params": {"x0": 0.0, "phidot0": 0.0, "beta_b": 0.005}},
-        {0.06: [0.16, 0.19], 0.1: [0.19, 0.24], 0.14: [0.245, 0.28]},
+        {
+            0.06: [0.16, 0.19],
+            0.08: [0.18, 0.21],
+            0.1: [0.19, 0.24],
+            0.12: [0.225, 0.255],
+            0.14: [0.245, 0.28],
+        },
         1.0e-10,
     ),
     "stribeck": (
         {"scene": "pin", "params": {"x0": 0.0}, "contact": {"stribeck": {"r": 0.8, "v_s": 0.01}}},
-        {0.06: [0.05, 0.5], 0.1: [0.05, 0.5], 0.14: [0.05, 0.5]},
+        dict.fromkeys(_LINE, [0.05, 0.5]),
         1.0e-11,
     ),
 }
@@ -189,7 +197,7 @@ class Cache:
                 file.write(json.dumps({"kernel": self.version, "job": job, "out": out}) + "\n")
 
 
-def header(argv: list[str], wall: float) -> str:
+def header(argv: list[str]) -> str:
     from frictiondisk.store.journal import kernel_version
     from frictiondisk.version import __version__
 
@@ -198,8 +206,7 @@ def header(argv: list[str], wall: float) -> str:
         "The mu* error of the numerics per scene kind: the data of numerics auto",
         "(frictiondisk/model/auto_numerics.py; docs/accuracy.md, 'Numerics from the tol').",
         f"measured by: {command}",
-        f"frictiondisk {__version__}, {kernel_version()}, {datetime.date.today()}, "
-        f"{wall:.0f} s here",
+        f"frictiondisk {__version__}, {kernel_version()}, {datetime.date.today()}",
         "error: the largest over the kind's points of |mu* - mu*_ref| + both bracket half "
         "widths; knob rtol: rodas4, t_decide 30 s,",
         f"reference rtol {RTOL_REFERENCE[0]:g}, atol {RTOL_REFERENCE[1]:g}; knob t_decide: "
@@ -237,7 +244,6 @@ def main(argv: list[str] | None = None) -> int:
             for _, r, a, t, _ in settings()
         }
     )
-    t0 = time.perf_counter()
     with concurrent.futures.ProcessPoolExecutor(args.processes) as pool:
         futures = {pool.submit(measure, *job): job for job in jobs if job not in cache.done}
         for future in concurrent.futures.as_completed(futures):
@@ -252,14 +258,13 @@ def main(argv: list[str] | None = None) -> int:
                 file=sys.stderr,
                 flush=True,
             )
-    wall = time.perf_counter() - t0
     buffer = io.StringIO()
     writer = csv.DictWriter(buffer, COLUMNS, lineterminator="\n")
     writer.writeheader()
     for kind in kinds:
         measured = {job[1:]: out for job, out in cache.done.items() if job[0] == kind}
         writer.writerows(table_rows(kind, measured))
-    text = header(argv, wall) + buffer.getvalue()
+    text = header(argv) + buffer.getvalue()
     print(text, end="")
     if args.write:
         TABLE.write_text(text, encoding="utf-8")
