@@ -57,12 +57,13 @@ def test_a_setting_is_rated_by_the_worst_error_measured_at_least_as_tight():
 
 
 def test_the_cheapest_setting_within_the_fraction_of_tol_is_chosen():
-    choice = auto.choose(1e-4, ["pin"], {}, SYNTHETIC)
+    tol = 1.2e-5 / auto.ERROR_FRACTION  # room for (1e-4, 1e-7): 1e-5 plus the horizon's 1e-11
+    choice = auto.choose(tol, ["pin"], {}, SYNTHETIC)
     assert (choice.rtol, choice.atol, choice.t_decide) == (1e-4, 1e-7, 30.0)
     assert choice.expected == pytest.approx(1e-5 + 1e-11)
-    assert choice.expected <= auto.ERROR_FRACTION * 1e-4 and choice.reaches
-    # 1e-6 / 4 = 2.5e-7: (1e-6, 1e-12) costs 25 steps/s, less than (1e-8, 1e-14)
-    choice = auto.choose(1e-6, ["pin"], {}, SYNTHETIC)
+    assert choice.expected <= auto.ERROR_FRACTION * tol and choice.reaches
+    # room for 2.5e-7: (1e-6, 1e-12) costs 25 steps/s, less than (1e-8, 1e-14)
+    choice = auto.choose(2.5e-7 / auto.ERROR_FRACTION, ["pin"], {}, SYNTHETIC)
     assert (choice.rtol, choice.atol) == (1e-6, 1e-12)
     # a failed setting is never chosen, even where nothing else fits
     choice = auto.choose(1e-12, ["pin"], {}, SYNTHETIC)
@@ -71,11 +72,12 @@ def test_the_cheapest_setting_within_the_fraction_of_tol_is_chosen():
 
 
 def test_the_horizon_follows_the_tol_where_the_kind_needs_it():
-    # disk from rest: 30 s is off by 6e-8, so a tol of 1e-7 (bound 2.5e-8) takes 120 s
-    assert auto.choose(1e-6, ["disk_from_rest"], {}, SYNTHETIC).t_decide == 30.0
-    assert auto.choose(1e-7, ["disk_from_rest"], {}, SYNTHETIC).t_decide == 120.0
-    # the pin's horizon error is 1e-11 at 30 s: never longer
-    assert auto.choose(1e-9, ["pin"], {}, SYNTHETIC).t_decide == 30.0
+    # disk from rest: 30 s is off by 6e-8, so a bound below that takes 120 s
+    fraction = auto.ERROR_FRACTION
+    assert auto.choose(1e-7 / fraction, ["disk_from_rest"], {}, SYNTHETIC).t_decide == 30.0
+    assert auto.choose(1e-8 / fraction, ["disk_from_rest"], {}, SYNTHETIC).t_decide == 120.0
+    # the pin's horizon error is 1e-11 at 30 s: it stays while the numerics fit beside it
+    assert auto.choose(1e-9 / fraction, ["pin"], {}, SYNTHETIC).t_decide == 30.0
 
 
 def test_where_the_horizon_alone_misses_the_tol_the_numerics_stay_cheap():
@@ -92,12 +94,12 @@ def test_where_the_horizon_alone_misses_the_tol_the_numerics_stay_cheap():
     assert (choice.rtol, choice.atol, choice.t_decide) == (1e-4, 1e-10, 120.0)
     assert not choice.reaches and choice.expected == pytest.approx(8.5e-7)
     # where the horizon leaves room, the numerics fill what is left of the bound
-    choice = auto.choose(1e-5, ["disk_from_rest"], {}, slow)
+    choice = auto.choose(2e-6 / auto.ERROR_FRACTION, ["disk_from_rest"], {}, slow)
     assert (choice.rtol, choice.t_decide) == (1e-4, 30.0) and choice.reaches
 
 
 def test_a_point_of_several_kinds_is_rated_at_the_worst():
-    choice = auto.choose(1e-6, ["pin", "disk_from_rest"], {}, SYNTHETIC)
+    choice = auto.choose(2.5e-7 / auto.ERROR_FRACTION, ["pin", "disk_from_rest"], {}, SYNTHETIC)
     pin = SYNTHETIC.numerics_error("pin", choice.rtol, choice.atol)
     rest = SYNTHETIC.numerics_error("disk_from_rest", choice.rtol, choice.atol)
     assert choice.expected == pytest.approx(max(pin, rest) + 6e-8)
@@ -114,8 +116,10 @@ def test_a_kind_without_measurements_is_not_rated():
 def test_given_keys_win_and_are_rated():
     choice = auto.choose(1e-8, ["pin"], {"rtol": 1e-6}, SYNTHETIC)
     assert choice.rtol == 1e-6 and choice.chosen == ("atol", "t_decide")
-    # of the measured atol / rtol ratios, the one that reaches furthest
-    assert choice.atol == 1e-12 and choice.expected == pytest.approx(2e-7 + 1e-11)
+    # of the measured atol / rtol ratios, the one that reaches furthest; out of reach, the
+    # horizon is not lengthened for an error (1e-11) negligible beside the numerics' 2e-7
+    assert choice.atol == 1e-12 and choice.t_decide == 30.0
+    assert choice.expected == pytest.approx(2e-7 + 1e-11)
     assert not choice.reaches and "rtol 1e-06" in choice.warning()
     given = {"rtol": 1e-6, "atol": 1e-9, "t_decide": 30.0}
     choice = auto.choose(1e-4, ["pin"], given, SYNTHETIC)

@@ -20,10 +20,12 @@ Rules (docs/accuracy.md, "Numerics from the tol"):
   campaign at the worst of its points;
 * keys given explicitly win (rtol, atol, t_decide, a `numerics.preset`, a method other
   than rodas4, a numerics key varied along the campaign); the rest is chosen: the horizon
-  first (the shortest measured one >= the default 30 s within half the bound, else the
-  one with the least error), then the cheapest measured rtol and atol within what is left
-  (fewest steps per simulated second), or within a tenth of the horizon's error where the
-  horizon alone misses the bound (tighter numerics would not locate mu* better);
+  first (the shortest measured one >= the default 30 s that leaves room for some measured
+  numerics within the bound), then the cheapest measured rtol and atol within what is
+  left (fewest steps per simulated second). Where the tol is out of reach, neither is
+  pushed past what the other can use: the horizon is the shortest one whose error is
+  negligible (a tenth) beside the best numerics' error, else the one with the least
+  error, and the numerics come within a tenth of the horizon's error;
 * the expected error is a prediction, never a proof: certification (docs/model.md section
   7) still re-checks every bracket at stricter numerics, and a campaign whose numerics
   cannot reach its tol says so before it runs.
@@ -46,10 +48,10 @@ from typing import Any
 
 from frictiondisk.model.scene import AUTO, AUTO_KEYS
 
-ERROR_FRACTION = 0.25  # the expected mu* error is at most this x find_jump.tol
+ERROR_FRACTION = 0.1  # the expected mu* error is at most this x find_jump.tol (docs/accuracy.md)
 TABLE = "numerics_error.csv"
 DEFAULT_T_DECIDE = 30.0  # [s] the field default: auto never chooses a shorter horizon
-NUMERICS_UNDER_HORIZON = 0.1  # numerics within this x the horizon's error, where it alone misses
+NEGLIGIBLE = 0.1  # an error this fraction of another is negligible beside it
 # the scene keys scene_kinds reads: a campaign varying one is rated at each of its values
 KIND_KEYS = ("params.beta_b", "params.phidot0", "params.omega_m", "contact.stribeck.r")
 
@@ -202,7 +204,7 @@ class NumericsChoice:
 
     def describe(self) -> str:
         """One line: what runs, and why, e.g. `tol 1e-08: rtol 1e-08, atol 1e-14,
-        t_decide 30 s (auto; expected mu* error 5e-12 <= tol/4 = 2.5e-09; kind pin)`."""
+        t_decide 30 s (auto; expected mu* error 7.4e-11 <= tol/10 = 1e-09; kind pin)`."""
         values = self._values()
         given = [key for key in AUTO_KEYS if key not in self.chosen]
         how = (
@@ -295,21 +297,28 @@ def choose(
     def numerics_error(rtol: float, atol: float) -> float | None:
         return _worst(model.numerics_error(kind, rtol, atol) for kind in kinds)
 
+    settings = _settings(model, kinds, given)
+    rated = [(numerics_error(r, a), cost, r, a) for r, a, cost in settings]
+
+    def reachable(t: float) -> bool:
+        """Some setting fits in what the horizon t leaves of the bound."""
+        spare = bound - _key(horizon_error(t))
+        return any(_within(error, spare) for error, *_ in rated)
+
     if "t_decide" in given:
         t_decide = given["t_decide"]
     else:
         candidates = [t for t in model.horizons() if t >= DEFAULT_T_DECIDE * _EPS]
-        fits = [t for t in candidates if _within(horizon_error(t), 0.5 * bound)]
-        # none fits: the horizon that locates mu* best (of equal error the shortest)
-        best = min(candidates, key=lambda t: (_key(horizon_error(t)), t), default=None)
-        t_decide = min(fits) if fits else best or DEFAULT_T_DECIDE
+        t_decide = next((t for t in candidates if reachable(t)), None)
+        if t_decide is None:  # out of reach: no horizon longer than the numerics can use
+            floor = NEGLIGIBLE * min((_key(error) for error, *_ in rated), default=0.0)
+            best = min(candidates, key=lambda t: (_key(horizon_error(t)), t), default=None)
+            negligible = (t for t in candidates if _within(horizon_error(t), floor))
+            t_decide = next(negligible, best) or DEFAULT_T_DECIDE
     t_error = horizon_error(t_decide) or 0.0
     # where the horizon alone misses the bound, numerics far more accurate than its
-    # error would not locate mu* better: they are chosen within a tenth of it
-    target = max(bound - t_error, NUMERICS_UNDER_HORIZON * t_error)
-
-    settings = _settings(model, kinds, given)
-    rated = [(numerics_error(r, a), cost, r, a) for r, a, cost in settings]
+    # error would not locate mu* better
+    target = max(bound - t_error, NEGLIGIBLE * t_error)
     fits = [item for item in rated if _within(item[0], target)]
     if fits:  # the cheapest; of equal cost the loosest
         _, _, rtol, atol = min(fits, key=lambda item: (item[1], -item[2], -item[3]))
