@@ -215,3 +215,17 @@ def test_the_guided_opening_replays_to_the_same_runs():
     again = drive_results(guided(1e-8), answer)
     assert [r.request for r in first.runs] == [r.request for r in again.runs]
     assert (first.mu_lo, first.mu_hi) == (again.mu_lo, again.mu_hi)
+
+
+def test_a_certification_level_tightens_rtol_atol_and_the_horizon():
+    from frictiondisk.model.scene import scene_from_dict
+    from frictiondisk.search.bisection import RunRequest
+    from frictiondisk.search.requests import run_config
+
+    point = scene_from_dict({"scene": "disk", "params": {"beta_b": 0.005}})
+    for strict in (1, 2):
+        num = run_config(point, RunRequest(0.2, strict=strict), 2.0, DEFAULT).numerics
+        factor = DEFAULT.rtol**strict
+        assert num.rtol == pytest.approx(1e-6 * factor)
+        assert num.atol == pytest.approx(1e-9 * factor)  # atol moves a braked disk's mu*
+        assert num.t_decide == pytest.approx(30.0 * DEFAULT.horizon**strict)

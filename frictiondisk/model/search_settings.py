@@ -14,12 +14,12 @@ ROOT_FINDERS = ("itp", "bisect")
 
 class Certify(BaseModel):
     """How a jump is certified: each level multiplies the decision horizon by `horizon`
-    and rtol by `rtol`; `levels` is the strictest level a point may reach (0: off)."""
+    and rtol and atol by `rtol`; `levels` is the strictest level a point may reach (0: off)."""
 
     model_config = MODEL_CONFIG
 
     horizon: float = field(4.0, "1", "factor on the decision horizon per level", gt=1)
-    rtol: float = field(0.1, "1", "factor on numerics.rtol per level", gt=0, le=1)
+    rtol: float = field(0.1, "1", "factor on numerics.rtol and atol per level", gt=0, le=1)
     levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
 
     @property

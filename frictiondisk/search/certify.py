@@ -2,7 +2,7 @@
 
 A bisection ends with a bracket [mu_lo, mu_hi] whose ends were decided with the point's
 numerics. `CertifiedBisection` then re-runs both ends at the next certification level
-(horizon x `Certify.horizon`, rtol x `Certify.rtol`, docs/model.md section 7):
+(horizon x `Certify.horizon`, rtol and atol x `Certify.rtol`, docs/model.md section 7):
 
 * both verdicts hold: the jump is `certified` (`recertified` after a re-search);
 * an end flips: the jump moved. While a stricter level is left, the search starts again
@@ -290,5 +290,5 @@ class CertifiedBisection:
         level = self.search.strict + (1 if self._verdict != "vanished" else 0)
         return (
             f"ends re-run at horizon x {self.certify.horizon**level:g}, "
-            f"rtol x {self.certify.rtol**level:g}"
+            f"rtol and atol x {self.certify.rtol**level:g}"
         )

@@ -415,7 +415,7 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             np.asarray([r[1].strict for r in rows], np.int64),
             {
                 "long_name": "certification level (horizon x certify.horizon**strict, "
-                "rtol x certify.rtol**strict)"
+                "rtol and atol x certify.rtol**strict)"
             },
         ),
         "role": (
