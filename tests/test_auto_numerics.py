@@ -231,6 +231,16 @@ def test_fixed_numerics_that_cannot_reach_the_tol_are_flagged():
     warning = choice.warning()
     assert warning.startswith("numerics cannot reach find_jump.tol 1e-08: expected mu* error")
     assert f"{choice.expected:.2g}" in warning and "rtol 1e-06" in warning
+    assert warning.endswith("leave rtol out to let the tol choose them")
+    # where no numerics reach the tol (a disk from rest: its horizon), the advice says so
+    rest = campaign_from_dict(
+        {
+            "name": "rest",
+            "scene": "disk",
+            "find_jump": {"bracket": [0.105, 0.14], "tol": 1e-8, "along": {"params.x_ms": [0.1]}},
+        }
+    )
+    assert rest.numerics_choice.warning().endswith("loosen find_jump.tol")
     assert pin_line({"rtol": 1e-6}, tol=1e-4).numerics_choice.warning() is None
 
 

@@ -66,8 +66,9 @@ def preflight(
     """Problems that forbid starting (empty: go). `campaign` is None for a resume.
     `strict`: numerics that cannot reach the tol are a problem too, not a warning."""
     problems = []
-    if strict and numerics_warning(campaign):
-        problems.append(f"--strict: {numerics_warning(campaign)}")
+    warning = numerics_warning(campaign)
+    if strict and warning:
+        problems.append(f"--strict: {warning}")
     try:
         check_output_dir(out_dir, "campaign directory")
     except OSError as err:

@@ -192,6 +192,7 @@ class NumericsChoice:
     bound: float
     kinds: tuple[str, ...]
     reason: str = ""
+    advice: str = ""  # what to do when they cannot reach the tol
 
     @property
     def reaches(self) -> bool:
@@ -227,16 +228,10 @@ class NumericsChoice:
         """The preflight warning when the numerics cannot reach the tol (None: they can)."""
         if self.reaches:
             return None
-        fix = (
-            "remove the numerics keys you fixed (rtol, atol, t_decide, preset) to let the "
-            "tol choose them"
-            if len(self.chosen) < len(AUTO_KEYS)
-            else "no measured numerics reach it: loosen find_jump.tol"
-        )
         return (
             f"numerics cannot reach find_jump.tol {self.tol:g}: expected mu* error "
             f"{self.expected:.2g} > tol/{1 / ERROR_FRACTION:g} = {self.bound:.2g} "
-            f"({self._values()}; kind {' + '.join(self.kinds)}); {fix}"
+            f"({self._values()}; kind {' + '.join(self.kinds)}); {self.advice}"
         )
 
     def _values(self) -> str:
@@ -262,6 +257,7 @@ def for_campaign(base, along: Mapping[str, Any], tol: float, numerics: Any) -> N
     if "preset" in written:
         given |= {"rtol", "atol"}
     values = {key: getattr(base.numerics, key) for key in given}
+    written_keys = sorted(key for key in written if key in (*AUTO_KEYS, "preset"))
     varied = sorted(key for key in along if key.startswith("numerics."))
     if base.numerics.method != "rodas4":
         return unrated(tol, values, f"no error model for method {base.numerics.method!r}")
@@ -273,7 +269,7 @@ def for_campaign(base, along: Mapping[str, Any], tol: float, numerics: Any) -> N
     keys = [key for key in along if key in KIND_KEYS]
     for combination in itertools.product(*(along[key] for key in keys)):
         kinds.update(scene_kinds(base.with_overrides(dict(zip(keys, combination, strict=True)))))
-    return choose(tol, kinds, values)
+    return choose(tol, kinds, values, names=written_keys)
 
 
 def choose(
@@ -281,9 +277,11 @@ def choose(
     kinds: Iterable[str],
     given: Mapping[str, float],
     model: ErrorModel | None = None,
+    names: Iterable[str] = (),
 ) -> NumericsChoice:
     """The numerics for find_jump.tol `tol` on scenes of `kinds`; `given` holds the keys
-    of AUTO_KEYS the campaign fixes (with their values), the rest is chosen."""
+    of AUTO_KEYS the campaign fixes (with their values), the rest is chosen; `names`: the
+    keys as written (e.g. `preset`), for the advice (default: those of `given`)."""
     model = model or error_model()
     kinds = tuple(sorted(set(kinds)))
     bound = ERROR_FRACTION * tol
@@ -329,7 +327,12 @@ def choose(
     chosen = tuple(key for key in AUTO_KEYS if key not in given)
     values = {"rtol": rtol, "atol": atol, "t_decide": t_decide}
     reason = "" if expected is not None else "expected mu* error unknown: not measured"
-    return NumericsChoice(tol, *values.values(), chosen, expected, bound, kinds, reason)
+    advice = "no measured numerics and horizon reach it: loosen find_jump.tol"
+    if given and expected is not None and expected > bound * _UP:
+        if choose(tol, kinds, {}, model).reaches:
+            fixed = ", ".join(sorted(names) or sorted(given))
+            advice = f"leave {fixed} out to let the tol choose them"
+    return NumericsChoice(tol, *values.values(), chosen, expected, bound, kinds, reason, advice)
 
 
 def _settings(model: ErrorModel, kinds, given) -> list[tuple[float, float, float]]:
