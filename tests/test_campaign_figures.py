@@ -33,6 +33,7 @@ from frictiondisk.figures.campaign import (  # noqa: E402
     plot_scan_family,
     plot_scan_mu,
 )
+from frictiondisk.model.auto_numerics import choose  # noqa: E402
 from frictiondisk.model.campaign import campaign_from_text  # noqa: E402
 from frictiondisk.model.scene import scene_from_dict  # noqa: E402
 from frictiondisk.search.certify import CERTIFICATION_FLAGS  # noqa: E402
@@ -142,7 +143,13 @@ def jump_results(
     return xr.Dataset(
         data_vars,
         coords=coords,
-        attrs=_attrs(name, "find_jump", tol=1e-3, runs_saved_by_warm_start=0),
+        attrs=_attrs(
+            name,
+            "find_jump",
+            tol=1e-3,
+            runs_saved_by_warm_start=0,
+            **choose(1e-3, ["pin"], {}).attrs(),
+        ),
     )
 
 
