@@ -474,7 +474,7 @@ def test_a_stopping_server_starts_nothing_new_and_lets_a_new_one_start(tmp_path)
     env = _server_env(tmp_path / "servers")
     first_pid, log = _detached(_cli("serve", "--detach", "--idle-timeout", "300", env=env))
     spec = tmp_path / "long.yaml"
-    spec.write_text(LONG_CAMPAIGN.replace("num: 24", "num: 400"))  # outlives the steps below
+    spec.write_text(LONG_CAMPAIGN.replace("num: 48", "num: 400"))  # outlives the steps below
     proc = start_campaign_until(spec, tmp_path / "long", env=env, cwd=ROOT)
     try:
         stopping = _cli("serve", "--stop", env=env)
