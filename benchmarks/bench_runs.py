@@ -12,10 +12,11 @@ Six campaigns, each at tol 1e-4 and 1e-8, 2 workers:
 `after` is the campaign as written (find_jump defaults: root_finder itp, certification
 on, adaptive prescan). `before` is the same campaign with `root_finder: bisect`,
 `certify: false` and `prescan.stride: 1` (dense): the search of the issue's baseline,
-measured in the same run (warm starts are the current, coarse-to-fine ones in both). At
-tol 1e-8 both run `numerics.preset: reference`: the default numerics resolve the pin's
-mu* to 5.8e-7 only (docs/accuracy.md). Runs per point = all runs of the campaign / its points, split
-into search, prescan and certification (runs.nc `role`). mu* of every point is compared
+measured in the same run (warm starts are the current, coarse-to-fine ones in both). Both
+set nothing but the tol: the numerics are chosen from it (numerics auto,
+frictiondisk/model/auto_numerics.py), so both run the same numerics. Runs per point =
+all runs of the campaign / its points, split into search, prescan and certification
+(runs.nc `role`). mu* of every point is compared
 between the two, and against a third run of the campaign as written but with
 `root_finder: bisect` (same prescan, same certification): where both certify a point,
 their mu* must agree to tol, which is the root finder's guarantee.
@@ -62,10 +63,7 @@ CASES = {
         for name in ("accuracy_pin", "accuracy_disk", "accuracy_brake")
     },
 }
-TARGETS = {1e-4: "<= 6 (lines)", 1e-8: "<= 10"}
-# below this tol the default numerics (pin accuracy 5.8e-7, docs/accuracy.md) cannot
-# resolve mu*, and certification says so: such campaigns run the reference preset
-REFERENCE_BELOW = 1e-6
+TARGETS = {1e-4: "<= 5 (lines)", 1e-8: "<= 10 (lines), all certified"}
 
 
 def variant(spec: dict, tol: float, before: bool, bisect_only: bool = False) -> dict:
@@ -75,8 +73,6 @@ def variant(spec: dict, tol: float, before: bool, bisect_only: bool = False) -> 
     spec = copy.deepcopy(spec)
     task = spec["find_jump"]
     task["tol"] = tol
-    if tol < REFERENCE_BELOW:
-        spec.setdefault("numerics", {})["preset"] = "reference"
     if before or bisect_only:
         task["root_finder"] = "bisect"
     if before:
@@ -114,6 +110,7 @@ def measure(spec: dict) -> dict:
             )
     points = mu_star.size
     return {
+        "numerics": campaign.numerics_choice.describe(),
         "wall": wall,
         "points": points,
         "per_point": len(roles) / points,
@@ -127,10 +124,12 @@ def measure(spec: dict) -> dict:
 
 def row(label: str, m: dict) -> str:
     roles = m["roles"]
+    flags = list(m["certification"])
+    certified = ", ".join(f"{flags.count(f)} {f}" for f in sorted(set(flags)))
     return (
         f"  {label:<7} {m['per_point']:6.1f} runs/point (search {roles['search']:.1f}, "
         f"prescan {roles['prescan']:.1f}, certification {roles['certification']:.1f})  "
-        f"wall {m['wall']:6.1f} s"
+        f"wall {m['wall']:6.1f} s  [{certified}]"
     )
 
 
@@ -150,6 +149,7 @@ def main(argv: list[str] | None = None) -> int:
             bisect = measure(variant(spec, tol, before=False, bisect_only=True))
             gap = np.nanmax(np.abs(before["mu_star"] - after["mu_star"]))
             print(f"== {name} ({spec['name']}, {after['points']} points), tol {tol:g} ==")
+            print(f"  numerics: {after['numerics']}")
             print(row("before", before))
             print(row("after", after))
             target = {"prescan": "<= 1/3 of before"}.get(name, TARGETS[tol])

@@ -24,14 +24,18 @@ def coulomb_mu_star(
 
 
 # 24 points at tol 1e-8: long enough (about 5 s) to be stopped after its second point
+# Long: its numerics are fixed far looser than tol 1e-8 needs (numerics auto would pick
+# tighter ones and take a third of the runs), so every point re-searches at the stricter
+# certification levels, about 30 runs a point: time enough (48 points) to stop it mid-way.
 LONG_CAMPAIGN = """\
 name: stop_line
 scene: pin
+numerics: {rtol: 1.0e-6, atol: 1.0e-9}
 find_jump:
   bracket: [0.05, 0.3]
   tol: 1.0e-8
   lanes: 1
-  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 24}}
+  along: {params.x_ms: {start: 0.05, stop: 0.15, num: 48}}
 """
 
 

@@ -34,6 +34,7 @@ from frictiondisk.figures.campaign import (  # noqa: E402
     plot_scan_family,
     plot_scan_mu,
 )
+from frictiondisk.model.auto_numerics import choose  # noqa: E402
 from frictiondisk.model.campaign import campaign_from_text  # noqa: E402
 from frictiondisk.model.scene import scene_from_dict  # noqa: E402
 from frictiondisk.search.certify import CERTIFICATION_FLAGS  # noqa: E402
@@ -144,7 +145,12 @@ def jump_results(
         data_vars,
         coords=coords,
         attrs=_attrs(
-            name, "find_jump", {"params.mu", *along}, tol=1e-3, runs_saved_by_warm_start=0
+            name,
+            "find_jump",
+            {"params.mu", *along},
+            tol=1e-3,
+            runs_saved_by_warm_start=0,
+            **choose(1e-3, ["pin"], {}).attrs(),
         ),
     )
 

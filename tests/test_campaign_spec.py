@@ -95,7 +95,11 @@ def test_find_jump_file_loads_with_values():
     assert c.dims == ("params.x_ms",) and c.shape == (10,)
     np.testing.assert_array_equal(c.coords["params.x_ms"], np.linspace(0.02, 0.2, 10))
     assert c.task.along["params.x_ms"] == tuple(np.linspace(0.02, 0.2, 10))
-    assert c.base == scene_from_dict({"scene": "pin", "numerics": {"t_decide": 30.0}})
+    # rtol and atol not given: chosen from the tol (model/auto_numerics.py); t_decide given
+    choice = c.numerics_choice
+    assert choice.chosen == ("rtol", "atol") and choice.t_decide == 30.0
+    numerics = {"t_decide": 30.0, "rtol": choice.rtol, "atol": choice.atol}
+    assert c.base == scene_from_dict({"scene": "pin", "numerics": numerics})
 
 
 def test_find_jump_defaults():

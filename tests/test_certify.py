@@ -132,3 +132,100 @@ def test_two_undecided_mu_in_a_row_fail_with_the_reason():
     result = drive(bisection(), outcome)
     assert result.status == "failed"
     assert "undetermined" in result.reason
+
+
+# --- the guided opening of a cold search --------------------------------------------------
+
+
+def reserve_oracle(mu_star, reserve, undetermined=()):
+    """Stick iff mu >= mu_star (every level); the run's friction reserve is reserve(mu)."""
+
+    def outcome(mu, strict):
+        if any(abs(mu - u) < 1e-12 for u in undetermined):
+            return {"outcome": "undetermined", "reserve": None}
+        stick = mu >= mu_star
+        return {"outcome": "stick" if stick else "stick_slip", "reserve": reserve(mu)}
+
+    return outcome
+
+
+def drive_results(search, answer):
+    while not search.done:
+        for request in list(search.pending()):
+            search.feed(request, answer(request.mu, request.strict))
+    return search.result()
+
+
+def guided(tol=TOL, bracket=(0.05, 0.3)):
+    return CertifiedBisection(bracket, tol, (1e-6, 10.0), 2, certify=DEFAULT, guided=True)
+
+
+@pytest.mark.parametrize("tol", [1e-4, 1e-8])
+def test_a_cold_search_opens_at_the_stick_end_and_never_runs_a_far_lo(tol):
+    mu_star = 0.1267234
+    # a reserve that is good near the jump and off by 3 % of the distance far from it
+    answer = reserve_oracle(mu_star, lambda mu: (mu - mu_star) * (1 + 0.03 * (mu - mu_star) / 0.1))
+    result = drive_results(guided(tol), answer)
+    assert result.certification == "certified"
+    assert result.mu_lo < mu_star <= result.mu_hi and result.width <= tol * (1 + 1e-9)
+    searched = [run.request.mu for run in result.runs if run.request.strict == 0]
+    assert 0.3 in searched  # opened at the stick end
+    assert 0.05 not in searched  # the bracket's lo end was never needed
+    plain = drive_results(
+        CertifiedBisection((0.05, 0.3), tol, (1e-6, 10.0), 2, certify=DEFAULT), answer
+    )
+    assert len(result.runs) < len(plain.runs)
+
+
+def test_a_guide_that_sticks_becomes_the_upper_end_and_lo_is_checked():
+    # the reserve overestimates: its zero lies above the jump, so the guide sticks
+    mu_star = 0.12
+    answer = reserve_oracle(mu_star, lambda mu: mu - mu_star - 0.01)
+    result = drive_results(guided(), answer)
+    assert result.certification == "certified"
+    assert result.mu_lo < mu_star <= result.mu_hi and result.width <= TOL * (1 + 1e-9)
+    assert 0.05 in [run.request.mu for run in result.runs]  # lo checked after all
+    assert 0.3 in [run.request.mu for run in result.runs]  # the opening run is kept
+
+
+def test_an_opening_without_a_usable_reserve_is_the_plain_check():
+    answer = reserve_oracle(0.13, lambda mu: None)
+    result = drive_results(guided(), answer)
+    plain = drive_results(
+        CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=DEFAULT), answer
+    )
+    assert [r.request for r in result.runs] == [r.request for r in plain.runs]
+
+
+def test_an_undetermined_guide_falls_back_to_the_bracket():
+    mu_star = 0.1267234
+    guide = 0.3 - (0.3 - mu_star)  # the exact reserve's zero
+    answer = reserve_oracle(mu_star, lambda mu: mu - mu_star, undetermined=(guide,))
+    result = drive_results(guided(), answer)
+    assert result.certification == "certified"
+    assert result.mu_lo < mu_star <= result.mu_hi
+    mus = [run.request.mu for run in result.runs]
+    assert guide in mus and 0.05 in mus  # kept among the runs; lo checked instead
+
+
+def test_the_guided_opening_replays_to_the_same_runs():
+    """Fed the same results again (a resume from the journal), it asks for the same runs."""
+    answer = reserve_oracle(0.1267234, lambda mu: mu - 0.1267234 + 1e-6 * (mu > 0.2))
+    first = drive_results(guided(1e-8), answer)
+    again = drive_results(guided(1e-8), answer)
+    assert [r.request for r in first.runs] == [r.request for r in again.runs]
+    assert (first.mu_lo, first.mu_hi) == (again.mu_lo, again.mu_hi)
+
+
+def test_a_certification_level_tightens_rtol_atol_and_the_horizon():
+    from frictiondisk.model.scene import scene_from_dict
+    from frictiondisk.search.bisection import RunRequest
+    from frictiondisk.search.requests import run_config
+
+    point = scene_from_dict({"scene": "disk", "params": {"beta_b": 0.005}})
+    for strict in (1, 2):
+        num = run_config(point, RunRequest(0.2, strict=strict), 2.0, DEFAULT).numerics
+        factor = DEFAULT.rtol**strict
+        assert num.rtol == pytest.approx(1e-6 * factor)
+        assert num.atol == pytest.approx(1e-9 * factor)  # atol moves a braked disk's mu*
+        assert num.t_decide == pytest.approx(30.0 * DEFAULT.horizon**strict)

@@ -92,7 +92,7 @@ def test_reference_document_is_generated_from_the_schemas():
 
 def test_show_defaults_comments_every_key_with_unit_and_description():
     out = CliRunner().invoke(main, ["show-defaults"]).output
-    assert "rtol: 1.0e-06  # relative tolerance [1]" in out
+    assert "rtol: 1.0e-06  # relative tolerance; auto: from find_jump.tol [1]" in out
     assert "  x_ms: 0.1  # axes offset: the slave's rest position is (x_ms, 0) [m]" in out
     assert all("  # " in line for line in out.splitlines())
 

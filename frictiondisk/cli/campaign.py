@@ -3,8 +3,9 @@ for one campaign in DIR or several in DIR/<name>/ (`run A.yaml B.yaml -o DIR`).
 
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
 path that cannot be written (named, with the cause), a symbolic link in DIR, an
-unreachable scheduler, a campaign over its size limits, two campaigns of one name in one
-run, or one campaign into a folder of several (or the reverse); 3 DIR is in use by another run,
+unreachable scheduler, a campaign over its size limits, (`run --strict`) numerics that
+cannot reach the tol, two campaigns of one name in one run, or one campaign into a folder of
+several (or the reverse); 3 DIR is in use by another run,
 130 interrupted (Ctrl-C), 143 terminated (SIGTERM), 129 hung up (SIGHUP: the terminal
 closed). A stop journals the runs in flight that finish within 30 s and writes results.nc
 with the finished points, marked partial; resume continues.
@@ -67,6 +68,7 @@ def _execute(
     force: bool = False,
     dashboard: bool = False,
     several: bool = False,
+    strict: bool = False,
 ):
     """Run (campaigns None: resume) one campaign into out_dir, or with `several`, each
     of `campaigns` into out_dir/<name>/ in this process (engine/runner.py); report the
@@ -84,9 +86,13 @@ def _execute(
     for k, campaign in enumerate(campaigns or [None]):
         where = out_dir / campaign.name if several and campaign is not None else out_dir
         # the scheduler is probed once: the campaigns share it
-        problems += preflight(campaign, where, workers, scheduler if k == 0 else None, force)
+        problems += preflight(
+            campaign, where, workers, scheduler if k == 0 else None, force, strict
+        )
     if problems:
         fail(f"{out_dir}: cannot start (nothing was created)", list(dict.fromkeys(problems)))
+    for campaign in campaigns or []:
+        _echo_numerics(campaign, f"{campaign.name}: " if several else "")
     options = dict(worker_wait=worker_wait, dashboard=dashboard)
     try:
         with _signals_stop_the_campaign():
@@ -163,6 +169,20 @@ def _echo_summary(summary, out_dir: Path, indent: str = "") -> None:
     label = "trajectory:" if summary.runs.name == "trajectory.nc" else "runs:   "
     click.echo(f"{indent}{label} {summary.runs}")
     _echo_closing(summary.results, indent)
+
+
+def _echo_numerics(campaign, label: str = "") -> None:
+    """The preflight line of a find_jump: its numerics and why (chosen from the tol, or
+    given), and a warning if they cannot reach the tol (stderr)."""
+    from frictiondisk.engine.preflight import numerics_warning
+
+    choice = getattr(campaign, "numerics_choice", None)
+    if choice is None:
+        return
+    click.echo(f"{label}numerics: {choice.describe()}", err=True)
+    warning = numerics_warning(campaign)
+    if warning:
+        click.echo(f"{label}warning: {warning} (run --strict refuses this)", err=True)
 
 
 def _echo_closing(results_path: Path, indent: str = "") -> None:
@@ -247,6 +267,12 @@ _processes = click.option(
     is_flag=True,
     help="Run a campaign over the size limits (points, runs, memory) anyway.",
 )
+@click.option(
+    "--strict",
+    is_flag=True,
+    help="Refuse (exit 2, nothing run) a find_jump whose numerics cannot reach its tol "
+    "instead of warning.",
+)
 def run(
     campaign_files: tuple[Path, ...],
     out_dir: Path,
@@ -256,11 +282,14 @@ def run(
     processes: bool,
     dashboard: bool,
     force: bool,
+    strict: bool,
 ) -> None:
     """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it.
 
     At the end it prints the answer: the mu* table of a find_jump (failed points with
-    their reasons), the outcome and size per point of a scan, a basin's fractions.
+    their reasons), the outcome and size per point of a scan, a basin's fractions. A
+    find_jump's numerics keys not given (rtol, atol, t_decide) are chosen from its tol; the
+    line `numerics: ...` says what runs and why (docs/accuracy.md).
 
     With several files, each campaign runs into DIR/<its name>/ (names must differ), all
     in this one process on one set of workers: their runs are scheduled together, so one
@@ -279,7 +308,16 @@ def run(
             fail(str(campaign_file), list(exc.problems))
     several = len(campaigns) > 1
     _execute(
-        campaigns, out_dir, workers, scheduler, processes, worker_wait, force, dashboard, several
+        campaigns,
+        out_dir,
+        workers,
+        scheduler,
+        processes,
+        worker_wait,
+        force,
+        dashboard,
+        several,
+        strict,
     )
 
 

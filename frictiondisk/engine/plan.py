@@ -246,15 +246,15 @@ class JumpPlanner:
             return
         bracket = self._predicted_bracket(i)
         self.warm[i] = bracket is not None
-        bracket = bracket or tuple(self.task.bracket)
         self.bisections[i] = CertifiedBisection(
-            bracket,
+            bracket or tuple(self.task.bracket),
             self.task.tol,
             tuple(self.task.limits),
             self.task.max_retries,
             split=self.task.split,
             certify=self.task.certify,
             root_finder=self.task.root_finder,
+            guided=bracket is None,  # cold: open with the stick end and its reserve
         )
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:

@@ -2,7 +2,8 @@
 
 A campaign that cannot write its directory, reach its scheduler, fit its size limits or
 run its worker count fails here, in well under a second, with a message naming the path
-or the option, instead of after DIR was created or the work began.
+or the option, instead of after DIR was created or the work began. So does, under
+`run --strict`, a find_jump whose numerics cannot reach its tol (issue 30).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from frictiondisk.engine.budget import estimate
 from frictiondisk.model.limits import workers_problem
 from frictiondisk.store.paths import check_output_dir, describe_os_error
 
-__all__ = ["SCHEDULER_TIMEOUT", "preflight", "scheduler_problem"]
+__all__ = ["SCHEDULER_TIMEOUT", "numerics_warning", "preflight", "scheduler_problem"]
 
 SCHEDULER_TIMEOUT = 5.0  # [s] to open a TCP connection to --scheduler
 
@@ -47,11 +48,27 @@ def scheduler_problem(address: str, timeout: float = SCHEDULER_TIMEOUT) -> str |
     return None
 
 
+def numerics_warning(campaign) -> str | None:
+    """The warning that a find_jump's numerics cannot reach its tol (None: they can, or
+    no tol; frictiondisk.model.auto_numerics). `run --strict` refuses such a campaign."""
+    choice = getattr(campaign, "numerics_choice", None)
+    return choice.warning() if choice is not None else None
+
+
 def preflight(
-    campaign, out_dir: Path, workers: int, scheduler: str | None, force: bool
+    campaign,
+    out_dir: Path,
+    workers: int,
+    scheduler: str | None,
+    force: bool,
+    strict: bool = False,
 ) -> list[str]:
-    """Problems that forbid starting (empty: go). `campaign` is None for a resume."""
+    """Problems that forbid starting (empty: go). `campaign` is None for a resume.
+    `strict`: numerics that cannot reach the tol are a problem too, not a warning."""
     problems = []
+    warning = numerics_warning(campaign)
+    if strict and warning:
+        problems.append(f"--strict: {warning}")
     try:
         check_output_dir(out_dir, "campaign directory")
     except OSError as err:

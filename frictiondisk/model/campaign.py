@@ -43,6 +43,7 @@ import numpy as np
 import yaml
 from pydantic import ValidationError
 
+from frictiondisk.model.auto_numerics import NumericsChoice, for_campaign
 from frictiondisk.model.campaign_spec import (
     SCENE_KEYS,
     TASK_KEYS,
@@ -96,13 +97,19 @@ class Campaign:
     """One validated campaign: build it with `load_campaign` or `campaign_from_text/_dict`.
 
     `text` is the YAML the campaign was read from (for `campaign_from_dict`, the canonical
-    form as YAML); it does not take part in equality.
+    form as YAML); it does not take part in equality. A find_jump's numerics keys not given
+    (numerics auto) are chosen from its tol when it is read: `base` holds the values,
+    `numerics_choice` what was chosen and why (frictiondisk.model.auto_numerics).
     """
 
     name: str
     base: SceneConfig
     task: FindJump | Scan | Trajectory | Basin | Trace
     text: str = dataclasses.field(default="", compare=False, repr=False)
+    # find_jump: the numerics its tol chose or rated (base holds the values)
+    numerics_choice: NumericsChoice | None = dataclasses.field(
+        default=None, compare=False, repr=False
+    )
 
     @property
     def kind(self) -> str:
@@ -231,7 +238,12 @@ def _read(data: Any, source: str, text: str | None) -> Campaign:
         )
     if problems:
         raise ConfigError(problems, source)
-    campaign = Campaign(name=spec.name, base=base, task=getattr(spec, tasks[0]))
+    task = getattr(spec, tasks[0])
+    choice = None
+    if isinstance(task, FindJump):  # numerics auto: chosen from the tol (auto_numerics.py)
+        choice = for_campaign(base, task.along, task.tol, data.get("numerics"))
+        base = base.with_overrides(choice.overrides()) if choice.chosen else base
+    campaign = Campaign(name=spec.name, base=base, task=task, numerics_choice=choice)
     if text is None:
         # Block-style YAML like yamlio.dump_yaml, but `along` keeps its order (the dims).
         text = yaml.dump(

@@ -42,7 +42,7 @@ DEFAULT_MAX_RETRIES = 2  # retries of an undetermined run with a longer horizon
 DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_max) by this
 DEFAULT_LANES = 2  # warm-start chains
 DEFAULT_SPLIT = 2  # parts per bisection round: 2 = plain bisection (bisection.Bisection)
-DEFAULT_CERTIFY = Certify()  # horizon x 4, rtol x 0.1 per level, up to level 2
+DEFAULT_CERTIFY = Certify()  # horizon x 4, rtol and atol x 0.1 per level, up to level 2
 DEFAULT_ROOT_FINDER = "itp"  # interpolate on the friction reserve (bisection.Bisection)
 DEFAULT_SCAN_MODE = "converge"  # a size curve needs the converged cycle (docs/model.md section 6)
 DEFAULT_DT_OUT = 0.01  # [s] recording interval of a trajectory (switching instants are added)

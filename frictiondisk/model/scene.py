@@ -56,6 +56,8 @@ MAX_SPEED = 1.0e4  # [m/s]
 MAX_OMEGA = 1.0e4  # [rad/s]
 MAX_HORIZON = 1.0e9  # [s] simulated time of one run, retries included
 MAX_HORIZON_BUDGET = 1000.0  # largest numerics.horizon_budget (certification levels included)
+AUTO, AUTO_KEYS = "auto", ("rtol", "atol", "t_decide")  # model/auto_numerics.py
+AUTO_DOC, MUST = "; auto: from find_jump.tol", "a finite number > 0{}, or 'auto'"
 
 
 def _layout_error(name: str, value: Any, message: str) -> None:
@@ -236,8 +238,12 @@ class Numerics(BaseModel):
     method: Literal["rodas4", "rodas4-fixed", "scipy-radau", "coulomb"] = _field(
         "rodas4", None, "integration method"
     )
-    rtol: float = _field(1.0e-6, "1", "relative tolerance", gt=0, lt=1)
-    atol: float = _field(1.0e-9, None, "absolute tolerance, in each state's SI unit", gt=0)
+    rtol: float = _field(
+        1.0e-6, "1", "relative tolerance" + AUTO_DOC, MUST.format(" and < 1"), gt=0, lt=1
+    )
+    atol: float = _field(
+        1.0e-9, None, "absolute tolerance, each state's SI unit" + AUTO_DOC, MUST.format(""), gt=0
+    )
     # dt = 0.01 s resolves the 4 ms initial contact transient (R1 error 4e-10 m on the default pin);
     # 0.02 s does not (first stick misplaced by 0.2 s).
     dt: float = _field(1.0e-2, "s", "step of rodas4-fixed", gt=0)
@@ -248,7 +254,12 @@ class Numerics(BaseModel):
     # Measured: over 930 pin and disk runs (x_ms 0.02-0.2 m, x0 -0.05-0.05 m, mu 0.5-2 x the
     # oracle) with a 600 s horizon, every permanent stick began before t = 4.8 s.
     t_decide: float = _field(
-        30.0, "s", "decision horizon (simulated time) in mode decide", gt=0, le=MAX_HORIZON
+        30.0,
+        "s",
+        "decision horizon in mode decide" + AUTO_DOC,
+        MUST.format(f" and <= {MAX_HORIZON:g} s"),
+        gt=0,
+        le=MAX_HORIZON,
     )
     t_max: float = _field(
         3000.0, "s", "simulated-time horizon in mode converge", gt=0, le=MAX_HORIZON
@@ -295,8 +306,11 @@ class Numerics(BaseModel):
     @model_validator(mode="before")
     @classmethod
     def _resolve_preset(cls, data: Any) -> Any:
-        """Fill the preset's keys that `data` does not give (explicit keys win)."""
+        """Drop the keys given as `auto` (their defaults here; a find_jump campaign
+        chooses them, model/campaign.py), then fill the preset's keys that `data` does
+        not give (explicit keys win)."""
         if isinstance(data, Mapping):
+            data = {k: v for k, v in data.items() if not (k in AUTO_KEYS and v == AUTO)}
             name = data.get("preset", "default")
             if isinstance(name, str) and name in NUMERICS_PRESETS:
                 return {**NUMERICS_PRESETS[name], **data}

@@ -13,7 +13,7 @@ ROOT_FINDERS = ("itp", "bisect")
 
 
 class Certify(BaseModel):
-    """How a jump is certified: each level multiplies rtol by `rtol` and the horizon budget
+    """How a jump is certified: each level multiplies rtol and atol by `rtol` and the horizon budget
     (how far a run may extend to find its evidence) by `horizon`; `levels` is the strictest
     level a point may reach (0: off)."""
 
@@ -22,7 +22,7 @@ class Certify(BaseModel):
     horizon: float = field(
         4.0, "1", "factor on numerics.horizon_budget per level (the evidence's patience)", gt=1
     )
-    rtol: float = field(0.1, "1", "factor on numerics.rtol per level", gt=0, le=1)
+    rtol: float = field(0.1, "1", "factor on numerics.rtol and atol per level", gt=0, le=1)
     levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
 
     @model_validator(mode="before")

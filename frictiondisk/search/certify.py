@@ -2,7 +2,7 @@
 
 A bisection ends with a bracket [mu_lo, mu_hi] whose ends were decided with the point's
 numerics. `CertifiedBisection` then re-runs both ends at the next certification level
-(rtol x `Certify.rtol`, horizon budget x `Certify.horizon`, docs/model.md section 7):
+(rtol and atol x `Certify.rtol`, horizon budget x `Certify.horizon`, docs/model.md section 7):
 
 * both verdicts hold: the jump is `certified` (`recertified` after a re-search);
 * an end flips: the jump moved. While a stricter level is left, the search starts again
@@ -13,6 +13,13 @@ numerics. `CertifiedBisection` then re-runs both ends at the next certification 
 * the re-search finds no jump within the bracket's limits: `vanished` (a jump that existed
   only because of the short horizon; a prescan drops it).
 
+A cold search (`guided=True`: no predicted bracket) opens with the stick end alone. Where
+its friction reserve agrees with its verdict, the reserve's zero (unit slope) is run next
+instead of the bracket's other end: a not-stick there is the bracket's lower end, far
+closer to the jump than the user's `lo` (which is never run); a stick there becomes the
+upper end, and `lo` is checked as usual. Verdicts alone set the bracket; the guide only
+picks which mu to run (docs/model.md section 7).
+
 Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
 nothing of simulation, so the same object drives a live campaign and its replay.
 """
@@ -20,6 +27,7 @@ nothing of simulation, so the same object drives a live campaign and its replay.
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any
 
 from frictiondisk.model.search_settings import OFF, Certify
@@ -59,6 +67,7 @@ class CertifiedBisection:
         split: int = 2,
         certify: Certify = OFF,
         root_finder: str = "itp",
+        guided: bool = False,
     ):
         self.tol = tol
         self.limits = limits
@@ -71,6 +80,9 @@ class CertifiedBisection:
             bracket, tol, limits, max_retries, rising, split, root_finder=root_finder
         )
         self.searches: list[Bisection] = [self.search]
+        # the guided opening (module docstring): the stick end, then the reserve's zero
+        self._opening = guided and rising and split == 2 and root_finder == "itp"
+        self._opened: list[RunRecord] = []  # its runs
         self._checks: dict[float, RunRecord] = {}  # mu -> decided strict run of this check
         self._check_level: dict[float, int] = {}  # mu -> retry level to ask for next
         self._check_runs: list[RunRecord] = []
@@ -86,6 +98,8 @@ class CertifiedBisection:
     def pending(self) -> list[RunRequest]:
         if self.done:
             return []
+        if self._opening:
+            return [RunRequest(self._guide() if self._opened else self.search.hi)]
         if not self._checking:
             return self.search.pending()
         strict = self.search.strict + 1
@@ -103,11 +117,18 @@ class CertifiedBisection:
             key = search.schedule_key(request)
             if key is not None:
                 return (index, 0, *key)
+        if any(run.request == request for run in self._opened):
+            return (-1, 0, request.mu)
         key = self._issued.get(request)
         return None if key is None else (key[0] - 1, 1, *key[1:])
 
     # ---- what came back ---------------------------------------------------------------
     def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
+        if self._opening:
+            if request not in self.pending():
+                raise ValueError(f"unexpected run {request}")
+            self._open(RunRecord(request, result))
+            return
         if not self._checking:
             self.search.feed(request, result)
             if self.search.done:
@@ -124,6 +145,48 @@ class CertifiedBisection:
         self._checks[request.mu] = record
         if len(self._checks) == 2:
             self._after_check()
+
+    def _guide(self) -> float:
+        """Where to run after the stick end: the reserve's zero, at most hi - tol (so that a
+        not-stick there closes the bracket), or lo where the reserve says nothing."""
+        hi = self._opened[0]
+        lo, tol = self.search.lo, self.tol
+        reserve = hi.result.get("reserve")
+        if hi.outcome != STICK or reserve is None or not math.isfinite(reserve) or reserve <= 0:
+            return lo
+        guide = min(hi.request.mu - reserve, hi.request.mu - tol * (1.0 - 1e-6))
+        return guide if guide > lo else lo
+
+    def _open(self, record: RunRecord) -> None:
+        """Take a run of the guided opening; once it is over, the search goes on as a
+        Bisection whose decided ends are fed to it (an undetermined run ends the opening:
+        the Bisection retries it)."""
+        self._opened.append(record)
+        lo, hi = self.search.lo, self.search.hi
+        if len(self._opened) == 1 and record.outcome != UNDETERMINED and self._guide() != lo:
+            return  # run the guide next
+        self._opening = False
+        ends = self._opened[:1]  # the stick end (or its undetermined run: retried)
+        guide = self._opened[1] if len(self._opened) == 2 else None
+        if guide is not None and guide.outcome == STICK:  # the jump lies below the guide
+            hi, ends = guide.request.mu, [guide]
+        elif guide is not None and guide.outcome != UNDETERMINED:  # a not-stick: the bracket
+            lo, ends = guide.request.mu, self._opened
+        self.search = Bisection(
+            (lo, hi),
+            self.tol,
+            self.limits,
+            self.max_retries,
+            self.rising,
+            self.split,
+            root_finder=self.root_finder,
+        )
+        self.searches = [self.search]
+        for run in ends:
+            self.search.pending()
+            self.search.feed(RunRequest(run.request.mu), run.result)
+        if self.search.done:
+            self._after_search()
 
     def abort(self, reason: str) -> None:
         if not self.done:
@@ -206,7 +269,8 @@ class CertifiedBisection:
             final = self.searches[-2].result()
         seen: set[int] = set()
         runs: list[RunRecord] = []
-        for record in [*(r for s in self.searches for r in s.result().runs), *self._check_runs]:
+        searched = (r for s in self.searches for r in s.result().runs)
+        for record in [*self._opened, *searched, *self._check_runs]:
             if id(record.result) not in seen:  # a reused strict run counts once
                 seen.add(id(record.result))
                 runs.append(record)
@@ -225,6 +289,6 @@ class CertifiedBisection:
     def _describe(self) -> str:
         level = self.search.strict + (1 if self._verdict != "vanished" else 0)
         return (
-            f"ends re-run at rtol x {self.certify.rtol**level:g}, "
+            f"ends re-run at rtol and atol x {self.certify.rtol**level:g}, "
             f"horizon budget x {self.certify.horizon**level:g}"
         )

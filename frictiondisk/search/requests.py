@@ -16,8 +16,8 @@ from frictiondisk.search.bisection import RunRequest
 def run_config(point_config, request: RunRequest, horizon_factor: float, certify: Certify = OFF):
     """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
     set, horizon lengthened by the retry level; at certification level `request.strict`
-    rtol is multiplied by certify.rtol and the horizon budget by certify.horizon once per
-    level."""
+    rtol and atol are multiplied by certify.rtol and the horizon budget by certify.horizon,
+    once per level."""
     num = point_config.numerics
     mode = request.mode or num.mode
     key = f"numerics.{horizon_key(mode)}"
@@ -28,9 +28,11 @@ def run_config(point_config, request: RunRequest, horizon_factor: float, certify
     if request.level:
         overrides[key] = horizon * horizon_factor**request.level
     if request.strict:
-        # a stricter run observes from the same horizon on, with rtol x certify.rtol and
-        # certify.horizon times the budget to find its evidence (docs/model.md section 7)
+        # a stricter run observes from the same horizon on, with rtol and atol x certify.rtol
+        # (atol too: on a braked disk it moves mu* more than rtol does) and certify.horizon
+        # times the budget to find its evidence (docs/model.md section 7)
         overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
+        overrides["numerics.atol"] = num.atol * certify.rtol**request.strict
         budget = num.horizon_budget * certify.horizon**request.strict
         overrides["numerics.horizon_budget"] = min(budget, MAX_HORIZON_BUDGET)
     return point_config.with_overrides(overrides)

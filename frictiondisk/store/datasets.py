@@ -62,6 +62,7 @@ def campaign_attrs(campaign) -> dict[str, Any]:
         "frictiondisk_version": __version__,
         "kernel_version": kernel_version(),
         **cf.scene_attrs(campaign.base, unfixed_keys(campaign)),
+        **(campaign.numerics_choice.attrs() if campaign.numerics_choice else {}),
     }
 
 
@@ -313,7 +314,7 @@ def runs_dataset(campaign, planner, key_of) -> xr.Dataset:
             np.asarray([r[1].strict for r in rows], np.int64),
             {
                 "long_name": "certification level (horizon budget x certify.horizon**strict, "
-                "rtol x certify.rtol**strict)"
+                "rtol and atol x certify.rtol**strict)"
             },
         ),
         "role": (
