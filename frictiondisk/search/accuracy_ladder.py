@@ -45,7 +45,8 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from frictiondisk.model.scene import NUMERICS_PRESETS, SceneConfig
+from frictiondisk.model.presets import NUMERICS_PRESETS
+from frictiondisk.model.scene import SceneConfig
 
 ATOL_PER_RTOL = 1.0e-3  # atol = this * rtol: the default numerics' ratio (1e-9 / 1e-6)
 
