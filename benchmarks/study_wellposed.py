@@ -4,10 +4,11 @@ reference and settled run by run?
 Draws seeded random scenes (pin and disk; random x_ms, x0, m_s, omega_m, J_s, phidot0,
 beta_b; a Stribeck curve on half of them) and locates every jump of each three times:
 
-* `default`: the campaign defaults (prescan 0.02 ... 0.80 step 0.03, adaptive, t_decide
-  30 s, rtol 1e-6, certification on: the ladder, persistence, the grid below mu*);
+* `default`: the campaign defaults (prescan 0.02 ... 0.80 step 0.03, adaptive, the numerics
+  a tol of 1e-4 chooses, certification on);
 * `uncertified`: the same with certification off (what the extra wall time is against);
-* `reference`: a dense prescan (step 0.01, every value run), horizon x 8, rtol / 100.
+* `reference`: a dense prescan (step 0.01, every value run), horizon x 8, rtol and atol
+  / 100.
 
 A scene *disagrees* when the headline mu* (the lowest rising jump that persists) of the
 default and the reference differ by more than tol, or one finds a headline and the other
@@ -102,15 +103,22 @@ class Found:
 
 
 def _config(scene: dict, setting: str):
+    """The scene with the numerics a find_jump campaign at TOL gives it (numerics auto,
+    frictiondisk/model/auto_numerics.py); the reference's horizon x 8, rtol and atol / 100."""
+    from frictiondisk.model.auto_numerics import for_campaign
     from frictiondisk.model.scene import scene_from_dict
 
     config = scene_from_dict(scene)
+    choice = for_campaign(config, {}, TOL, scene.get("numerics"))
+    if choice.chosen:
+        config = config.with_overrides(choice.overrides())
     if setting == "reference":
         num = config.numerics
         config = config.with_overrides(
             {
                 "numerics.t_decide": num.t_decide * REFERENCE_HORIZON,
                 "numerics.rtol": num.rtol * REFERENCE_RTOL,
+                "numerics.atol": num.atol * REFERENCE_RTOL,
             }
         )
     return config
@@ -184,6 +192,7 @@ def settle(scene: dict, mu: float) -> dict:
             "numerics.t_decide": SETTLE_HORIZON,
             "numerics.horizon_budget": SETTLE_BUDGET,
             "numerics.rtol": num.rtol * SETTLE_RTOL,
+            "numerics.atol": num.atol * SETTLE_RTOL,
             "numerics.evidence": "observe",
         }
     )
