@@ -4,6 +4,20 @@ campaign subprocess that a test stops with a real signal."""
 from __future__ import annotations
 
 import math
+import signal
+
+
+def _stop_signals_at_their_defaults() -> None:
+    """The tests stop campaign subprocesses with SIGINT and SIGHUP, which a campaign leaves
+    ignored when it inherits them ignored (nohup, a background job: cli/campaign.py). A suite
+    started that way (`nohup make test &`, some CI runners) must still test the stops."""
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    if hasattr(signal, "SIGHUP") and signal.getsignal(signal.SIGHUP) is signal.SIG_IGN:
+        signal.signal(signal.SIGHUP, signal.SIG_DFL)
+
+
+_stop_signals_at_their_defaults()
 
 
 def g_factor(
