@@ -277,6 +277,14 @@ def _from_json(row: dict) -> dict:
     return out
 
 
+def _warm_up() -> None:
+    """Load (or compile) the kernel in a worker before it times any run: a process's first
+    row otherwise counts the compile as kernel time of its first setting (the default)."""
+    from frictiondisk.engine.tasks import warm_up
+
+    warm_up()
+
+
 def run_study(
     seeds, scenes: int, processes: int, cache: Path | None = None, reference: bool = True
 ) -> list[dict]:
@@ -300,10 +308,11 @@ def run_study(
                 f.write(json.dumps({**entry, "row": _to_json(row)}) + "\n")
 
     if processes <= 1:
+        _warm_up()
         for job in todo:
             keep(study_scene(job))
     else:
-        with multiprocessing.get_context("spawn").Pool(processes) as pool:
+        with multiprocessing.get_context("spawn").Pool(processes, _warm_up) as pool:
             for row in pool.imap_unordered(study_scene, todo):
                 keep(row)
     return [done[job[:2]] for job in jobs]

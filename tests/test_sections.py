@@ -161,3 +161,32 @@ def test_a_converging_cycle_is_decided_on_its_contraction():
     res = stribeck_pin(0.0875)
     assert res.outcome == "stick_slip"
     assert "contracts geometrically" in res.reason or "repeats" in res.reason
+
+
+# seed 1, scene 11 of the well-posedness study: a Stribeck disk from rest
+SPINNING_UP_DISK = {
+    "scene": "disk",
+    "params": {
+        "x_ms": 0.10002156041412706,
+        "x0": 0.012722845174837918,
+        "m_s": 1.4661115767544837,
+        "omega_m": 0.6567790248679494,
+        "J_s": 0.12643285052985825,
+        "phidot0": 0.0,
+        "beta_b": 0.0,
+        "mu": 0.14504,
+    },
+    "contact": {"stribeck": {"r": 0.6085002829460746, "v_s": 0.009646864701386119}},
+    "numerics": {"rtol": 1e-4, "atol": 1e-7, "t_decide": 30.0, "horizon_budget": 8.0},
+}
+
+
+def test_a_disk_spinning_up_is_not_a_sliding_state():
+    """Its slip per revolution rises now and then while its spin climbs towards the
+    master's at every revolution: the old sliding test read `slide` at 145 s; it sticks at
+    about 162 s (settled at rtol 1e-6 and a 240 s horizon: sticks)."""
+    res = simulate(scene_from_dict(SPINNING_UP_DISK))
+    assert res.outcome == "stick", res.reason
+    spin = res.revolutions[:, ms.RV_W]
+    before = spin[res.revolutions[:, ms.RV_SLIP] > 1e-3]
+    assert len(before) >= 8 and np.all(np.diff(before) > 0)  # it spun up at every one

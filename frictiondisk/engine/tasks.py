@@ -79,9 +79,11 @@ def run_bisection(
     while not bisection.done:
         if budget_s is not None and time.perf_counter() - t0 >= budget_s:
             break
-        for request in bisection.pending():
+        for request in list(bisection.pending()):
             if bisection.done:
                 break
+            if request not in bisection.pending():
+                continue  # the result fed before it made it needless
             config = run_config(point_config, request, horizon_factor, certify)
             result = Journal.peek(campaign_dir, run_key(config))
             if result is None:

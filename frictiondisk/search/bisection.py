@@ -157,6 +157,7 @@ class Bisection:
         # an interior mu still undetermined after every retry: the critical slowing down at
         # the jump itself. The bisection then straddles it (see _interior).
         self.undecided: list[float] = []
+        self.stalled_at: float | None = None  # the mu undetermined after every retry that failed it
         self._signal: dict[float, float] = {}  # mu -> friction reserve (decided runs, finite)
         # (schedule key, mu) of the decided runs: "the last two" never depend on timing
         self._decided: list[tuple[tuple[int, int, float], float]] = []
@@ -231,6 +232,7 @@ class Bisection:
                 self._maybe_converged()
                 return
             if request.level >= self.max_retries:
+                self.stalled_at = request.mu
                 self._failure = (
                     f"undetermined at mu = {request.mu:.10g} after {request.level} retries "
                     f"with longer horizons: {result.get('reason', '')}"

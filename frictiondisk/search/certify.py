@@ -68,9 +68,13 @@ class CertifiedBisection:
         certify: Certify = OFF,
         root_finder: str = "itp",
         guided: bool = False,
+        outer: tuple[float, float] | None = None,
     ):
         self.tol = tol
         self.limits = limits
+        # where a re-search at stricter numerics may look: a jump that leaves its prescan
+        # cell (the cell's end flips too) is followed into the next cells, not lost
+        self.outer = limits if outer is None else (min(outer[0], limits[0]), max(outer[1], limits[1]))
         self.max_retries = max_retries
         self.rising = rising
         self.split = split
@@ -196,8 +200,12 @@ class CertifiedBisection:
     def _after_search(self) -> None:
         found = self.search.result()
         if found.status != "converged":
-            # a re-search that finds no change within the limits: the jump was an artefact
-            self._finish("vanished" if len(self.searches) > 1 else "failed")
+            # a re-search that finds no change within the limits: the jump was an artefact;
+            # one that stalls on a run the stricter numerics cannot decide: uncertain
+            if len(self.searches) == 1:
+                self._finish("failed")
+            else:
+                self._finish("uncertain" if self.search.stalled_at is not None else "vanished")
         elif not self.certify.enabled:
             self._finish("off")
         else:
@@ -227,13 +235,14 @@ class CertifiedBisection:
         """Search again at `strict` from the end that flipped: it joins the other side."""
         old = self.search
         step = max(2.0 * (old.hi - old.lo), 2.0 * self.tol)
+        limits = self.outer
         if hi_flipped:
             near = old.hi
-            far = old.limits[1] if not self.rising else min(old.limits[1], near + step)
+            far = min(limits[1], near + step)
             bracket = (near, far)
         else:
             near = old.lo
-            far = old.limits[0] if not self.rising else max(old.limits[0], near - step)
+            far = max(limits[0], near - step)
             bracket = (far, near)
         self._checking = False
         if bracket[1] - bracket[0] <= self.tol * (1 + 1e-9):
@@ -242,7 +251,7 @@ class CertifiedBisection:
         search = Bisection(
             bracket,
             self.tol,
-            old.limits,
+            limits,
             self.max_retries,
             self.rising,
             self.split,
@@ -267,6 +276,13 @@ class CertifiedBisection:
         final = self.search.result()
         if self._verdict == "vanished" and len(self.searches) > 1:
             final = self.searches[-2].result()
+        elif final.status != "converged" and len(self.searches) > 1:
+            first = self.searches[0].result()
+            final = dataclasses.replace(
+                final,
+                reason=f"its bracket [{first.mu_lo:.6g}, {first.mu_hi:.6g}] did not hold at "
+                f"stricter numerics, and the search there stalled: {final.reason}",
+            )
         seen: set[int] = set()
         runs: list[RunRecord] = []
         searched = (r for s in self.searches for r in s.result().runs)

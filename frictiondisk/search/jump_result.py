@@ -137,11 +137,34 @@ def _grid_below(search, head: BisectionResult | None) -> GridBelow | None:
     return GridBelow(sum(mu in decided for mu in below), len(below), max(gaps) if gaps else 0.0)
 
 
+def _distinct(jumps):
+    """The jumps without those whose converged bracket overlaps another's of the same
+    direction; of two such, the one found where the prescan put it (certified) stays."""
+    kept: list = []
+    for jump in jumps:
+        same = [
+            i
+            for i, k in enumerate(kept)
+            if k.status == jump.status == "converged"
+            and k.rising == jump.rising
+            and jump.mu_lo <= k.mu_hi
+            and k.mu_lo <= jump.mu_hi
+        ]
+        if not same:
+            kept.append(jump)
+        elif jump.certification == "certified" and kept[same[0]].certification != "certified":
+            kept[same[0]] = jump
+    return tuple(kept)
+
+
 def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
     """The result of a finished `JumpSearch` (frictiondisk.search.jumps)."""
     found = sorted((b.result() for b in search.bisections), key=lambda j: (j.mu_lo, j.mu_hi))
     # a jump that stricter numerics showed to be an artefact of the short horizon is dropped
     jumps = tuple(j for j in found if j.certification != "vanished")
+    # a jump that stricter numerics moved onto another one (its re-search left its prescan
+    # cell, certify.CertifiedBisection.outer) is that jump: it vanished from where it was
+    jumps = _distinct(jumps)
     vanished = len(found) - len(jumps)
     last = search._last_scan()
     scan = tuple(last[mu] for mu in search.mus if mu in last)
@@ -175,7 +198,10 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         undecided_note = f"prescan undetermined at mu = {mus} after every retry"
         if not jumps:
             problems.append(undecided_note)
-    problems += [f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" for j in failed]
+    problems += [
+        f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" if j.mu_lo == j.mu_lo else j.reason
+        for j in failed
+    ]
     if not jumps and vanished and not problems:
         problems.append(
             f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"

@@ -243,6 +243,7 @@ class JumpSearch:
             self.split,
             self.certify,
             self.root_finder,
+            outer=(self.mus[0], self.mus[-1]),
         )
         # its end checks are runs already made: fed, not run again
         decided = self._decided()
