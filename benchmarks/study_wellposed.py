@@ -124,7 +124,25 @@ def _config(scene: dict, setting: str):
     return config
 
 
-def locate(scene: dict, setting: str) -> Found:
+def _answer_claims(search) -> tuple[tuple[float, bool], ...]:
+    """(mu, sticks) that the search's answer stands on: its decided values at the point's
+    numerics, except where certification moved a jump (those are superseded), and the ends
+    of every final bracket at the level that certified it."""
+    claims = dict(search.known())
+    for bisection in search.bisections:
+        res = bisection.result()
+        if res.status != "converged" or res.certification == "vanished":
+            continue
+        base = bisection.searches[0].result()
+        if len(bisection.searches) > 1 and base.status == "converged":
+            lo, hi = min(base.mu_lo, res.mu_lo), max(base.mu_hi, res.mu_hi)
+            claims = {mu: stick for mu, stick in claims.items() if not lo <= mu <= hi}
+        claims[res.mu_lo] = not res.rising
+        claims[res.mu_hi] = res.rising
+    return tuple((float(mu), bool(stick)) for mu, stick in sorted(claims.items()))
+
+
+def locate(scene: dict, setting: str, observe: bool = False) -> Found:
     """Prescan and bisect every jump of `scene` under `setting` (module docstring)."""
     from frictiondisk.engine.tasks import run_bisection
     from frictiondisk.model.search_settings import OFF, Certify
@@ -134,7 +152,7 @@ def locate(scene: dict, setting: str) -> Found:
     config = _config(scene, setting)
     grid = REFERENCE_PRESCAN if setting == "reference" else PRESCAN
     stride = 1 if setting == "reference" else default_stride(len(grid), "decide", "corotation")
-    certify = Certify() if setting == "default" else OFF
+    certify = Certify(observe=observe) if setting == "default" else OFF
     search = JumpSearch(grid, TOL, 2, "decide", 2, certify, stride=stride)
     search, _ = run_bisection(search, config.canonical(), 2.0, os.devnull)
     result = search.result()
@@ -152,7 +170,7 @@ def locate(scene: dict, setting: str) -> Found:
         certification=result.certification,
         grid_share=below.share if below is not None else math.nan,
         resolution=below.resolution if below is not None else math.nan,
-        claims=tuple((float(mu), bool(stick)) for mu, stick in search.known()),
+        claims=_answer_claims(search),
         runs=len(runs),
         wall_s=float(sum(run.get("wall_s", 0.0) for run in runs)),
     )
@@ -237,12 +255,12 @@ def verdict(row: dict) -> str:
     return "unsettled" if unsettled else "both"
 
 
-def study_scene(args: tuple[int, int, bool]) -> dict:
-    seed, index, reference = args
+def study_scene(args: tuple[int, int, bool, bool]) -> dict:
+    seed, index, reference, observe = args
     scene = draw_scene(seed, index)
     row = {"seed": seed, "index": index, "scene": scene}
     for setting in SETTINGS if reference else SETTINGS[:2]:
-        row[setting] = locate(scene, setting)
+        row[setting] = locate(scene, setting, observe)
     row["settled"] = []
     if reference and disagrees(row["default"], row["reference"]):
         row["settled"] = [settle(scene, mu) for mu in disputed(row["default"], row["reference"])]
@@ -286,12 +304,18 @@ def _warm_up() -> None:
 
 
 def run_study(
-    seeds, scenes: int, processes: int, cache: Path | None = None, reference: bool = True
+    seeds,
+    scenes: int,
+    processes: int,
+    cache: Path | None = None,
+    reference: bool = True,
+    observe: bool = False,
 ) -> list[dict]:
     """Every scene of every seed; rows already in `cache` (same code) are not run again.
-    reference False: the default and uncertified settings only (the cost of certification)."""
-    jobs = [(seed, index, reference) for seed in seeds for index in range(scenes)]
-    code = _code_hash() + ("" if reference else "-cost")
+    reference False: the default and uncertified settings only (the cost of certification).
+    observe: the default's certification watches (certify.observe)."""
+    jobs = [(seed, index, reference, observe) for seed in seeds for index in range(scenes)]
+    code = _code_hash() + ("" if reference else "-cost") + ("-observe" if observe else "")
     done: dict[tuple[int, int], dict] = {}
     if cache is not None and cache.is_file():
         for line in cache.read_text().splitlines():
@@ -427,10 +451,18 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--cost-only", action="store_true", help="no reference: the cost of certification only"
     )
+    parser.add_argument(
+        "--observe", action="store_true", help="the default certifies watching (certify.observe)"
+    )
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     rows = run_study(
-        _seeds(args.seeds), args.scenes, args.processes, args.cache, not args.cost_only
+        _seeds(args.seeds),
+        args.scenes,
+        args.processes,
+        args.cache,
+        not args.cost_only,
+        args.observe,
     )
     print("\n".join(report(rows, time.perf_counter() - t0)))
     return 1 if silent_errors(rows) else 0

@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 from frictiondisk.model.search_settings import OFF, Certify
+from frictiondisk.search.bisection import RunRequest
 from frictiondisk.search.certify import CertifiedBisection, point_certification
 from frictiondisk.search.jumps import JumpSearch
 
@@ -231,3 +232,42 @@ def test_a_certification_level_tightens_rtol_atol_and_lengthens_the_budget():
         # judged from the same horizon on, with more room to find its evidence
         assert num.t_decide == pytest.approx(30.0)
         assert num.horizon_budget == pytest.approx(8.0 * DEFAULT.horizon**strict)
+
+
+def test_a_jump_that_leaves_its_prescan_cell_at_stricter_numerics_is_followed():
+    """Seed 0 scene 0 of the well-posedness study in miniature: the prescan value 0.08
+    sticks at the point's numerics (an extrapolated shakedown) but not when watched, and the
+    jump lies in the next cell. The re-search follows it there instead of losing it."""
+    result = drive(
+        JumpSearch(tuple(0.01 * k for k in range(2, 30, 3)), TOL, 2, "decide", 2, Certify()),
+        threshold(0.0774, 0.0912),
+    )
+    assert result.status == "converged", result.reason
+    (jump,) = result.jumps
+    assert jump.certification == "recertified"
+    assert jump.mu_lo < 0.0912 <= jump.mu_hi and jump.mu_hi - jump.mu_lo <= TOL * (1 + 1e-9)
+
+
+def test_a_re_search_that_stalls_is_uncertain_not_vanished():
+    def outcome(mu, strict):
+        if strict == 0:
+            return "stick" if mu >= 0.13 else "stick_slip"
+        return "undetermined" if mu >= 0.13 else "stick_slip"
+
+    result = drive(bisection(), outcome)
+    assert result.certification == "uncertain"
+    assert result.status == "converged"  # the checks were undetermined: the bracket is kept
+
+
+def test_certification_watches_only_when_asked():
+    """certify.observe: the stricter levels take numerics.evidence observe."""
+    from frictiondisk.model.scene import scene_from_dict
+    from frictiondisk.search.requests import run_config
+
+    point = scene_from_dict({"scene": "pin"})
+    plain = run_config(point, RunRequest(0.2, strict=1), 2.0, Certify())
+    watched = run_config(point, RunRequest(0.2, strict=1), 2.0, Certify(observe=True))
+    base = run_config(point, RunRequest(0.2), 2.0, Certify(observe=True))
+    assert plain.numerics.evidence == base.numerics.evidence == "extrapolate"
+    assert watched.numerics.evidence == "observe"
+    assert Certify(observe=False).canonical() == Certify().canonical()  # journals keep

@@ -190,3 +190,33 @@ def test_a_disk_spinning_up_is_not_a_sliding_state():
     spin = res.revolutions[:, ms.RV_W]
     before = spin[res.revolutions[:, ms.RV_SLIP] > 1e-3]
     assert len(before) >= 8 and np.all(np.diff(before) > 0)  # it spun up at every one
+
+
+# seed 0, scene 0 of the well-posedness study: a pin whose slip per revolution falls like a
+# power law for 80 s, then levels off at a stick-slip cycle slipping 3.5e-7 m a revolution
+LEVELLING_PIN = {
+    "scene": "pin",
+    "params": {
+        "x_ms": 0.07697867137638703,
+        "x0": -0.027541588563828316,
+        "m_s": 0.5247914532927936,
+        "omega_m": 1.2369616873214544,
+        "mu": 0.08,
+    },
+    "numerics": {"rtol": 1e-6, "atol": 1e-9, "t_decide": 30.0, "horizon_budget": 32.0},
+}
+
+
+@pytest.mark.parametrize("evidence", ["extrapolate", "observe"])
+def test_an_extrapolated_shakedown_is_a_prediction_that_watching_can_refute(evidence):
+    """The shakedown rule reads stick at 81 s; watched (numerics.evidence observe, what
+    certify.observe asks of certification), the run never sticks within its budget: the
+    study settled it as a cycle repeating at 1 500 s. docs/model.md section 6."""
+    data = {**LEVELLING_PIN, "numerics": {**LEVELLING_PIN["numerics"], "evidence": evidence}}
+    res = simulate(scene_from_dict(data))
+    if evidence == "extrapolate":
+        assert res.outcome == "stick" and "shakes down" in res.reason, res.reason
+        assert res.t_end < 120.0
+    else:
+        assert res.outcome != "stick", res.reason
+        assert res.t_end > 10 * 81.0

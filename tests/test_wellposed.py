@@ -74,8 +74,7 @@ def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default
             assert study.verdict(row) in ("default", "both"), row["settled"]
         else:
             assert abs(default.mu_star - reference.mu_star) <= study.TOL * (1 + 1e-9)
-    else:  # this pin's sticking is so slow (a cycle contracting by 0.999 a revolution near
-        # mu = 0.08) that the certification level cannot decide it: said, never guessed
+    else:  # not certified: said, with the reason, never a number passed off as certified
         assert default.status == "failed" or default.certification == "uncertain"
         assert "stricter numerics" in default.reason, default.reason
     assert study.silent_errors(rows) == 0

@@ -24,6 +24,13 @@ class Certify(BaseModel):
     )
     rtol: float = field(0.1, "1", "factor on numerics.rtol and atol per level", gt=0, le=1)
     levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
+    observe: bool = field(
+        False,
+        None,
+        "the stricter levels decide only on what a run shows (numerics.evidence: observe): "
+        "extrapolated verdicts are checked too, at several times the cost (docs/model.md "
+        "section 7)",
+    )
 
     @model_validator(mode="before")
     @classmethod
@@ -36,11 +43,14 @@ class Certify(BaseModel):
         return self.levels > 0
 
     def canonical(self) -> dict[str, Any]:
-        return {
+        found = {
             "horizon": self.horizon,
             "levels": self.levels,
             "rtol": self.rtol,
         }
+        if self.observe:  # absent when off: the journals of earlier campaigns stay valid
+            found["observe"] = True
+        return found
 
 
 OFF = Certify(levels=0)

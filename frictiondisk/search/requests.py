@@ -35,7 +35,8 @@ def run_config(point_config, request: RunRequest, horizon_factor: float, certify
         overrides["numerics.atol"] = num.atol * certify.rtol**request.strict
         budget = num.horizon_budget * certify.horizon**request.strict
         overrides["numerics.horizon_budget"] = min(budget, MAX_HORIZON_BUDGET)
-        # and decides only on what it sees (a repeating section, a stick): an extrapolated
-        # limit is the prediction that certification checks (docs/model.md section 7)
-        overrides["numerics.evidence"] = "observe"
+        if certify.observe:
+            # it decides only on what it sees (a repeating section, a stick): an
+            # extrapolated verdict is then a prediction that certification checks
+            overrides["numerics.evidence"] = "observe"
     return point_config.with_overrides(overrides)
