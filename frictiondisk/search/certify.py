@@ -74,7 +74,9 @@ class CertifiedBisection:
         self.limits = limits
         # where a re-search at stricter numerics may look: a jump that leaves its prescan
         # cell (the cell's end flips too) is followed into the next cells, not lost
-        self.outer = limits if outer is None else (min(outer[0], limits[0]), max(outer[1], limits[1]))
+        self.outer = (
+            limits if outer is None else (min(outer[0], limits[0]), max(outer[1], limits[1]))
+        )
         self.max_retries = max_retries
         self.rising = rising
         self.split = split
