@@ -220,31 +220,3 @@ def test_an_extrapolated_shakedown_is_a_prediction_that_watching_can_refute(evid
     else:
         assert res.outcome != "stick", res.reason
         assert res.t_end > 10 * 81.0
-
-
-# seed 8, scene 21 of the well-posedness study: a braked disk started co-rotating
-BRAKED_NEAR_THE_FLOOR = {
-    "scene": "disk",
-    "params": {
-        "x_ms": 0.12712077135431815,
-        "x0": 0.021069256510105522,
-        "m_s": 1.1014399507224302,
-        "omega_m": 1.470803755847602,
-        "J_s": 0.026996583467822834,
-        "phidot0": 1.470803755847602,
-        "beta_b": 0.004705457858108205,
-        "mu": 0.41905,
-    },
-    "numerics": {"rtol": 1e-6, "atol": 1e-12, "t_decide": 30.0},
-}
-
-
-def test_a_ratchet_at_the_friction_law_s_resolution_is_no_creep():
-    """Its slip per revolution falls by 7 % a revolution towards about 1e-8 m, one or two
-    times atol + eps T: read as creeping at 73 s, it sticks at 132 s (settled watching, at
-    rtol 1e-8). A creep must slip CREEP_MARGIN times that floor."""
-    from frictiondisk.kernel.verdict import CREEP_MARGIN
-
-    res = simulate(scene_from_dict(BRAKED_NEAR_THE_FLOOR))
-    assert res.outcome == "stick", res.reason
-    assert CREEP_MARGIN >= 10.0

@@ -59,11 +59,6 @@ VERDICT_REVS = 5
 SLIDE_REVS = 8
 # Standard errors by which a decay must be established (about 97.5 % one-sided).
 VERDICT_Z = 2.0
-# A ratchet (creep) must slip this many times the slip that counts as none (atol + eps T
-# a revolution): the friction law resolves no slower slip, and braked co-rotating disks
-# whose slip fell towards 1-2 x that floor were read as creeping at 70-120 s and stuck at
-# 130-500 s (well-posedness study, docs/wellposed.md).
-CREEP_MARGIN = 10.0
 # Spacing (revolutions) below which Aitken's limit is not trusted: measured on the braked
 # disk, spacings of 2 revolutions still mistake the last fast transient for the limit
 # (from rest, beta_b = 0.005, mu = 0.22: limit 4.5e-8 m read at 51 s, true limit 0).
@@ -133,9 +128,9 @@ def corotation_verdict(mf, mi, rv):
     graze their limit without net slip); or the slip
     per revolution decays geometrically (falling, its fall slowing as S_inf + A q^k) to
     an extrapolated limit S_inf <= tol: shakedown.
-    creep: the slip per revolution exceeds CREEP_MARGIN x tol and either no longer falls
-    (over the newer half of the orbit history) or falls towards a limit S_inf >
-    CREEP_MARGIN x tol that already holds at least half of it: a steady ratchet.
+    creep: the slip per revolution exceeds tol and either no longer falls (over the newer
+    half of the orbit history) or falls towards a limit S_inf > tol that already holds
+    at least half of it: a steady ratchet.
     Between the two (a limit above tol but well below today's slip) the verdict waits.
     Needs VERDICT_REVS revolutions on the orbit.
     """
@@ -164,14 +159,14 @@ def corotation_verdict(mf, mi, rv):
     mf[F_S_INF] = s_inf
     if math.isnan(s_inf):
         m = n_orbit // 4
-        if m >= 1 and slip > CREEP_MARGIN * tol and slip >= rv[_row(mi, m), RV_SLIP]:
+        if m >= 1 and slip > tol and slip >= rv[_row(mi, m), RV_SLIP]:
             mi[I_VERDICT] = VERDICT_CREEP  # not falling: steady or growing
             return VERDICT_CREEP
         return VERDICT_NONE
     mf[F_REMAIN] = slip * q / (1.0 - q)
     if mi[I_OBSERVE] == 1:
         return VERDICT_NONE  # a limit is an extrapolation: only what is seen counts
-    if s_inf > CREEP_MARGIN * tol and s_inf >= 0.5 * slip:
+    if s_inf > tol and s_inf >= 0.5 * slip:
         # most of today's slip persists in the limit: the ratchet has settled
         mi[I_VERDICT] = VERDICT_CREEP
         return VERDICT_CREEP
