@@ -4,6 +4,7 @@ grid below the headline is certified. Pure Python."""
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any
 
 from frictiondisk.search.bisection import (
@@ -199,7 +200,7 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         if not jumps:
             problems.append(undecided_note)
     problems += [
-        f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}" if j.mu_lo == j.mu_lo else j.reason
+        j.reason if math.isnan(j.mu_lo) else f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}"
         for j in failed
     ]
     if not jumps and vanished and not problems:
