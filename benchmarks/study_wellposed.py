@@ -374,9 +374,22 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
         )
     )
     lines.append(f"  silent errors (settled against a certified default): {len(silent)}")
+    # a scene in which nothing sticks over the whole prescan has no mu*: `failed` as a
+    # campaign point, but an answer (when the reference finds no jump either), not a point
+    # the method could not decide
+    none = [
+        r
+        for r in failed
+        if r["default"].reason.startswith("no jump: every prescan value")
+        and "reference" in r
+        and math.isnan(r["reference"].mu_star)
+    ]
+    undecided = len(failed) - len(none)
     lines.append(
         f"  failed points (honest, with a reason): {len(failed)} of {n} "
-        f"({100 * len(failed) / max(1, n):.1f} %)"
+        f"({100 * len(failed) / max(1, n):.1f} %): {len(none)} with no jump over the whole "
+        f"prescan, as in the reference; {undecided} undecided "
+        f"({100 * undecided / max(1, n):.1f} %)"
     )
     flags: dict[str, int] = {}
     for f in default:
