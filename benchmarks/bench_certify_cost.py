@@ -24,36 +24,9 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
-import yaml
+from bench_together import CAMPAIGNS, campaign_files, kernel_seconds
 
-ROOT = Path(__file__).resolve().parent.parent
-CAMPAIGNS = (
-    "fig07_pin_xms",
-    "fig08_pin_x0",
-    "fig09_disk_xms",
-    "fig10_disk_x0",
-    "fig11_betab_mu",
-    "fig11_betab_mu_corotating",
-)
 TARGET = 0.25  # certification's extra wall time (issue 28)
-
-
-def campaign_files(folder: Path, certify: bool, quick: bool) -> list[Path]:
-    """The six campaign files in folder, certification on (as shipped) or off."""
-    files = []
-    for name in CAMPAIGNS:
-        data = yaml.safe_load((ROOT / "campaigns" / f"{name}.yaml").read_text())
-        if not certify:
-            data["find_jump"]["certify"] = False
-        if quick:
-            for key, values in data["find_jump"]["along"].items():
-                if isinstance(values, dict):
-                    values = list(np.linspace(values["start"], values["stop"], values["num"]))
-                data["find_jump"]["along"][key] = [float(values[0]), float(values[-1])]
-        path = folder / f"{name}.yaml"
-        path.write_text(yaml.safe_dump(data, sort_keys=False))
-        files.append(path)
-    return files
 
 
 def run_all(files: list[Path], out: Path) -> float:
@@ -65,15 +38,6 @@ def run_all(files: list[Path], out: Path) -> float:
         stdout=subprocess.DEVNULL,
     )
     return time.perf_counter() - t0
-
-
-def kernel_time(out: Path) -> float:
-    """Sum of the runs' wall time [s] over every campaign in out."""
-    total = 0.0
-    for name in CAMPAIGNS:
-        with xr.open_dataset(out / name / "runs.nc") as runs:
-            total += float(runs["wall_s"].sum())
-    return total
 
 
 def agree(on: Path, off: Path) -> list[str]:
@@ -103,13 +67,13 @@ def main(argv: list[str] | None = None) -> int:
         files = {}
         for mode in ("on", "off"):
             (tmp / f"files_{mode}").mkdir()
-            files[mode] = campaign_files(tmp / f"files_{mode}", mode == "on", args.quick)
+            files[mode] = campaign_files(tmp / f"files_{mode}", args.quick, certify=mode == "on")
         last = {}
         for rep in range(args.repeat):
             for mode in ("on", "off") if rep % 2 == 0 else ("off", "on"):
                 out = tmp / f"{mode}_{rep}"
                 times[mode].append(run_all(files[mode], out))
-                kernel[mode].append(kernel_time(out))
+                kernel[mode].append(kernel_seconds(out))
                 last[mode] = out
                 print(
                     f"rep {rep} certify {mode}: {times[mode][-1]:.1f} s, kernel {kernel[mode][-1]:.1f} s"

@@ -52,11 +52,14 @@ CAMPAIGNS = (
 TARGET = 0.8  # together / sequential (issue 32)
 
 
-def campaign_files(folder: Path, quick: bool) -> list[Path]:
-    """The six campaign files, copied into folder; with quick, each line cut to its ends."""
+def campaign_files(folder: Path, quick: bool, certify: bool = True) -> list[Path]:
+    """The six campaign files, copied into folder; with quick, each line cut to its ends;
+    without certify, `find_jump.certify: false` (bench_certify_cost.py)."""
     files = []
     for name in CAMPAIGNS:
         data = yaml.safe_load((ROOT / "campaigns" / f"{name}.yaml").read_text())
+        if not certify:
+            data["find_jump"]["certify"] = False
         if quick:
             along = data["find_jump"]["along"]
             for key, values in along.items():
