@@ -50,11 +50,11 @@ def execute(function, args):
     bis, point, _, _, budget = args
     made = []
     while not bis.done:
-        for request in bis.pending():
-            x_ms = point["params"]["x_ms"]
-            result = {"outcome": outcome(request.mu, x_ms), "reason": "oracle", "wall_s": 0}
-            bis.feed(request, result)
-            made.append((request, result))
+        request = bis.pending()[0]  # the first pending run first, as tasks.run_bisection
+        x_ms = point["params"]["x_ms"]
+        result = {"outcome": outcome(request.mu, x_ms), "reason": "oracle", "wall_s": 0}
+        bis.feed(request, result)
+        made.append((request, result))
         if budget is not None and len(made) >= 3:  # a small budget, in runs
             break
     return bis, made
@@ -105,3 +105,40 @@ def test_a_prescan_goes_out_at_once_in_batches_across_workers():
     # a window of 2 tasks hands out 2 tasks; the rest follow as tasks come back
     planner = JumpPlanner(campaign_from_text(PRESCAN.format(split=2), "<test>"))
     assert len(planner.jobs("/nonexistent", Sizing(batch_runs=3, max_jobs=2, workers=4))) == 2
+
+
+class NeedlessSecond:
+    """A search that wants runs a and b at once, and for which a's result makes b needless
+    (as a sticking grid value below a headline makes that headline's bisection needless)."""
+
+    def __init__(self, a, b):
+        self.a, self.b, self.fed = a, b, []
+
+    @property
+    def done(self):
+        return self.a in self.fed
+
+    def pending(self):
+        return [r for r in (self.a, self.b) if r not in self.fed] if not self.done else []
+
+    def feed(self, request, result):
+        assert request in self.pending()
+        self.fed.append(request)
+
+    def result(self):
+        return tuple(self.fed)
+
+
+@pytest.mark.parametrize("first_back", ["a", "b"])
+def test_a_search_takes_its_results_in_its_own_order_not_in_arrival_order(first_back):
+    # with 16 workers b can come back before a; fed on arrival, the search would count b,
+    # and with one worker it never runs: a campaign's runs then depended on timing
+    planner = JumpPlanner(campaign_from_text(PRESCAN.format(split=2), "<test>"))
+    a, b = object(), object()
+    planner.bisections = {0: NeedlessSecond(a, b)}
+    planner.points = planner.points[:1]
+    order = [a, b] if first_back == "a" else [b, a]
+    for request in order:
+        planner.feed(0, request, {"outcome": "stick"})
+    assert planner.results[0] == (a,)
+    assert 0 not in planner.arrived

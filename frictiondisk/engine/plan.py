@@ -76,6 +76,8 @@ class JumpPlanner:
         self.warm: dict[int, bool] = {}
         self.chained: set[int] = set()  # points whose search is out on a worker
         self.out: dict[int, set[RunRequest]] = {}  # point -> its runs out in batches
+        # point -> results back from a batch that its search does not take yet
+        self.arrived: dict[int, dict[RunRequest, dict[str, Any]]] = {}
         self._jobs: dict[int, tuple[str, Any]] = {}  # job -> ("chain", i) | ("runs", units)
         self._next_job = 0
         self._canonicals: dict[tuple[int, RunRequest], dict] = {}  # the driver computed these
@@ -107,17 +109,29 @@ class JumpPlanner:
             for i, bis in sorted(self.bisections.items())
             if not bis.done and i not in self.chained
             for req in bis.pending()
-            if req not in self.out.get(i, ())
+            if req not in self.out.get(i, ()) and req not in self.arrived.get(i, {})
         ]
 
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
-        """Take a result; a result the point no longer waits for is ignored."""
+        """Take a result. A search takes its results in the order of its own pending list,
+        whatever order they come back in (tasks.run_bisection does the same), so that what
+        it decides never depends on timing or worker count; a result the point no longer
+        waits for is dropped."""
         bis = self.bisections[i]
         if bis.done or i in self.chained or request not in bis.pending():
             return
-        bis.feed(request, result)
+        arrived = self.arrived.setdefault(i, {})
+        arrived[request] = result
+        while not bis.done and bis.pending() and bis.pending()[0] in arrived:
+            first = bis.pending()[0]
+            bis.feed(first, arrived.pop(first))
         if bis.done:
             self.results[i] = bis.result()
+            del self.arrived[i]
+        else:
+            waiting = set(bis.pending())
+            for req in [req for req in arrived if req not in waiting]:
+                del arrived[req]
 
     def jobs(self, campaign_dir: str, sizing: Sizing | None = None) -> list[tuple[int, Any, tuple]]:
         """(job, function, args) for the runs the journal could not answer: chains
@@ -132,8 +146,8 @@ class JumpPlanner:
         for i, bis in sorted(self.bisections.items()):
             if not bis.done and i not in self.chained:
                 pending = bis.pending()
-                out_now = self.out.get(i, ())
-                steps.append((i, pending, [req for req in pending if req not in out_now]))
+                busy = {*self.out.get(i, ()), *self.arrived.get(i, {})}
+                steps.append((i, pending, [req for req in pending if req not in busy]))
         # With enough runs to keep every worker busy in full batches, a step of several
         # short runs goes whole (fewer tasks); otherwise its runs spread over idle workers.
         ready_runs = sum(len(ready) for _, _, ready in steps)
@@ -205,6 +219,7 @@ class JumpPlanner:
                 self.out[i].discard(request)
             points = sorted({i for i, _ in what})
         for i in points:
+            self.arrived.pop(i, None)
             bis = self.bisections[i]
             bis.abort(reason)
             self.results[i] = bis.result()

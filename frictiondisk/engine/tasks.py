@@ -76,20 +76,18 @@ def run_bisection(
     certify = getattr(bisection, "certify", OFF)  # the numerics of certification runs
     made = []
     t0 = time.perf_counter()
-    while not bisection.done:
+    while not bisection.done and bisection.pending():
         if budget_s is not None and time.perf_counter() - t0 >= budget_s:
             break
-        for request in list(bisection.pending()):
-            if bisection.done:
-                break
-            if request not in bisection.pending():
-                continue  # the result fed before it made it needless
-            config = run_config(point_config, request, horizon_factor, certify)
-            result = Journal.peek(campaign_dir, run_key(config))
-            if result is None:
-                result = simulate(config).summary()
-                made.append((request, result))
-            bisection.feed(request, result)
+        # the first pending run first, as the driver feeds the runs of a batch
+        # (plan.JumpPlanner.feed): the same search whatever worker or task runs it
+        request = bisection.pending()[0]
+        config = run_config(point_config, request, horizon_factor, certify)
+        result = Journal.peek(campaign_dir, run_key(config))
+        if result is None:
+            result = simulate(config).summary()
+            made.append((request, result))
+        bisection.feed(request, result)
     return bisection, made
 
 

@@ -64,6 +64,7 @@ class TracePlanner:
         self.tracer = Tracer(trace_settings(self.task, campaign.base.numerics.stick_rule))
         self.results: dict[int, Any] = {}
         self.out: set[PlaneRequest] = set()
+        self.arrived: dict[PlaneRequest, dict[str, Any]] = {}  # back, not taken yet
         self._jobs: dict[int, list[PlaneRequest]] = {}
         self._next_job = 0
         self._scenes: dict[float, Any] = {}  # key value -> the base scene with it set
@@ -87,14 +88,26 @@ class TracePlanner:
         return placed, placed + (0 if self.done else len(self.tracer.searching()))
 
     def requests(self) -> list[tuple[int, PlaneRequest]]:
-        return [(0, r) for r in self.tracer.pending() if r not in self.out]
+        return [
+            (0, r) for r in self.tracer.pending() if r not in self.out and r not in self.arrived
+        ]
 
     def feed(self, i: int, request: PlaneRequest, result: dict[str, Any]) -> None:
-        """Take a result; one the tracer no longer waits for is ignored."""
+        """Take a result. The tracer takes its results in the order of its own pending
+        list, whatever order they come back in, so that the curves never depend on timing
+        or worker count (as plan.JumpPlanner.feed); one it no longer waits for is dropped."""
         if self.tracer.done or request not in self.tracer.pending():
             return
-        self.tracer.feed(request, result)
-        self._settle()
+        self.arrived[request] = result
+        while not self.tracer.done and self.tracer.pending():
+            first = self.tracer.pending()[0]
+            if first not in self.arrived:
+                break
+            self.tracer.feed(first, self.arrived.pop(first))
+            self._settle()
+        waiting = set() if self.tracer.done else set(self.tracer.pending())
+        for request in [r for r in self.arrived if r not in waiting]:
+            del self.arrived[request]
 
     def _settle(self) -> None:
         if not self.tracer.done:
