@@ -68,6 +68,25 @@ def test_a_geometric_contraction_to_a_slipping_cycle_is_evidence():
     assert mf[ms.F_EV_LIMIT] == pytest.approx(steps[-1] * mf[ms.F_EV_QUP] / (1 - mf[ms.F_EV_QUP]))
 
 
+def test_a_fast_contraction_while_the_slip_falls_ever_slower_is_no_evidence():
+    """Study scene 6/10 (a Stribeck pin) at 46 s: its section contracts by 0.665 a
+    revolution, but its slip per revolution falls by 0.57, 0.66, 0.75 of the fall before,
+    ever slower: the slip follows a slower direction than the distances show. The run
+    leaves the cycle the distances pointed to and sticks at 102 s."""
+    steps = [6.471e-02, 4.416e-02, 2.990e-02, 2.020e-02, 1.357e-02, 9.058e-03, 6.021e-03]
+    slip = [3.1118e-01, 1.2992e-01, 9.2374e-02, 7.5640e-02, 6.7124e-02, 6.2254e-02]
+    slip += [5.9043e-02, 5.6636e-02]
+    code, mf = evidence(along(steps), slip, np.zeros(len(slip)))
+    assert mf[ms.F_EV_QUP] < 0.7  # the distances alone would have passed
+    assert code == ms.EV_NONE
+    # the same distances with a slip whose falls shrink at the distances' ratio: evidence
+    q = 0.665
+    falls = 2.4e-3 * q ** np.arange(len(slip) - 1)
+    steady = 0.05 + np.concatenate([[0.0], np.cumsum(falls[::-1])])[::-1]
+    code, _ = evidence(along(steps), steady, np.zeros(len(slip)))
+    assert code == ms.EV_CONTRACT
+
+
 def test_an_algebraic_contraction_is_not_taken_for_a_geometric_one():
     # distances ~ n^-3: the ratio creeps towards 1 like 1 - 3/n
     k = np.arange(10, 30)
@@ -220,3 +239,27 @@ def test_an_extrapolated_shakedown_is_a_prediction_that_watching_can_refute(evid
     else:
         assert res.outcome != "stick", res.reason
         assert res.t_end > 10 * 81.0
+
+
+# seed 6, scene 10 of the well-posedness study: a Stribeck pin just above its jump
+SADDLE_PIN = {
+    "scene": "pin",
+    "params": {
+        "x_ms": 0.13762500093246943,
+        "x0": 0.02928388496890242,
+        "m_s": 0.6309643472975814,
+        "omega_m": 1.1703882498218685,
+        "mu": 0.151858,
+    },
+    "contact": {"stribeck": {"r": 0.9042914930715614, "v_s": 0.001881213208528522}},
+    "numerics": {"rtol": 1e-5, "atol": 1e-8, "t_decide": 30.0, "horizon_budget": 8.0},
+}
+
+
+def test_a_contraction_towards_an_unstable_cycle_is_extended_until_it_sticks():
+    """The old rule read `slide` at 46 s ("contracts geometrically by 0.665 a revolution
+    ... towards a cycle that still slips"); watched for 1 500 s (the study's settling run)
+    it sticks at 102 s."""
+    res = simulate(scene_from_dict(SADDLE_PIN))
+    assert res.outcome == "stick", res.reason
+    assert res.t_end > 90.0

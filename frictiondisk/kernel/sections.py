@@ -80,6 +80,7 @@ RHO_MAX = 0.9  # the ratio's own changes must shrink at least this fast ...
 Q_STEADY = 0.01  # ... unless each of them is below this
 GEOMETRIC_KEEP = 0.75  # 1 - q now must keep this share of 1 - q half the sequence ago
 CONTRACT_SLIP_FALL = 0.1  # share of the slip per step that may still fall on the way
+SLIP_STEADY = 1e-4  # changes of the slip per step below this share of it are no change
 DEPART_STEPS = 4  # steps of growing slip and shrinking sticking time behind EV_DEPART
 STICK_NOISE = 1e-9  # [s] sticking times closer than this are equal (event location ~1e-11 s)
 APPROACH_STEPS = 8  # steps over which a creep onto a sticking circle is recognised ...
@@ -276,14 +277,45 @@ def _contracts(mf, pts, slip, n, s0):
     q_half = _distance(pts, half, half - 1) / max(_distance(pts, half - 1, half - 2), 1e-300)
     if not (q_half < 1.0 and (1.0 - q) >= GEOMETRIC_KEEP * (1.0 - q_half)):
         return False
+    mf[F_EV_LIMIT] = d_prev * q_up / (1.0 - q_up)
     # the cycle it converges to still slips, nearly as much as now: the slip per step,
-    # extrapolated the same way, keeps all but CONTRACT_SLIP_FALL of itself (a slip that
-    # still falls by much is an approach to sticking, whatever its section's ratio: a
-    # Stribeck disk spinning up contracts at 0.88 a revolution, then sticks for good)
-    tail = q_up / (1.0 - q_up)
-    fall = max(0.0, slip[n - 2] - slip[n - 1]) * tail
-    mf[F_EV_LIMIT] = d_prev * tail
+    # extrapolated at the slower of its own ratio and the section's, keeps all but
+    # CONTRACT_SLIP_FALL of itself (a slip that still falls by much is an approach to
+    # sticking, whatever its section's ratio: a Stribeck disk spinning up contracts at 0.88
+    # a revolution, then sticks for good). Its own ratio counts because the section's
+    # distances can shrink fast along one direction while the slip follows a slower one: a
+    # Stribeck pin (study scene 6/10) contracted by 0.665 a revolution while its slip fell
+    # by 0.57, 0.66, 0.75 ... of the fall before, then left the cycle and stuck at 102 s.
+    r = max(q_up, _slip_ratio_bound(slip, n, m, max(s0, SLIP_STEADY * slip[n - 1])))
+    if not r < 1.0:
+        return False
+    fall = abs(slip[n - 1] - slip[n - 2]) * r / (1.0 - r)
     return slip[n - 1] - fall > s0 and fall <= CONTRACT_SLIP_FALL * slip[n - 1]
+
+
+@kernel_jit
+def _slip_ratio_bound(slip, n, m, floor):
+    """A bound on the ratio by which the changes of the slip per step shrink, from the
+    newest m steps: the largest of their ratios, raised by as much as the ratio grew over
+    them (a ratio still growing has not yet met the slow direction that sets the cycle).
+    Changes below `floor` [m] count as none (ratio 0); inf: a change after none."""
+    r_first = math.nan
+    r_last = 0.0
+    r_max = 0.0
+    for i in range(n - m + 2, n):
+        e_new = abs(slip[i] - slip[i - 1])
+        e_old = abs(slip[i - 1] - slip[i - 2])
+        if e_new <= floor:
+            r = 0.0
+        elif e_old <= floor:
+            return math.inf
+        else:
+            r = e_new / e_old
+        if math.isnan(r_first):
+            r_first = r
+        r_last = r
+        r_max = max(r_max, r)
+    return r_max + max(0.0, r_last - r_first)
 
 
 @kernel_jit
