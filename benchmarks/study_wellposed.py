@@ -25,6 +25,8 @@ neither settled.
     python benchmarks/study_wellposed.py                       # seeds 1-10, 50 scenes each
     python benchmarks/study_wellposed.py --seeds 1 --scenes 4 --processes 1
     python benchmarks/study_wellposed.py --cache out/wellposed.jsonl   # resumable
+    # a change to the default's rules against the references an earlier run computed:
+    python benchmarks/study_wellposed.py --reference-from out/wellposed.jsonl --cache out/d.jsonl
 
 Exit 1 if any default verdict is settled against a certified default.
 """
@@ -255,12 +257,17 @@ def verdict(row: dict) -> str:
     return "unsettled" if unsettled else "both"
 
 
-def study_scene(args: tuple[int, int, bool, bool]) -> dict:
-    seed, index, reference, observe = args
+def study_scene(args: tuple[int, int, bool, bool, dict | None]) -> dict:
+    """One row; `known_reference`: the reference of an earlier study of this scene (its
+    JSON), taken instead of located again."""
+    seed, index, reference, observe, known_reference = args
     scene = draw_scene(seed, index)
     row = {"seed": seed, "index": index, "scene": scene}
     for setting in SETTINGS if reference else SETTINGS[:2]:
-        row[setting] = locate(scene, setting, observe)
+        if setting == "reference" and known_reference is not None:
+            row[setting] = _from_json({setting: known_reference})[setting]
+        else:
+            row[setting] = locate(scene, setting, observe)
     row["settled"] = []
     if reference and disagrees(row["default"], row["reference"]):
         row["settled"] = [settle(scene, mu) for mu in disputed(row["default"], row["reference"])]
@@ -303,6 +310,20 @@ def _warm_up() -> None:
     warm_up()
 
 
+def _known_references(path: Path) -> tuple[dict[tuple[int, int], dict], str]:
+    """(seed, index) -> the reference (JSON) of every row in `path`, and the code of those
+    rows (one code only: a reference mixed from several codes would be no one reference)."""
+    known, codes = {}, set()
+    for line in path.read_text().splitlines():
+        entry = json.loads(line)
+        if "reference" in entry["row"]:
+            known[(entry["seed"], entry["index"])] = entry["row"]["reference"]
+            codes.add(entry["code"])
+    if len(codes) != 1:
+        raise SystemExit(f"{path}: references of {len(codes)} codes ({sorted(codes)}), need one")
+    return known, codes.pop()
+
+
 def run_study(
     seeds,
     scenes: int,
@@ -310,12 +331,22 @@ def run_study(
     cache: Path | None = None,
     reference: bool = True,
     observe: bool = False,
+    reference_from: Path | None = None,
 ) -> list[dict]:
     """Every scene of every seed; rows already in `cache` (same code) are not run again.
     reference False: the default and uncertified settings only (the cost of certification).
-    observe: the default's certification watches (certify.observe)."""
-    jobs = [(seed, index, reference, observe) for seed in seeds for index in range(scenes)]
+    observe: the default's certification watches (certify.observe). reference_from: take
+    each scene's reference from the rows of an earlier study (JSON lines, any code) instead
+    of locating it again (the reference dominates the study's cost); the disagreements are
+    settled anew."""
+    known, ref_code = _known_references(reference_from) if reference_from else ({}, "")
+    jobs = [
+        (seed, index, reference, observe, known.get((seed, index)))
+        for seed in seeds
+        for index in range(scenes)
+    ]
     code = _code_hash() + ("" if reference else "-cost") + ("-observe" if observe else "")
+    code += f"-reference-of-{ref_code}" if ref_code else ""
     done: dict[tuple[int, int], dict] = {}
     if cache is not None and cache.is_file():
         for line in cache.read_text().splitlines():
@@ -467,6 +498,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--observe", action="store_true", help="the default certifies watching (certify.observe)"
     )
+    parser.add_argument(
+        "--reference-from",
+        type=Path,
+        default=None,
+        help="take each scene's reference from an earlier study's rows (a change to the "
+        "default's rules, checked against the reference already computed)",
+    )
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     rows = run_study(
@@ -476,6 +514,7 @@ def main(argv: list[str] | None = None) -> int:
         args.cache,
         not args.cost_only,
         args.observe,
+        args.reference_from,
     )
     print("\n".join(report(rows, time.perf_counter() - t0)))
     return 1 if silent_errors(rows) else 0
