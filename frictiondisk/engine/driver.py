@@ -264,6 +264,14 @@ class _Driver:
     def runs_done(self) -> int:
         return sum(run.runs_done() for run in self.runs)
 
+    def runs_journaled(self) -> int:
+        """Entries in the campaigns' journals, counted on disk: what a stop leaves (the
+        stop's exception can land between a run's journal entry and the count of runs
+        made, so runs_done may be one short)."""
+        return sum(
+            len(run.journal) if run.journal is not None else run.runs_done() for run in self.runs
+        )
+
     def _progress(self) -> tuple[int, int]:
         """(done, total) over every campaign, each in its planner's unit (engine/campaign_run.py)."""
         done, total = zip(*(run.progress() for run in self.runs), strict=True)

@@ -196,7 +196,7 @@ def _drive(
             "journal" if len(driver.runs) == 1 else f"journals of the {len(driver.runs)} campaigns"
         )
         raise CampaignInterrupted(
-            f"{what}; {driver.runs_done()} finished runs are in the {journals}"
+            f"{what}; {driver.runs_journaled()} finished runs are in the {journals}"
             + _partial_note(written, len(driver.runs))
             + f". Continue with: frictiondisk resume {out_dir}",
             code,
