@@ -26,6 +26,7 @@ import math
 from typing import Any
 
 from frictiondisk.engine.basin_plan import BasinPlanner
+from frictiondisk.engine.in_order import feed_in_order
 from frictiondisk.engine.tasks import run_batch, run_bisection, run_scene
 from frictiondisk.engine.trace_plan import TracePlanner
 from frictiondisk.search.bisection import BisectionResult, RunRequest
@@ -113,25 +114,16 @@ class JumpPlanner:
         ]
 
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
-        """Take a result. A search takes its results in the order of its own pending list,
-        whatever order they come back in (tasks.run_bisection does the same), so that what
-        it decides never depends on timing or worker count; a result the point no longer
-        waits for is dropped."""
+        """Take a result, fed in the search's own order (engine/in_order.py;
+        tasks.run_bisection runs them in that order); one the point no longer waits for is
+        dropped."""
         bis = self.bisections[i]
         if bis.done or i in self.chained or request not in bis.pending():
             return
-        arrived = self.arrived.setdefault(i, {})
-        arrived[request] = result
-        while not bis.done and bis.pending() and bis.pending()[0] in arrived:
-            first = bis.pending()[0]
-            bis.feed(first, arrived.pop(first))
+        feed_in_order(bis, self.arrived.setdefault(i, {}), request, result)
         if bis.done:
             self.results[i] = bis.result()
             del self.arrived[i]
-        else:
-            waiting = set(bis.pending())
-            for req in [req for req in arrived if req not in waiting]:
-                del arrived[req]
 
     def jobs(self, campaign_dir: str, sizing: Sizing | None = None) -> list[tuple[int, Any, tuple]]:
         """(job, function, args) for the runs the journal could not answer: chains

@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from frictiondisk.engine.in_order import feed_in_order
 from frictiondisk.engine.tasks import run_batch
 from frictiondisk.model.varied import scene_value
 from frictiondisk.search.plane import PlaneRequest
@@ -93,21 +94,11 @@ class TracePlanner:
         ]
 
     def feed(self, i: int, request: PlaneRequest, result: dict[str, Any]) -> None:
-        """Take a result. The tracer takes its results in the order of its own pending
-        list, whatever order they come back in, so that the curves never depend on timing
-        or worker count (as plan.JumpPlanner.feed); one it no longer waits for is dropped."""
+        """Take a result, fed in the tracer's own order (engine/in_order.py); one it no
+        longer waits for is dropped."""
         if self.tracer.done or request not in self.tracer.pending():
             return
-        self.arrived[request] = result
-        while not self.tracer.done and self.tracer.pending():
-            first = self.tracer.pending()[0]
-            if first not in self.arrived:
-                break
-            self.tracer.feed(first, self.arrived.pop(first))
-            self._settle()
-        waiting = set() if self.tracer.done else set(self.tracer.pending())
-        for request in [r for r in self.arrived if r not in waiting]:
-            del self.arrived[request]
+        feed_in_order(self.tracer, self.arrived, request, result, self._settle)
 
     def _settle(self) -> None:
         if not self.tracer.done:
