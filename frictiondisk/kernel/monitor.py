@@ -51,6 +51,7 @@ from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
     F_RMAX,
     F_RTOL,
     F_S_INF,
+    F_S_INF_SPREAD,
     F_SIZE,
     F_SLIP_ALL,
     F_SLIP_REV,

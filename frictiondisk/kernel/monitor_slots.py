@@ -37,7 +37,8 @@ F_EV_QUP = 28  # the extrapolated bound on that ratio (EV_CONTRACT)
 F_EV_LIMIT = (
     29  # extrapolated limit of the slip per step [m] (EV_SHAKEDOWN) or remaining travel [m]
 )
-N_MF = 30
+F_S_INF_SPREAD = 30  # how far the limit F_S_INF moved over its last spacing [m]
+N_MF = 31
 
 # mi indices
 I_ALL = 0  # 1 while every contact sticks

@@ -124,6 +124,7 @@ def _revolutions(config, run: KernelRun) -> Revolutions:
         decay_se=float(mf[mon.F_LAMBDA_SE]),
         remaining=float(mf[mon.F_REMAIN]),
         limit=float(mf[mon.F_S_INF]),
+        limit_spread=float(mf[mon.F_S_INF_SPREAD]),
         on_orbit=bool(n > 0 and last[mon.RV_ANY_STUCK] == 1.0),
         settling=run.budget_spent,
         tol=float(mf[mon.F_SLIP_TOL]),
