@@ -196,13 +196,15 @@ class Bisection:
         return (min(inside), max(inside)) if inside and self.split == 2 else None
 
     def _interior(self) -> list[float]:
-        """The interior points of this round, increasing: lo + j (hi - lo) / parts; around
-        the undecided mu [u_lo, u_hi], the midpoints of (lo, u_lo) and (u_hi, hi), so that
-        the bracket closes in on them from both sides."""
+        """This round's interior points, increasing: lo + j (hi - lo) / parts; around the
+        undecided mu [u_lo, u_hi], the midpoints of (lo, u_lo) and (u_hi, hi), but at most
+        UNDECIDED_SPAN / 2 tol away (a wide bracket's midpoint once hit a far transient)."""
         width = self.hi - self.lo
         u = self._straddled()
         if u is not None:
-            return [0.5 * (self.lo + u[0]), 0.5 * (u[1] + self.hi)]
+            near = 0.5 * UNDECIDED_SPAN * self.tol
+            below, above = 0.5 * (self.lo + u[0]), 0.5 * (u[1] + self.hi)
+            return [max(below, u[0] - near), min(above, u[1] + near)]
         if self.split == 2 and self.root_finder == "itp":
             return [self._itp_probe()]
         parts = self.split
