@@ -37,7 +37,7 @@ F_EV_QUP = 28  # the extrapolated bound on that ratio (EV_CONTRACT)
 F_EV_LIMIT = (
     29  # extrapolated limit of the slip per step [m] (EV_SHAKEDOWN) or remaining travel [m]
 )
-F_S_INF_SPREAD = 30  # how far the limit F_S_INF moved over its last spacing [m]
+F_S_INF_SPREAD = 30  # range of the same estimate made 0 ... m revolutions back [m]
 N_MF = 31
 
 # mi indices

@@ -64,10 +64,10 @@ VERDICT_Z = 2.0
 # disk, spacings of 2 revolutions still mistake the last fast transient for the limit
 # (from rest, beta_b = 0.005, mu = 0.22: limit 4.5e-8 m read at 51 s, true limit 0).
 AITKEN_MIN_SPACING = 4
-# Fraction of the limit by which its estimates over the last spacing may lie above the
-# newest for a ratchet to count as settled. An exact S_inf + A q^k gives 0; the braked
-# disks that the well-posedness study found creeping onto sticking (seed 5 scene 29:
-# estimates 10.3 ... 9.1e-9 m over 4 revolutions, sticks at 482 s) fall by 13-96 %.
+# Largest spread of the limit's estimates (made 0 ... m revolutions back), as a fraction of
+# the limit, for a ratchet to count as settled. An exact S_inf + A q^k spreads by 0; the
+# braked disks that the well-posedness study found creeping onto sticking spread by 13-96 %
+# (seed 5 scene 29: 10.3 ... 9.1e-9 m over 4 revolutions; it sticks at 482 s).
 LIMIT_DRIFT = 0.02
 
 

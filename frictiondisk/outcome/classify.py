@@ -29,7 +29,7 @@ class Revolutions:
     decay_se: float  # its standard error [1/rev]
     remaining: float  # slip still to come under that decay [m]
     limit: float  # extrapolated limit of the slip per revolution [m] (NaN: none)
-    limit_spread: float  # how far that limit moved over its last spacing [m] (NaN: none)
+    limit_spread: float  # range of that estimate made 0 ... m revolutions back [m] (NaN: none)
     on_orbit: bool  # some contact stuck at every instant of the last revolution
     settling: bool  # still on its way to a decision when the horizon budget ran out
     tol: float  # slip per revolution that counts as none, atol + eps T [m]
@@ -152,8 +152,8 @@ def classify(facts: RunFacts) -> tuple[str, str]:
             f"throughout or no slip above atol + eps T = {revs.tol:.3g} m in the last revolutions"
             if revs.remaining == 0.0
             else f"shakedown: {_trend(revs)} towards a limit of "
-            f"{revs.limit:.3g} ± {revs.limit_spread:.2g} m <= atol + eps T = {revs.tol:.3g} m (slip still to come "
-            f"{revs.remaining:.3g} m)"
+            f"{revs.limit:.3g} m (estimates spread {revs.limit_spread:.2g} m) <= "
+            f"atol + eps T = {revs.tol:.3g} m (slip still to come {revs.remaining:.3g} m)"
         )
         return "stick", (
             f"co-rotates with the master without net slip at t = {t:.6g} s: last revolution "
@@ -169,7 +169,8 @@ def classify(facts: RunFacts) -> tuple[str, str]:
         limit = (
             ""
             if math.isnan(revs.limit)
-            else f", extrapolated limit {revs.limit:.3g} ± {revs.limit_spread:.2g} m"
+            else f", extrapolated limit {revs.limit:.3g} m, its estimates spread "
+            f"{revs.limit_spread:.2g} m"
         )
         return "creep", (
             f"ratchets on its small orbit at t = {t:.6g} s: {_rates(revs)}, not decaying "
