@@ -14,13 +14,8 @@ TOL = 1e-4
 
 
 def drive(search, outcome_of):
-    """Feed `search` until done; outcome_of(mu, strict) gives each run's outcome. As the
-    engine does (engine/in_order.py), a run the search no longer waits for is dropped."""
-    while not search.done:
-        for request in list(search.pending()):
-            if not search.done and request in search.pending():
-                search.feed(request, {"outcome": outcome_of(request.mu, request.strict)})
-    return search.result()
+    """Feed `search` until done; outcome_of(mu, strict) gives each run's outcome."""
+    return drive_results(search, lambda mu, strict: {"outcome": outcome_of(mu, strict)})
 
 
 def threshold(*mu_star_per_level):
@@ -173,6 +168,8 @@ def reserve_oracle(mu_star, reserve, undetermined=()):
 
 
 def drive_results(search, answer):
+    """Feed `search` until done; answer(mu, strict) gives each run's result. As the engine
+    does (engine/in_order.py), a run the search no longer waits for is dropped."""
     while not search.done:
         for request in list(search.pending()):
             if not search.done and request in search.pending():

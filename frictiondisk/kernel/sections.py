@@ -343,7 +343,7 @@ def _departs(mf, pts, slip, stick, n):
 
 
 @kernel_jit
-def _aitken(s_a, s_b, s_c, slowing):
+def aitken_limit(s_a, s_b, s_c, slowing):
     """Aitken's limit of three terms: NaN unless they fall and their fall slows down to at
     most `slowing` times the fall before."""
     d1 = s_a - s_b
@@ -373,7 +373,7 @@ def _log_ratio(slip, n):
 def _log_aitken(slip, n):
     """Aitken's limit over the log-spaced steps of the newer half (NaN: no slowing fall)."""
     a, b, c = _log_steps(n)
-    return _aitken(slip[a - 1], slip[b - 1], slip[c - 1], AITKEN_SLOWING)
+    return aitken_limit(slip[a - 1], slip[b - 1], slip[c - 1], AITKEN_SLOWING)
 
 
 @kernel_jit
@@ -404,7 +404,7 @@ def shakedown_limit(slip, stick, n):
     m = n // 4
     limit = math.nan
     if m >= MIN_SPACING:
-        limit = _aitken(slip[n - 1 - 2 * m], slip[n - 1 - m], slip[n - 1], AITKEN_SLOWING)
+        limit = aitken_limit(slip[n - 1 - 2 * m], slip[n - 1 - m], slip[n - 1], AITKEN_SLOWING)
     # log-spaced over the newer half, n/2, n/sqrt(2), n: exact for S_inf + A n^-p, and clear
     # of the first transient (a co-rotating disk falling 0.256 -> 0.027 m in its first
     # revolution, then as a power law to a cycle slipping 1e-3 m, read 0 from n/4)

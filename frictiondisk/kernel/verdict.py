@@ -107,11 +107,10 @@ def _aitken(mi, rv, m, shift):
     s_a = rv[_row(mi, shift + 2 * m), RV_SLIP]
     s_b = rv[_row(mi, shift + m), RV_SLIP]
     s_c = rv[_row(mi, shift), RV_SLIP]
-    d1 = s_a - s_b
-    d2 = s_b - s_c
-    if not (d1 > d2 > 0.0):
+    limit = sec.aitken_limit(s_a, s_b, s_c, 1.0)
+    if math.isnan(limit):
         return math.nan, math.nan
-    return max(0.0, s_c - d2 * d2 / (d1 - d2)), (d2 / d1) ** (1.0 / m)
+    return limit, ((s_b - s_c) / (s_a - s_b)) ** (1.0 / m)
 
 
 @kernel_jit
@@ -191,7 +190,8 @@ def corotation_verdict(mf, mi, rv):
     mf[F_LAMBDA_SE] = se
     s_inf, q, lowest, highest = _limit_slip(mi, rv, n_orbit)
     mf[F_S_INF] = s_inf
-    mf[F_S_INF_SPREAD] = highest - lowest
+    spread = highest - lowest
+    mf[F_S_INF_SPREAD] = spread
     if math.isnan(s_inf):
         m = n_orbit // 4
         if m >= 1 and slip > tol and slip >= rv[_row(mi, m), RV_SLIP]:
@@ -202,7 +202,6 @@ def corotation_verdict(mf, mi, rv):
     if mi[I_OBSERVE] == 1:
         return VERDICT_NONE  # a limit is an extrapolation: only what is seen counts
     # the limit decides only where its estimates agree, and on one side of tol
-    spread = highest - lowest
     if s_inf - spread > tol and s_inf >= 0.5 * slip and spread <= LIMIT_DRIFT * s_inf:
         # most of today's slip persists in a limit that holds still: a settled ratchet
         mi[I_VERDICT] = VERDICT_CREEP
