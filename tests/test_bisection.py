@@ -144,3 +144,30 @@ def test_an_interval_of_undecided_mu_is_bracketed_from_both_sides():
 def test_undecided_mu_spanning_more_than_ten_tol_fail_with_the_reason():
     res = drive(Bisection((0.1, 0.2), 1e-4, (1e-6, 10.0), 1), slow_near(0.140, 0.160, 0.15))
     assert res.status == "failed" and "undetermined at mu" in res.reason
+
+
+def test_a_bracket_end_in_the_slow_approach_moves_out_and_is_straddled():
+    """A predicted bracket (a trace's correction, a warm start) whose low end lies in the
+    undecided band around the jump: the end moves half the straddle span outwards, and the
+    bisection brackets the band from both sides instead of failing."""
+    tol = 1e-4
+    band = (0.18760, 0.18790)
+    res = drive(Bisection((0.18770, 0.18800), tol, (0.1, 0.3), 1), slow_near(*band, 0.18775))
+    assert res.status == "converged", res.reason
+    assert res.mu_lo < band[0] and res.mu_hi > band[1]
+    assert res.end_result("lo")["outcome"] == "stick_slip"
+    assert res.end_result("hi")["outcome"] == "stick"
+    assert res.width <= (band[1] - band[0]) + tol * (1 + 1e-9) + 1e-12
+    assert "undetermined after every retry" in res.reason
+
+
+def test_a_bracket_end_cannot_move_past_its_limit():
+    res = drive(
+        Bisection((0.1876, 0.1880), 1e-4, (0.1876, 0.3), 1), slow_near(0.1870, 0.1877, 0.1875)
+    )
+    assert res.status == "failed" and "undetermined at mu = 0.1876" in res.reason
+
+
+def test_both_ends_undecided_beyond_the_span_fail():
+    res = drive(Bisection((0.140, 0.160), 1e-4, (0.1, 0.3), 1), slow_near(0.139, 0.161, 0.15))
+    assert res.status == "failed" and "undetermined at mu" in res.reason

@@ -128,6 +128,41 @@ def test_a_straight_jump_line_is_followed_edge_to_edge_within_tol():
     assert np.hypot(*steps.T).max() <= 0.1 + 2 * TOL  # resolution, scaled
 
 
+def test_a_jump_in_a_band_of_undecided_mu_is_followed_edge_to_edge():
+    """stick iff mu >= 0.21 + 0.5 key, but for key > 0.3 runs within 2.5 tol of the jump
+    stay undetermined after every retry (a braked disk's slow approach, Fig 11 from rest):
+    the corrections whose predicted ends fall into the band move them out and straddle
+    it, and the curve is followed edge to edge with every bracket holding the jump."""
+    band = 2.5 * TOL
+
+    def jump(key):
+        return 0.21 + 0.5 * key
+
+    def reply(request: PlaneRequest) -> dict:
+        if request.key > 0.3 and abs(request.mu - jump(request.key)) < band:
+            return {"outcome": "undetermined", "reason": "slow approach", "reserve": None}
+        return answer(lambda key, mu: mu >= jump(key), request)
+
+    tracer = Tracer(settings((0.0, 1.0), (0.0, 1.0)))
+    while not tracer.done:
+        for request in list(tracer.pending()):
+            if request in tracer.pending():
+                tracer.feed(request, reply(request))
+    result = tracer.result()
+    assert result.status == "converged", result.reason
+    (curve,) = result.curves
+    assert curve.ends == {+1: "edge", -1: "edge"}
+    keys = [p.bracket.key for p in curve.points]
+    assert keys[0] == 0.0 and keys[-1] == 1.0 and keys == sorted(keys)
+    straddled = 0
+    for point in curve.points:
+        b = point.bracket
+        assert b.lo <= jump(b.key) <= b.hi
+        assert b.width <= 2 * band + TOL * (1 + 1e-9)
+        straddled += b.width > TOL * (1 + 1e-9)
+    assert straddled > 0  # the band was met, not stepped round
+
+
 def test_a_closed_window_is_one_closed_curve_with_its_two_folds_located():
     """stick inside an ellipse: a closed curve, and the two tips in the key (smooth folds,
     key 0.5 -/+ 0.3 at mu 0.5) located to tol in both coordinates."""

@@ -11,7 +11,9 @@ never guess):
 * the bracket ends are checked first; if both give the same answer the bracket is widened
   (its width doubled, within `limits`), reusing the end already known;
 * an `undetermined` run is retried with a longer horizon (level + 1) up to `max_retries`;
-  after that the point fails with the reason of the last run;
+  after that the point fails with the reason of the last run, unless the run lies inside
+  the bracket, or is an end of it that can move outwards: such undecided mu (the jump's
+  slow approach) are straddled while they span at most `UNDECIDED_SPAN` tol;
 * an inverted bracket (stick at mu_lo, not stick at mu_hi) fails with both outcomes named;
 * every run is kept; runs that contradict monotonicity (a stick below a not-stick) are
   listed in the result instead of being hidden.
@@ -233,6 +235,8 @@ class Bisection:
                 self._round += 1  # the round around them
                 self._maybe_converged()
                 return
+            if request.level >= self.max_retries and self._step_past(request.mu):
+                return
             if request.level >= self.max_retries:
                 self.stalled_at = request.mu
                 self._failure = (
@@ -251,6 +255,32 @@ class Bisection:
             self._after_check()
         else:
             self._after_round()
+
+    def _step_past(self, mu: float) -> bool:
+        """A bracket end undetermined after every retry (a predicted bracket whose end
+        fell into the jump's slow approach): the end moves UNDECIDED_SPAN / 2 tol outwards,
+        within `limits`, and `mu` is straddled once the bisection starts. False where it
+        cannot (no room, multisection, or undecided mu that would span more than
+        UNDECIDED_SPAN tol)."""
+        if self.phase != "check" or self.split != 2 or mu not in (self.lo, self.hi):
+            return False
+        span = [*self.undecided, mu]
+        if max(span) - min(span) > UNDECIDED_SPAN * self.tol * (1 + 1e-9):
+            return False
+        near = 0.5 * UNDECIDED_SPAN * self.tol
+        if mu == self.lo:
+            moved = max(self.limits[0], mu - near)
+            if moved >= mu:
+                return False
+            self.lo = moved
+        else:
+            moved = min(self.limits[1], mu + near)
+            if moved <= mu:
+                return False
+            self.hi = moved
+        self.undecided.append(mu)
+        self._round += 1
+        return True
 
     def abort(self, reason: str) -> None:
         """End the bisection as failed without a run (e.g. its worker kept dying)."""
