@@ -13,7 +13,7 @@ through the plane). Printed for each:
   interval's two ends, in coordinates scaled by the plane's ranges) and how many traced
   points lie in it: the trace places more points where the curve bends.
 
-    python benchmarks/bench_trace.py            # Fig 11 from rest (about 2 minutes)
+    python benchmarks/bench_trace.py            # Fig 11 from rest (about 7 minutes)
     python benchmarks/bench_trace.py --all      # Figs 9, 10, 11 and 11 co-rotating
 """
 
@@ -77,6 +77,11 @@ def compare(figure: str, out: Path) -> None:
     line_mu = line["mu_star"].values
     traced = np.interp(line_key, key, mu)
     off = np.abs(traced - line_mu) / tol
+    # where the line's bracket is wider than tol (it straddles mu that stayed undecided),
+    # its midpoint is known only to half its width: the distance to the bracket says more
+    below, above = line["mu_lo"].values - traced, traced - line["mu_hi"].values
+    outside = np.maximum(0.0, np.maximum(below, above)) / tol
+    wide = (line["mu_hi"].values - line["mu_lo"].values) > tol * (1 + 1e-6)
 
     print(f"\n{figure}: {line_name} ({line.sizes[name]} points) against {trace_name}, tol {tol:g}")
     print(f"  {'':22s} {'line':>10s} {'trace':>10s} {'trace/line':>11s}")
@@ -87,6 +92,12 @@ def compare(figure: str, out: Path) -> None:
         f"  traced mu* at the line's keys: max {off.max():.2f} tol, mean {off.mean():.2f} tol "
         f"off the line's mu* ({int((off <= 2).sum())} of {off.size} within 2 tol)"
     )
+    if wide.any():
+        print(
+            f"  {int(wide.sum())} line brackets are wider than tol (straddling undecided mu, "
+            f"up to {(line['mu_hi'] - line['mu_lo']).values.max() / tol:.1f} tol); the traced "
+            f"curve lies at most {outside.max():.2f} tol outside the line's brackets"
+        )
     x = (key - key_lo) / (key_hi - key_lo)
     y = (mu - mu_lo) / (mu_hi - mu_lo)
     d = directions(x, y)

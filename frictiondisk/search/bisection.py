@@ -280,6 +280,7 @@ class Bisection:
             self.hi = moved
         self.undecided.append(mu)
         self._round += 1
+        self._after_check()  # the moved end may be known already
         return True
 
     def abort(self, reason: str) -> None:
