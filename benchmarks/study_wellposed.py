@@ -147,7 +147,7 @@ def _answer_claims(search) -> tuple[tuple[float, bool], ...]:
 def locate(scene: dict, setting: str, observe: bool = False) -> Found:
     """Prescan and bisect every jump of `scene` under `setting` (module docstring)."""
     from frictiondisk.engine.tasks import run_bisection
-    from frictiondisk.model.search_settings import OFF, Certify
+    from frictiondisk.model.search_settings import DEFAULT_MAX_RETRIES, OFF, Certify
     from frictiondisk.search.jumps import JumpSearch
     from frictiondisk.search.prescan import default_stride
 
@@ -155,7 +155,7 @@ def locate(scene: dict, setting: str, observe: bool = False) -> Found:
     grid = REFERENCE_PRESCAN if setting == "reference" else PRESCAN
     stride = 1 if setting == "reference" else default_stride(len(grid), "decide", "corotation")
     certify = Certify(observe=observe) if setting == "default" else OFF
-    search = JumpSearch(grid, TOL, 2, "decide", 2, certify, stride=stride)
+    search = JumpSearch(grid, TOL, DEFAULT_MAX_RETRIES, "decide", 2, certify, stride=stride)
     search, _ = run_bisection(search, config.canonical(), 2.0, os.devnull)
     result = search.result()
     runs = [run.result for run in result.runs]

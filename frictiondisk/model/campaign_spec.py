@@ -29,7 +29,7 @@ from frictiondisk.model.axes import (
     find_jump_problems,
 )
 from frictiondisk.model.schema import Spec, canonical, field, joined, merged, rule, within
-from frictiondisk.model.search_settings import Certify
+from frictiondisk.model.search_settings import DEFAULT_MAX_RETRIES, Certify
 from frictiondisk.model.trace_spec import Trace
 from frictiondisk.model.varied import INITIAL_STATE_KEYS, initial_state_problem, value_problems
 
@@ -38,7 +38,6 @@ MAX_BASIN_SAMPLES = 10_000_000
 # find_jump defaults (docs/model.md section 7: the bisection stops at mu_hi - mu_lo <= 1e-4).
 DEFAULT_TOL = 1.0e-4
 DEFAULT_LIMITS = (1.0e-6, 10.0)  # the bracket may be widened within these
-DEFAULT_MAX_RETRIES = 2  # retries of an undetermined run with a longer horizon
 DEFAULT_HORIZON_FACTOR = 2.0  # each retry multiplies numerics.t_decide (or t_max) by this
 DEFAULT_LANES = 2  # warm-start chains
 DEFAULT_SPLIT = 2  # parts per bisection round: 2 = plain bisection (bisection.Bisection)

@@ -10,6 +10,9 @@ from pydantic import BaseModel, model_validator
 from frictiondisk.model.schema import MODEL_CONFIG, field
 
 ROOT_FINDERS = ("itp", "bisect")
+# retries of an undetermined run, each with a longer horizon (find_jump and trace); a third
+# rescued braked disks' failures but some wrongly (docs/wellposed.md, Run H)
+DEFAULT_MAX_RETRIES = 2
 
 
 class Certify(BaseModel):

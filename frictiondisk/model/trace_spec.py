@@ -15,7 +15,7 @@ from pydantic import ValidationError, ValidationInfo, field_validator, model_val
 
 from frictiondisk.model.axes import LIMITS_MUST, Limits, base_of, check_mu, ordered, pair
 from frictiondisk.model.schema import Spec, field, joined, rule, show
-from frictiondisk.model.search_settings import Certify
+from frictiondisk.model.search_settings import DEFAULT_MAX_RETRIES, Certify
 from frictiondisk.model.varied import key_problem, retry_problem, value_problems
 
 RANGE_MUST = "a list [low, high] of two finite numbers with low < high, in the key's unit"
@@ -82,7 +82,9 @@ class Trace(Spec):
     max_points: int = field(
         DEFAULT_MAX_POINTS, "1", "most points of one curve", ge=10, le=1_000_000
     )
-    max_retries: int = field(2, "1", "retries of an undetermined run", ge=0, le=10)
+    max_retries: int = field(
+        DEFAULT_MAX_RETRIES, "1", "retries of an undetermined run", ge=0, le=10
+    )
     horizon_factor: float = field(2.0, "1", "each retry multiplies the horizon by this", gt=1)
     split: int = field(2, "1", "parts per bisection round (split - 1 runs at once)", ge=2, le=64)
     certify: Certify = field(
