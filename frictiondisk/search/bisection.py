@@ -38,14 +38,18 @@ The last round uses the fewest parts that reach tol (at most k), so no run is wa
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Any
 
 from frictiondisk.model.search_settings import ROOT_FINDERS
+from frictiondisk.search.run_records import (
+    STICK,
+    UNDETERMINED,
+    BisectionResult,
+    RunRecord,
+    RunRequest,
+)
 
-STICK = "stick"
-UNDETERMINED = "undetermined"
 WIDEN_FACTOR = 2.0  # a widened bracket is this many times wider
 ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
 UNDECIDED_SPAN = 10  # [tol] undecided mu a bracket may straddle: wider is a failure
@@ -55,66 +59,6 @@ def zero_crossing(mu_a: float, signal_a: float, mu_b: float, signal_b: float) ->
     """mu where the straight line through (mu_a, signal_a) and (mu_b, signal_b) crosses
     zero (a secant step); the signals must differ."""
     return mu_a - signal_a * (mu_b - mu_a) / (signal_b - signal_a)
-
-
-@dataclasses.dataclass(frozen=True)
-class RunRequest:
-    """One simulation the bisection needs: friction coefficient, retry level and
-    certification level.
-
-    The horizon of the run is the base horizon times horizon_factor ** level; a
-    certification level `strict` > 0 tightens the numerics further (frictiondisk.search.certify)."""
-
-    mu: float
-    level: int = 0
-    mode: str | None = None  # numerics.mode of the run; None: the point's own
-    strict: int = 0  # certification level of the numerics (0: the point's own)
-
-
-@dataclasses.dataclass(frozen=True)
-class RunRecord:
-    request: RunRequest
-    result: dict[str, Any]  # SimulationResult.summary()
-
-    @property
-    def outcome(self) -> str:
-        return self.result["outcome"]
-
-
-@dataclasses.dataclass(frozen=True)
-class BisectionResult:
-    """The located jump: a bracket with its midpoint, never a bare number."""
-
-    status: str  # "converged" or "failed"
-    reason: str
-    mu_lo: float  # NaN if the bracket was never established
-    mu_hi: float
-    runs: tuple[RunRecord, ...]
-    contradictions: tuple[tuple[float, float], ...]  # run pairs against one jump (see below)
-    rising: bool = True  # not stick at mu_lo, stick at mu_hi (False: the other way round)
-    certification: str = "off"  # frictiondisk.search.certify.CERTIFICATION_FLAGS
-    strict: int = 0  # certification level of the numerics behind mu_lo and mu_hi
-
-    @property
-    def mu_star(self) -> float:
-        return 0.5 * (self.mu_lo + self.mu_hi)
-
-    @property
-    def width(self) -> float:
-        return self.mu_hi - self.mu_lo
-
-    @property
-    def monotone(self) -> bool:
-        return not self.contradictions
-
-    def end_result(self, which: str) -> dict[str, Any] | None:
-        """The decisive run at mu_lo or mu_hi (its last retry level)."""
-        mu = self.mu_lo if which == "lo" else self.mu_hi
-        found = None
-        for run in self.runs:
-            if run.request.mu == mu and run.outcome != UNDETERMINED:
-                found = run.result
-        return found
 
 
 class Bisection:
