@@ -59,13 +59,12 @@ def main(argv: list[str] | None = None) -> int:
     # the traces first: the run offers free workers in this order, and a trace has few runs
     # in flight for long (one correction per curve end), so the lines fill round it
     # instead of leaving it alone at the end (docs/benchmarks.md, make figures)
-    order = sorted(range(len(campaigns)), key=lambda j: campaigns[j].kind != "trace")
-    summaries = [None] * len(campaigns)
-    ran_in_order = run_campaigns([campaigns[j] for j in order], args.out, workers=2, progress=False)
-    for j, summary in zip(order, ran_in_order, strict=True):
-        summaries[j] = summary
+    first = sorted(campaigns, key=lambda campaign: campaign.kind != "trace")
+    ran_first = run_campaigns(first, args.out, workers=2, progress=False)
+    summaries = dict(zip((campaign.name for campaign in first), ran_first, strict=True))
     ran = time.perf_counter() - total
-    for campaign, summary in zip(campaigns, summaries, strict=True):
+    for campaign in campaigns:
+        summary = summaries[campaign.name]
         draw_figure(campaign, args.out / campaign.name, args.figures)
         where = f"{args.figures / campaign.name}.png, .pdf"
         print(f"{campaign.name:<26} {summary.wall_s:7.1f} s   {where}", flush=True)

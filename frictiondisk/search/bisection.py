@@ -172,8 +172,7 @@ class Bisection:
             straddle = self.phase == "bisect" and self.split == 2
             span = self._straddled()
             if span is not None:
-                lo, hi = min(span[0], request.mu), max(span[1], request.mu)
-                straddle = straddle and hi - lo <= UNDECIDED_SPAN * self.tol * (1 + 1e-9)
+                straddle = straddle and self._within_span([*span, request.mu])
             if request.level >= self.max_retries and straddle:
                 self.undecided.append(request.mu)
                 self._round += 1  # the round around them
@@ -200,6 +199,10 @@ class Bisection:
         else:
             self._after_round()
 
+    def _within_span(self, mus: list[float]) -> bool:
+        """Whether undecided mu span at most UNDECIDED_SPAN tol (a bracket may straddle them)."""
+        return max(mus) - min(mus) <= UNDECIDED_SPAN * self.tol * (1 + 1e-9)
+
     def _step_past(self, mu: float) -> bool:
         """A bracket end undetermined after every retry (a predicted bracket whose end
         fell into the jump's slow approach): the end moves UNDECIDED_SPAN / 2 tol outwards,
@@ -208,8 +211,7 @@ class Bisection:
         UNDECIDED_SPAN tol)."""
         if self.phase != "check" or self.split != 2 or mu not in (self.lo, self.hi):
             return False
-        span = [*self.undecided, mu]
-        if max(span) - min(span) > UNDECIDED_SPAN * self.tol * (1 + 1e-9):
+        if not self._within_span([*self.undecided, mu]):
             return False
         near = 0.5 * UNDECIDED_SPAN * self.tol
         if mu == self.lo:
