@@ -332,21 +332,21 @@ def run_study(
     reference: bool = True,
     observe: bool = False,
     reference_from: Path | None = None,
-    braked_only: bool = False,
+    only: str = "all",
 ) -> list[dict]:
     """Every scene of every seed; rows already in `cache` (same code) are not run again.
     reference False: the default and uncertified settings only (the cost of certification).
     observe: the default's certification watches (certify.observe). reference_from: take
     each scene's reference from the rows of an earlier study (JSON lines, any code) instead
     of locating it again (the reference dominates the study's cost); the disagreements are
-    settled anew. braked_only: only the disks with a brake (beta_b > 0), the class that
-    the co-rotation verdict decides."""
+    settled anew. only: "braked", the disks with a brake (beta_b > 0), the class that the
+    co-rotation verdict decides; "unbraked", the other scenes; "all"."""
     known, ref_code = _known_references(reference_from) if reference_from else ({}, "")
     jobs = [
         (seed, index, reference, observe, known.get((seed, index)))
         for seed in seeds
         for index in range(scenes)
-        if not braked_only or _braked(draw_scene(seed, index))
+        if only == "all" or (only == "braked") == _braked(draw_scene(seed, index))
     ]
     code = _code_hash() + ("" if reference else "-cost") + ("-observe" if observe else "")
     code += f"-reference-of-{ref_code}" if ref_code else ""
@@ -512,10 +512,16 @@ def main(argv: list[str] | None = None) -> int:
         help="take each scene's reference from an earlier study's rows (a change to the "
         "default's rules, checked against the reference already computed)",
     )
-    parser.add_argument(
+    subset = parser.add_mutually_exclusive_group()
+    subset.add_argument(
         "--braked-only",
         action="store_true",
         help="only the disks with a brake (beta_b > 0): a change to the co-rotation verdict",
+    )
+    subset.add_argument(
+        "--unbraked-only",
+        action="store_true",
+        help="only the scenes without a brake (pins, unbraked disks)",
     )
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
@@ -527,7 +533,7 @@ def main(argv: list[str] | None = None) -> int:
         not args.cost_only,
         args.observe,
         args.reference_from,
-        args.braked_only,
+        "braked" if args.braked_only else "unbraked" if args.unbraked_only else "all",
     )
     print("\n".join(report(rows, time.perf_counter() - t0)))
     return 1 if silent_errors(rows) else 0

@@ -121,6 +121,31 @@ def test_a_creep_onto_a_sticking_circle_never_repeats():
     assert code == ms.EV_NONE
 
 
+def test_a_section_drifting_one_way_within_cycle_tol_is_no_repeat():
+    """Steps of 6.6e-8 m (within cycle_tol), all the same way, at a steady slip and
+    sticking time: the pin of well-posedness seed 6 scene 32 creeping onto its grazing
+    sticking circle (mu = 0.0765753; it sticks at 776 s). A cycle's steps would shrink
+    to integration noise, with no direction of their own (the noisy repeat above)."""
+    n = 12
+    code, _ = evidence(along(np.full(n - 1, 6.6e-8)), np.full(n, 1.2e-7), np.full(n, 9.7))
+    assert code != ms.EV_REPEAT
+
+
+def test_a_creep_that_sticks_a_whole_revolution_now_and_then_never_repeats():
+    """The same pin at rtol 1e-5: its revolution section steps 7e-8 m a revolution,
+    shrinking by 0.94 (a tail within cycle_tol), while the slip per revolution falls 6 %
+    a revolution and the sticking time grows, except every fifth revolution, which sticks
+    throughout (slip 4e-14 m). Read step against step eight back, that revolution hid the
+    trend and the old rule called a cycle at 363 s."""
+    n = 20
+    slip = 6.2e-8 * 0.94 ** np.arange(n)
+    stick = 9.49 + 0.009 * np.arange(n)
+    whole = np.arange(n) % 5 == 1  # one of them eight steps before the newest
+    slip[whole], stick[whole] = 4e-14, 10.075
+    code, _ = evidence(along(7e-8 * 0.94 ** np.arange(n - 1)), slip, stick, rtol=1e-5)
+    assert code != ms.EV_REPEAT
+
+
 def test_a_growing_slip_and_shrinking_sticking_time_is_a_departure():
     n = 6
     steps = 0.0175 * 1.09 ** np.arange(n - 1)

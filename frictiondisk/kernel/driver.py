@@ -225,9 +225,10 @@ def run(
         mf, mi, ring_all, ring_any, t, y, modes, nq, fopt[O_CYCLE_TOL], iopt[O_CYCLE_COUNT]
     )
     mon.begin_revolution(mf, mi, t, y, 0.0, yrev, 0)
-    # A slip per revolution below the position tolerance plus what the slide->stick
-    # threshold eps lets slide unresolved over a revolution is none (kernel/monitor.py).
-    mf[mon.F_SLIP_TOL] = atol + p[P_EPS] * hold
+    # A slip per revolution below what the slide->stick threshold eps lets slide
+    # unresolved over a revolution is none (kernel/monitor.py). A model quantity: adding
+    # the integrator's atol made the braked disk's mu* move with atol (docs/model.md 6).
+    mf[mon.F_SLIP_TOL] = p[P_EPS] * hold
     mf[mon.F_RTOL] = rtol
     mf[mon.F_ATOL] = atol
     mi[mon.I_OBSERVE] = iopt[O_OBSERVE]

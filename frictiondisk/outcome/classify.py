@@ -32,7 +32,7 @@ class Revolutions:
     limit_spread: float  # range of that estimate made 0 ... m revolutions back [m] (NaN: none)
     on_orbit: bool  # some contact stuck at every instant of the last revolution
     settling: bool  # still on its way to a decision when the horizon budget ran out
-    tol: float  # slip per revolution that counts as none, atol + eps T [m]
+    tol: float  # slip per revolution that counts as none, eps T [m]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -149,11 +149,11 @@ def classify(facts: RunFacts) -> tuple[str, str]:
     if facts.status == st.COROTATING:
         how = (
             "it repeated within the integrator's tolerance, with every contact stuck "
-            f"throughout or no slip above atol + eps T = {revs.tol:.3g} m in the last revolutions"
+            f"throughout or no slip above eps T = {revs.tol:.3g} m in the last revolutions"
             if revs.remaining == 0.0
             else f"shakedown: {_trend(revs)} towards a limit of "
             f"{revs.limit:.3g} m (estimates spread {revs.limit_spread:.2g} m) <= "
-            f"atol + eps T = {revs.tol:.3g} m (slip still to come {revs.remaining:.3g} m)"
+            f"eps T = {revs.tol:.3g} m (slip still to come {revs.remaining:.3g} m)"
         )
         return "stick", (
             f"co-rotates with the master without net slip at t = {t:.6g} s: last revolution "
@@ -163,7 +163,7 @@ def classify(facts: RunFacts) -> tuple[str, str]:
         ev = facts.evidence
         return "stick", (
             f"shakes down to co-rotation at t = {t:.6g} s: {ev.describe()} <= "
-            f"atol + eps T = {revs.tol:.3g} m a revolution (last revolution {_rates(revs)})"
+            f"eps T = {revs.tol:.3g} m a revolution (last revolution {_rates(revs)})"
         )
     if facts.status == st.CREEPING:
         limit = (
