@@ -121,16 +121,6 @@ def test_a_creep_onto_a_sticking_circle_never_repeats():
     assert code == ms.EV_NONE
 
 
-def test_a_section_drifting_one_way_within_cycle_tol_is_no_repeat():
-    """Steps of 6.6e-8 m (within cycle_tol), all the same way, at a steady slip and
-    sticking time: the pin of well-posedness seed 6 scene 32 creeping onto its grazing
-    sticking circle (mu = 0.0765753; it sticks at 776 s). A cycle's steps would shrink
-    to integration noise, with no direction of their own (the noisy repeat above)."""
-    n = 12
-    code, _ = evidence(along(np.full(n - 1, 6.6e-8)), np.full(n, 1.2e-7), np.full(n, 9.7))
-    assert code != ms.EV_REPEAT
-
-
 def test_a_creep_that_sticks_a_whole_revolution_now_and_then_never_repeats():
     """The same pin at rtol 1e-5: its revolution section steps 7e-8 m a revolution,
     shrinking by 0.94 (a tail within cycle_tol), while the slip per revolution falls 6 %

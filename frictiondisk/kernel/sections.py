@@ -74,7 +74,6 @@ SEQ_STICK = 6  # column of the whole-body sticking time per step [s]
 N_SEQ = 7  # columns of a sequence (the driver's scratch array, SEQ_MAX rows)
 REPEAT_COUNT = 3  # distances within tolerance that make a repeat
 MAX_LAG = 3  # sticking phases per period of a cycle recognised by EV_REPEAT
-DRIFT_COS = 0.9  # steps of a section that point this much the same way drift (_drifts)
 CONTRACT_DISTANCES = 5  # distances behind a contraction ratio and its trend
 Q_MAX = 0.98  # largest extrapolated contraction ratio accepted as convergence
 RHO_MAX = 0.9  # the ratio's own changes must shrink at least this fast ...
@@ -179,9 +178,9 @@ def _repeat_tolerance(mf, pts, i):
 
 
 @kernel_jit
-def _approaching(slip, stick, n):
+def _approaching(slip, stick, n, atol):
     """Whether, over the newest APPROACH_STEPS steps, the slip per step fell by more than
-    APPROACH_FALL of itself while the sticking time grew (beyond STICK_NOISE):
+    APPROACH_FALL of itself and atol [m] while the sticking time grew (beyond STICK_NOISE):
     a slave creeping onto a sticking circle, however little its section moves per step.
     Compared half against half, the largest slip and the shortest sticking time of each,
     so a step that now and then sticks throughout (slip 0) is not taken for the trend
@@ -198,45 +197,8 @@ def _approaching(slip, stick, n):
         stick_new = min(stick_new, stick[n - 1 - k])
         slip_old = max(slip_old, slip[n - 1 - back + k])
         stick_old = min(stick_old, stick[n - 1 - back + k])
-    # no absolute floor: a cycle's slip repeats to 1e-14 m, while this creep's slip per
-    # revolution falls from 4.4e-8 to 3.1e-8 m, which is less than atol at rtol 1e-5
-    fell = slip_new < slip_old * (1.0 - APPROACH_FALL)
+    fell = slip_new < slip_old * (1.0 - APPROACH_FALL) - atol
     return fell and stick_new > stick_old + STICK_NOISE
-
-
-@kernel_jit
-def _step(pts, i, lag, c):
-    return pts[i, c] - pts[i - lag, c]
-
-
-@kernel_jit
-def _drifts(mf, pts, n, lag, tol):
-    """Whether each of the newest min(lag, REPEAT_COUNT) steps p_i - p_(i-lag) moved the
-    same way as the step of the same phase a period earlier (cosine above DRIFT_COS), by
-    more than atol, and not by a geometric tail that ends within `tol` [m]: the section
-    creeps along a slow direction, as a pin does onto its grazing sticking circle
-    (well-posedness seed 6 scene 32, mu = 0.0765753: its two onsets a period each move
-    2.5e-7 m and 8e-7 m a period their own way, within cycle_tol, for hundreds of
-    seconds, and it sticks at 776 s). A converged cycle's steps are integration noise
-    with no direction of their own."""
-    for back in range(min(lag, REPEAT_COUNT)):
-        i = n - 1 - back
-        j = i - lag
-        if j - lag < 0:
-            return False
-        now = _distance(pts, i, j)
-        before = _distance(pts, j, j - lag)
-        if now <= mf[F_ATOL] or before <= mf[F_ATOL]:
-            return False
-        dot = 0.0
-        for c in range(N_COORD):
-            dot += _step(pts, i, lag, c) * _step(pts, j, lag, c)
-        if dot < DRIFT_COS * now * before:
-            return False
-        q = now / before
-        if q < 1.0 and now * q / (1.0 - q) <= tol:
-            return False  # a geometric approach that ends within tolerance
-    return True
 
 
 @kernel_jit
@@ -244,9 +206,8 @@ def _repeats(mf, mi, pts, slip, stick, n):
     """EV_REPEAT: the newest REPEAT_COUNT distances at some lag L <= MAX_LAG within
     tolerance, and, where they still shrink step after step, the travel still to come
     (geometric tail) within tolerance too: a slow algebraic approach moves little per
-    step but far in all. Never while the motion creeps towards sticking (_approaching),
-    nor while its steps keep one direction (_drifts)."""
-    if _approaching(slip, stick, n):
+    step but far in all. Never while the motion creeps towards sticking (_approaching)."""
+    if _approaching(slip, stick, n, mf[F_ATOL]):
         return False
     for lag in range(1, MAX_LAG + 1):
         if n < lag + REPEAT_COUNT + 1:
@@ -270,8 +231,6 @@ def _repeats(mf, mi, pts, slip, stick, n):
             older = _distance(pts, n - 2, n - 2 - lag)
             q = newest / older
             ok = q < 1.0 and newest * q / (1.0 - q) <= tol
-        if ok and _drifts(mf, pts, n, lag, tol):
-            ok = False  # moves little per step, but steadily one way
         if ok:
             mf[F_EV_D] = worst
             mi[I_EV_LAG] = lag

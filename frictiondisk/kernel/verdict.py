@@ -182,9 +182,9 @@ def corotation_verdict(mf, mi, rv):
 
     stick: every contact stuck throughout the last revolution and it moved nothing (centre
     drift and spin-phase drift, as the arc of the longest arm, within the integrator's
-    tolerance atol + rtol |r|, atol + rtol |arm|: RV_STILL); or the last VERDICT_REVS
-    revolutions each moved nothing and slipped <= tol (contacts that graze their limit
-    without net slip, the pin's one contact included); or, on the small orbit, the slip
+    tolerance atol + rtol |r|, atol + rtol |arm|: RV_STILL); or, on the small orbit for
+    VERDICT_REVS revolutions, each of them moved nothing and slipped <= tol (contacts that
+    graze their limit without net slip); or the slip
     per revolution decays geometrically (falling, its fall slowing as S_inf + A q^k) to
     an extrapolated limit S_inf with S_inf + spread <= tol: shakedown.
     creep: the slip per revolution exceeds tol and either no longer falls (over the newer
@@ -207,16 +207,13 @@ def corotation_verdict(mf, mi, rv):
         mf[F_REMAIN] = 0.0
         mi[I_VERDICT] = VERDICT_STICK
         return VERDICT_STICK
-    if n >= VERDICT_REVS and _quiet(mf, mi, rv):
-        # grazing contacts, but no slip to resolve; a pin's one contact may graze too,
-        # so this needs no contact stuck throughout (seed 6 scene 32 slips 3.5e-14 m a
-        # revolution with 2 switches, and used to count as a stick-slip cycle)
-        mf[F_REMAIN] = 0.0
-        mi[I_VERDICT] = VERDICT_STICK
-        return VERDICT_STICK
     n_orbit = _run_length(mi, rv, RV_ANY_STUCK, 1.0)
     if n_orbit < VERDICT_REVS:
         return VERDICT_NONE  # not (long enough) on the small orbit
+    if _quiet(mf, mi, rv):
+        mf[F_REMAIN] = 0.0
+        mi[I_VERDICT] = VERDICT_STICK  # grazing contacts, but no slip to resolve
+        return VERDICT_STICK
     lam, se = _slip_trend(mf, mi, rv)
     mf[F_LAMBDA] = lam
     mf[F_LAMBDA_SE] = se
