@@ -185,7 +185,10 @@ def _approaching(slip, stick, n, atol):
     Compared half against half, the largest slip and the shortest sticking time of each,
     so a step that now and then sticks throughout (slip 0) is not taken for the trend
     (well-posedness seed 6 scene 32, mu = 0.0765753: every fifth revolution of its creep
-    sticks whole)."""
+    sticks whole). The atol floor stays: without it slowly converging cycles read as
+    approaches (a pin with eps = 1e-3 m/s below its Coulomb bound), so a creep that
+    falls by less than atol over the window (that pin at rtol 1e-5: 7e-9 m against
+    1e-8 m) is still read as a cycle."""
     back = min(APPROACH_STEPS, n - 1)
     if back < 1:
         return False
