@@ -103,25 +103,23 @@ def _slip_slope(mi, rv, count):
     `count` revolutions, and its standard error [1/rev]; NaN, NaN if a slip is 0. Unlike
     the mean of successive ratios it is not masked by a slip that alternates from one
     revolution to the next about a falling level."""
-    mean_k = 0.5 * (count - 1)
-    mean_y = 0.0
+    sum_k = sum_y = sum_kk = sum_ky = sum_yy = 0.0
     for back in range(count):
         slip = rv[_row(mi, back), RV_SLIP]
         if not slip > 0.0:
             return math.nan, math.nan
-        mean_y += math.log(slip) / count
-    sxx = 0.0
-    sxy = 0.0
-    for back in range(count):
-        k = (count - 1 - back) - mean_k
-        sxx += k * k
-        sxy += k * (math.log(rv[_row(mi, back), RV_SLIP]) - mean_y)
+        k = float(count - 1 - back)
+        y = math.log(slip)
+        sum_k += k
+        sum_y += y
+        sum_kk += k * k
+        sum_ky += k * y
+        sum_yy += y * y
+    sxx = sum_kk - sum_k * sum_k / count
+    sxy = sum_ky - sum_k * sum_y / count
+    syy = sum_yy - sum_y * sum_y / count
     slope = sxy / sxx
-    rss = 0.0
-    for back in range(count):
-        k = (count - 1 - back) - mean_k
-        r = math.log(rv[_row(mi, back), RV_SLIP]) - mean_y - slope * k
-        rss += r * r
+    rss = max(0.0, syy - slope * sxy)
     return slope, math.sqrt(rss / (count - 2) / sxx)
 
 
