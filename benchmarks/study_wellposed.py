@@ -22,6 +22,13 @@ right: the default (then the reference missed or misjudged something), the refer
 certified), both (a window between their samples, narrower than the default's grid), or
 neither settled.
 
+Where the reference's headline lies lower, a jump the default's grid stepped over is
+checked too: where the settling run at the reference's mu_hi sticks and the slave sticks,
+watched the same way, at mu_hi + 2, 5, 10 and 20 tol (PERSIST_STEPS), sticking persists
+below the default's headline, so the lowest rising jump lies lower: the default is wrong
+about its headline, whatever its verdicts at the values it ran (a *missed jump*; silent if
+certified).
+
     python benchmarks/study_wellposed.py                       # seeds 1-10, 50 scenes each
     python benchmarks/study_wellposed.py --seeds 1 --scenes 4 --processes 1
     python benchmarks/study_wellposed.py --cache out/wellposed.jsonl   # resumable
@@ -56,6 +63,7 @@ SETTLE_BUDGET = 8.0  # its horizon_budget: up to 12 000 s
 SETTLE_RTOL = 0.01  # rtol factor of a settling run
 SETTLE_MAX = 6  # settling runs per disagreement at most (the nearest to the dispute)
 SETTINGS = ("default", "uncertified", "reference")
+PERSIST_STEPS = (2, 5, 10, 20)  # [tol] above the reference's mu_hi, watched for a missed jump
 
 
 def draw_scene(seed: int, index: int) -> dict:
@@ -234,10 +242,29 @@ def claim_at(found: Found, mu: float) -> bool | None:
     return None
 
 
+def lower_reference(row: dict) -> bool:
+    """The reference's headline lies more than tol below the default's."""
+    d, ref = row["default"].mu_star, row["reference"].mu_star
+    return math.isfinite(d) and math.isfinite(ref) and ref < d - TOL * (1 + 1e-9)
+
+
+def missed_jump(row: dict) -> bool:
+    """Sticking that persists below the default's headline: the settling run at the
+    reference's lower mu_hi sticks, and so does every watching run PERSIST_STEPS above it.
+    The lowest rising jump then lies at or below that mu_hi (below it still where the
+    reference's mu_lo sticks too), and the default did not report it."""
+    if not lower_reference(row) or not row.get("persisted"):
+        return False
+    seen = {run["mu"]: run["sticks"] for run in row["settled"]}
+    sticks_above = seen.get(row["reference"].mu_hi) is True
+    return sticks_above and all(run["sticks"] is True for run in row["persisted"])
+
+
 def verdict(row: dict) -> str:
     """Which side the settling runs proved right: default, reference, both (a window
-    between their samples), neither, or unsettled."""
-    wrong = {"default": False, "reference": False}
+    between their samples), neither, or unsettled. A missed jump (`missed_jump`) makes the
+    default wrong."""
+    wrong = {"default": missed_jump(row), "reference": False}
     unsettled = False
     for run in row["settled"]:
         for side in wrong:
@@ -269,8 +296,12 @@ def study_scene(args: tuple[int, int, bool, bool, dict | None]) -> dict:
         else:
             row[setting] = locate(scene, setting, observe)
     row["settled"] = []
+    row["persisted"] = []
     if reference and disagrees(row["default"], row["reference"]):
         row["settled"] = [settle(scene, mu) for mu in disputed(row["default"], row["reference"])]
+        if lower_reference(row):
+            above = row["reference"].mu_hi
+            row["persisted"] = [settle(scene, above + k * TOL) for k in PERSIST_STEPS]
     return row
 
 
@@ -412,6 +443,12 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
         )
     )
     lines.append(f"  silent errors (settled against a certified default): {len(silent)}")
+    missed = [r for r in differ if missed_jump(r)]
+    lines.append(
+        f"  missed jumps (sticking at the reference's lower mu_hi and at mu_hi + "
+        f"{', '.join(map(str, PERSIST_STEPS))} tol): {len(missed)}, "
+        f"{sum(1 for r in missed if r['default'].certified)} of them certified by the default"
+    )
     # a scene in which nothing sticks over the whole prescan has no mu*: `failed` as a
     # campaign point, but an answer (when the reference finds no jump either), not a point
     # the method could not decide
@@ -461,7 +498,8 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
     for r in differ:
         d, ref = r["default"], r["reference"]
         runs_text = "; ".join(
-            f"{s['mu']:.5f} {s['outcome']} at {s['t_end']:.0f} s" for s in r["settled"]
+            f"{s['mu']:.5f} {s['outcome']} at {s['t_end']:.0f} s"
+            for s in [*r["settled"], *r.get("persisted", [])]
         )
         lines.append(
             f"    {r['seed']}/{r['index']}: {d.mu_star:.5f} [{d.certification}] vs "

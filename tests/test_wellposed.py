@@ -64,6 +64,40 @@ def test_a_dispute_is_settled_against_the_side_a_long_run_contradicts(study):
     assert study.verdict(row) == "unsettled"
 
 
+def test_a_lower_jump_that_persists_is_one_the_default_missed(study):
+    """Well-posedness seed 3 scene 14: the default's grid stepped over a jump the
+    reference found 0.12 lower. Every verdict either side claimed is right (or stays
+    undetermined), yet the slave sticks at the reference's mu_hi and 2 ... 20 tol above
+    it: the default's certified headline is not the lowest rising jump."""
+    default = found(study, 0.205, [(0.08, False), (0.11, False), (0.205, True)])
+    reference = found(
+        study, 0.0868, [(0.08, False), (0.0868 - 5e-5, False), (0.0868 + 5e-5, True), (0.14, False)]
+    )
+    row = {"default": default, "reference": reference}
+    row["settled"] = [
+        {"mu": reference.mu_lo, "sticks": False},
+        {"mu": reference.mu_hi, "sticks": True},
+        {"mu": 0.14, "sticks": None},
+    ]
+    assert study.lower_reference(row) and study.disputed(default, reference)[0] == reference.mu_lo
+    row["persisted"] = [{"mu": reference.mu_hi + k * study.TOL, "sticks": True} for k in (2, 5)]
+    assert study.missed_jump(row) and study.verdict(row) == "reference"
+    assert study.silent_errors([{**row, "seed": 3, "index": 14}]) == 1
+    # a window narrower than the watched steps (it slides 10 tol above) is not a jump that
+    # persists: the dispute stays as the claims settle it
+    row["persisted"][1]["sticks"] = False
+    assert not study.missed_jump(row) and study.verdict(row) == "unsettled"
+    # nor is a reference jump whose sticking side does not stick when watched
+    row["persisted"][1]["sticks"] = True
+    row["settled"][1]["sticks"] = None
+    assert not study.missed_jump(row)
+    # a reference that sticks at its own mu_lo too is wrong there, and the default still
+    # missed the sticking above it: neither is right
+    row["settled"][1]["sticks"] = True
+    row["settled"][0]["sticks"] = True
+    assert study.missed_jump(row) and study.verdict(row) == "neither"
+
+
 def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default(study):
     rows = study.run_study([0], 1, processes=1)
     (row,) = rows
