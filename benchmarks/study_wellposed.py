@@ -54,7 +54,12 @@ from pathlib import Path
 import numpy as np
 
 TOL = 1.0e-4
-PRESCAN = tuple(round(0.02 + 0.03 * k, 4) for k in range(27))  # 0.02 ... 0.80
+# the default's prescan step: 0.03 unless --default-step (through the environment, so
+# that the spawned workers see it too)
+DEFAULT_STEP = float(os.environ.get("FRICTIONDISK_STUDY_DEFAULT_STEP", "0.03"))
+PRESCAN = tuple(
+    round(0.02 + DEFAULT_STEP * k, 4) for k in range(int(round(0.78 / DEFAULT_STEP)) + 1)
+)
 REFERENCE_PRESCAN = tuple(round(0.02 + 0.01 * k, 4) for k in range(79))  # 0.02 ... 0.80
 REFERENCE_HORIZON = 8.0
 REFERENCE_RTOL = 0.01
@@ -536,6 +541,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seeds", default="1-10", help="e.g. 1-10 or 1,3")
     parser.add_argument("--scenes", type=int, default=50, help="scenes per seed")
     parser.add_argument("--processes", type=int, default=2)
+    parser.add_argument(
+        "--default-step",
+        type=float,
+        default=None,
+        help="prescan step of the default and uncertified settings (default 0.03)",
+    )
     parser.add_argument("--cache", type=Path, default=None, help="JSON lines of finished rows")
     parser.add_argument(
         "--cost-only", action="store_true", help="no reference: the cost of certification only"
@@ -562,6 +573,13 @@ def main(argv: list[str] | None = None) -> int:
         help="only the scenes without a brake (pins, unbraked disks)",
     )
     args = parser.parse_args(argv)
+    if args.default_step is not None:
+        os.environ["FRICTIONDISK_STUDY_DEFAULT_STEP"] = repr(args.default_step)
+        global DEFAULT_STEP, PRESCAN
+        DEFAULT_STEP = args.default_step
+        PRESCAN = tuple(
+            round(0.02 + DEFAULT_STEP * k, 4) for k in range(int(round(0.78 / DEFAULT_STEP)) + 1)
+        )
     t0 = time.perf_counter()
     rows = run_study(
         _seeds(args.seeds),
