@@ -54,16 +54,17 @@ from pathlib import Path
 import numpy as np
 
 TOL = 1.0e-4
+# the default's prescan step: 0.03 unless --default-step, which sets it here so that the
+# spawned workers, which import this module afresh, see it too
+DEFAULT_STEP_ENV = "FRICTIONDISK_STUDY_DEFAULT_STEP"
 
 
-# the default's prescan step: 0.03 unless --default-step (through the environment, so
-# that the spawned workers see it too)
 def default_grid(step: float) -> tuple[float, ...]:
     """The default's prescan: mu = 0.02 ... 0.80 in steps of `step`."""
     return tuple(round(0.02 + step * k, 4) for k in range(int(round(0.78 / step)) + 1))
 
 
-PRESCAN = default_grid(float(os.environ.get("FRICTIONDISK_STUDY_DEFAULT_STEP", "0.03")))
+PRESCAN = default_grid(float(os.environ.get(DEFAULT_STEP_ENV, "0.03")))
 REFERENCE_PRESCAN = tuple(round(0.02 + 0.01 * k, 4) for k in range(79))  # 0.02 ... 0.80
 REFERENCE_HORIZON = 8.0
 REFERENCE_RTOL = 0.01
@@ -578,7 +579,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
     if args.default_step is not None:
-        os.environ["FRICTIONDISK_STUDY_DEFAULT_STEP"] = repr(args.default_step)
+        os.environ[DEFAULT_STEP_ENV] = repr(args.default_step)
         global PRESCAN
         PRESCAN = default_grid(args.default_step)
     t0 = time.perf_counter()
