@@ -160,6 +160,14 @@ def test_a_slip_that_falls_to_nothing_is_shakedown(law):
     # the same fall towards a slip that stays (a cycle) is no shakedown
     code, _ = evidence(along(np.full(len(k) - 1, 1e-4)), slip + 1e-4, stick)
     assert code != ms.EV_SHAKEDOWN
+    # nor towards one that stays below s0 (the demo disk at x_ms 0.12, mu = 0.142785:
+    # 1.4e-9 m a revolution levelling off at 8e-10 m, s0 = 6e-9 m, then rising again):
+    # the limit must be nothing beside the slip still left, not merely <= s0
+    k = np.arange(1, 81)  # on until the slip is within 1 % of its floor
+    slip = (1e-3 * 0.8**k if law == "geometric" else 1e-3 * k**-6.0) + 0.3 * S0
+    stick = 10.0 - 5.0 * slip / slip[0]
+    code, _ = evidence(along(np.full(len(k) - 1, 1e-4)), slip, stick)
+    assert code != ms.EV_SHAKEDOWN
 
 
 # A Stribeck pin of the well-posedness study (seed 2, scene 18). At mu = 0.0885 its
@@ -280,3 +288,27 @@ def test_a_contraction_towards_an_unstable_cycle_is_extended_until_it_sticks():
     res = simulate(scene_from_dict(SADDLE_PIN))
     assert res.outcome == "stick", res.reason
     assert res.t_end > 90.0
+
+
+def test_a_creep_below_the_repeat_tolerance_is_no_cycle_until_its_slip_is_steady():
+    """Seed 0 scene 0 of the well-posedness study at mu = 0.085, watched: a pin creeping
+    onto its sticking disc moves its section by its slip, 1.5e-8 m a revolution (far
+    within cycle_tol), switching irregularly between two levels while both fall 0.13 % a
+    revolution; the old rule read it as a cycle repeating within 2e-8 m. A walk whose slip
+    is as small but steady (a pin at eps = 1e-3 m/s below its Coulomb bound) repeats."""
+    rng = np.random.default_rng(1)
+    n = 128
+    low = rng.random(n) < 0.4
+    slip = 1.45e-8 * 0.9987 ** np.arange(n) * np.where(low, 0.885, 1.0)
+    stick = np.where(low, 5.004, 4.996)
+    code, _ = evidence(along(slip[:-1]), slip, stick)
+    assert code != ms.EV_REPEAT
+    walk = 3e-7 * np.where(np.arange(n) % 2 == 0, 1.0, 1.006)
+    code, _ = evidence(along(1.1 * walk[:-1]), walk, np.full(n, 5.59))
+    assert code == ms.EV_REPEAT
+    # summed per period: a period-2 creep alternating long and short sticking phases
+    # (seed 2 scene 24, mu = 0.105: steps of 1.2e-8 and 2.2e-13 m) is no cycle either
+    pair = np.where(np.arange(n) % 2 == 0, 1.2e-8, 2.2e-13) * 0.9985 ** np.arange(n)
+    points = np.array([[0.03, 0.02], [0.05, -0.01]] * (n // 2)) + along(pair[:-1]) - 0.05
+    code, _ = evidence(points, pair, np.where(np.arange(n) % 2 == 0, 6.1, 0.02))
+    assert code != ms.EV_REPEAT

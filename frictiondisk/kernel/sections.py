@@ -15,7 +15,8 @@ over windows are never evidence, because a transient's scatter hides its trend.
 
 * EV_REPEAT: the last REPEAT_COUNT distances |p_n - p_{n-L}| lie within the integrator's
   own tolerance accumulated over a step (L = 1 .. MAX_LAG: a cycle that sticks L times
-  per period): the motion has reached its cycle.
+  per period): the motion has reached its cycle. Where it slips less than that tolerance
+  a period, its slip per period must also be shown steady (kernel/steady_slip.py).
 * EV_CONTRACT: the distances |p_n - p_{n-1}| shrink by a ratio q whose own changes shrink
   (or are tiny), and the ratio extrapolated from them stays <= Q_MAX: a geometric
   approach to a cycle, whose slip per step extrapolates to a limit above the slip
@@ -66,6 +67,7 @@ from .monitor_slots import (
     RV_X,
     RV_Y,
 )
+from .steady_slip import period_slip, steady
 
 SEQ_MAX = 512  # newest section points read (the revolution ring's length)
 N_COORD = 5  # coordinates of a section point [m]: columns 0 .. 4 of a sequence
@@ -90,6 +92,10 @@ SHAKEDOWN_STEPS = 8  # steps needed before a slip limit is extrapolated
 # first fall that looks geometric can level off at a cycle (the default pin at x_ms 0.05,
 # mu 0.0501: 3.1e-2 -> 5.3e-3 m a revolution in 10 revolutions, then a stick-slip cycle)
 SHAKEDOWN_DEPTH = 1e-2
+# ... and to a limit that is nothing beside the slip still left: a fall that levels off at
+# a slip below s0 is a cycle there, not sticking (the demo disk at x_ms 0.12, mu = 0.142785:
+# 1.4e-9 m a revolution falling to a limit of 8.2e-10 m, then rising again, at 1 500 s)
+SHAKEDOWN_ZERO = 1e-2
 # Smallest spacing (steps) of an equally spaced Aitken triple: at spacings of 2 the last
 # fast transient of an approach is mistaken for the limit (kernel/verdict.py).
 MIN_SPACING = 4
@@ -209,7 +215,14 @@ def _repeats(mf, mi, pts, slip, stick, n):
     """EV_REPEAT: the newest REPEAT_COUNT distances at some lag L <= MAX_LAG within
     tolerance, and, where they still shrink step after step, the travel still to come
     (geometric tail) within tolerance too: a slow algebraic approach moves little per
-    step but far in all. Never while the motion creeps towards sticking (_approaching)."""
+    step but far in all. Never while the motion creeps towards sticking (_approaching),
+    nor at a lag whose slip per period is within the tolerance unless that slip is shown
+    steady (steady_slip.steady): such a motion lies within tolerance of itself whether it
+    cycles or creeps (well-posedness seed 2 scene 24, mu = 0.105: a pin creeping onto its
+    sticking disc, its slip per revolution falling from 1.4e-5 to 1.8e-8 m over 2 400 s,
+    was read as a cycle within cycle_tol 1e-6 m; watched on, it sticks at 4 771 s). A
+    steady slip below the tolerance repeats: a walk at 3e-7 m a revolution (a pin at eps =
+    1e-3 m/s, below its Coulomb bound) is no approach to sticking."""
     if _approaching(slip, stick, n, mf[F_ATOL]):
         return False
     for lag in range(1, MAX_LAG + 1):
@@ -221,6 +234,8 @@ def _repeats(mf, mi, pts, slip, stick, n):
         newest = _distance(pts, n - 1, n - 1 - lag)
         d_prev = 0.0
         tol = _repeat_tolerance(mf, pts, n - 1)
+        if period_slip(slip, n, lag, 0) <= tol and not steady(slip, n, lag):
+            continue  # it slips less than tol a period: within tol whether it cycles or creeps
         for back in range(REPEAT_COUNT + 1):
             i = n - 1 - back
             d = _distance(pts, i, i - lag)
@@ -452,7 +467,7 @@ def section_evidence(mf, mi, seq, n, s0):
     slip = seq[:, SEQ_SLIP]
     stick = seq[:, SEQ_STICK]
     limit = shakedown_limit(slip, stick, n)
-    if limit <= s0:
+    if limit <= s0 and limit <= SHAKEDOWN_ZERO * slip[n - 1]:
         mf[F_EV_LIMIT] = limit
         return EV_SHAKEDOWN
     if _repeats(mf, mi, pts, slip, stick, n):
