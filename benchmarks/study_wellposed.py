@@ -4,7 +4,7 @@ reference and settled run by run?
 Draws seeded random scenes (pin and disk; random x_ms, x0, m_s, omega_m, J_s, phidot0,
 beta_b; a Stribeck curve on half of them) and locates every jump of each three times:
 
-* `default`: the campaign defaults (prescan 0.02 ... 0.80 step 0.03, adaptive, the numerics
+* `default`: the campaign defaults (prescan 0.02 ... 0.80 step 0.01, adaptive, the numerics
   a tol of 1e-4 chooses, certification on);
 * `uncertified`: the same with certification off (what the extra wall time is against);
 * `reference`: a dense prescan (step 0.01, every value run), horizon x 8, rtol and atol
@@ -54,17 +54,20 @@ from pathlib import Path
 import numpy as np
 
 TOL = 1.0e-4
-# the default's prescan step: 0.03 unless --default-step, which sets it here so that the
-# spawned workers, which import this module afresh, see it too
+# the default's prescan step: 0.01 (the issue's own campaign, 58 values over 0.03 ... 0.6,
+# and the shipped campaigns) unless --default-step, which sets it here so that the spawned
+# workers, which import this module afresh, see it too
+DEFAULT_STEP = 0.01
 DEFAULT_STEP_ENV = "FRICTIONDISK_STUDY_DEFAULT_STEP"
 
 
 def default_grid(step: float) -> tuple[float, ...]:
     """The default's prescan: mu = 0.02 ... 0.80 in steps of `step`."""
-    return tuple(round(0.02 + step * k, 4) for k in range(int(round(0.78 / step)) + 1))
+    n_values = math.floor(0.78 / step + 1e-9) + 1  # the last value <= 0.80
+    return tuple(round(0.02 + step * k, 5) for k in range(n_values))
 
 
-PRESCAN = default_grid(float(os.environ.get(DEFAULT_STEP_ENV, "0.03")))
+PRESCAN = default_grid(float(os.environ.get(DEFAULT_STEP_ENV, repr(DEFAULT_STEP))))
 REFERENCE_PRESCAN = tuple(round(0.02 + 0.01 * k, 4) for k in range(79))  # 0.02 ... 0.80
 REFERENCE_HORIZON = 8.0
 REFERENCE_RTOL = 0.01
@@ -390,6 +393,7 @@ def run_study(
         if only == "all" or (only == "braked") == _braked(draw_scene(seed, index))
     ]
     code = _code_hash() + ("" if reference else "-cost") + ("-observe" if observe else "")
+    code += f"-grid-{PRESCAN[0]}-{PRESCAN[1] - PRESCAN[0]:.4g}-{len(PRESCAN)}"
     code += f"-reference-of-{ref_code}" if ref_code else ""
     done: dict[tuple[int, int], dict] = {}
     if cache is not None and cache.is_file():
@@ -550,7 +554,7 @@ def main(argv: list[str] | None = None) -> int:
         "--default-step",
         type=float,
         default=None,
-        help="prescan step of the default and uncertified settings (default 0.03)",
+        help=f"prescan step of the default and uncertified settings (default {DEFAULT_STEP})",
     )
     parser.add_argument("--cache", type=Path, default=None, help="JSON lines of finished rows")
     parser.add_argument(
