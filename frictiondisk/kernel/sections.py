@@ -25,7 +25,8 @@ over windows are never evidence, because a transient's scatter hides its trend.
 * EV_DEPART: for DEPART_STEPS steps the slip per step grows, the sticking time shrinks and
   the distances do not shrink: the motion moves away from sticking, ever faster.
 * EV_SHAKEDOWN (stick): the slip per step falls at every step over the newer three
-  quarters of the sequence, and extrapolates to a limit <= the slip tolerance: Aitken's
+  quarters of the sequence, and extrapolates to a limit <= the slip tolerance and at most
+  SHAKEDOWN_ZERO of the slip still left (nothing; a floor below s0 is a cycle): Aitken's
   limit over equally spaced steps (geometric decay), or over steps n/2, n/sqrt 2, n (a power
   law, the slow creep onto a grazing sticking circle). Both are exact for their model.
 """
