@@ -68,7 +68,7 @@ def default_grid(step: float) -> tuple[float, ...]:
 
 
 PRESCAN = default_grid(float(os.environ.get(DEFAULT_STEP_ENV, repr(DEFAULT_STEP))))
-REFERENCE_PRESCAN = tuple(round(0.02 + 0.01 * k, 4) for k in range(79))  # 0.02 ... 0.80
+REFERENCE_PRESCAN = default_grid(0.01)  # 0.02 ... 0.80, every value run
 REFERENCE_HORIZON = 8.0
 REFERENCE_RTOL = 0.01
 SETTLE_HORIZON = 1500.0  # [s] t_decide of a settling run

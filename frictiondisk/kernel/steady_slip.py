@@ -8,6 +8,7 @@ sticking, so its section repeating says nothing; only a slip per period shown st
 import math
 
 from .jit import kernel_jit
+from .line_fit import slope_and_error
 
 # A slip per period within the repeat tolerance must be shown steady for a repeat: over the
 # newest FALL_WINDOW steps (at least FALL_MIN periods) it loses at most STEADY_FALL, at
@@ -53,9 +54,5 @@ def steady(slip, n, lag):
         sum_kk += x * x
         sum_ky += x * y
         sum_yy += y * y
-    sxx = sum_kk - sum_k * sum_k / count
-    sxy = sum_ky - sum_k * sum_y / count
-    syy = sum_yy - sum_y * sum_y / count
-    slope = sxy / sxx
-    se = math.sqrt(max(0.0, syy - slope * sxy) / (count - 2) / sxx)
+    slope, se = slope_and_error(count, sum_k, sum_y, sum_kk, sum_ky, sum_yy)
     return (slope - FALL_Z * se) * (count - 1) >= -STEADY_FALL

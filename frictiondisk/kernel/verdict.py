@@ -14,6 +14,7 @@ import math
 
 from . import sections as sec
 from .jit import kernel_jit
+from .line_fit import slope_and_error
 from .model import P_BETAB, P_BETAI, P_CS, P_EPS, P_FNI, P_MU, P_OMEGA, P_XMS
 from .monitor_slots import (
     EV_CANNOT,
@@ -115,12 +116,7 @@ def _slip_slope(mi, rv, count):
         sum_kk += k * k
         sum_ky += k * y
         sum_yy += y * y
-    sxx = sum_kk - sum_k * sum_k / count
-    sxy = sum_ky - sum_k * sum_y / count
-    syy = sum_yy - sum_y * sum_y / count
-    slope = sxy / sxx
-    rss = max(0.0, syy - slope * sxy)
-    return slope, math.sqrt(rss / (count - 2) / sxx)
+    return slope_and_error(count, sum_k, sum_y, sum_kk, sum_ky, sum_yy)
 
 
 @kernel_jit
