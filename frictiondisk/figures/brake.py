@@ -5,8 +5,10 @@ Melan shakedown and collapse bounds at each run's orbit radius.
 
 Each DIR holds a finished find_jump campaign along params.beta_b (results.nc). The bounds
 come from frictiondisk.outcome.admissibility at the radius of the sticking run at mu_hi (`size_hi`,
-else its first sticking radius `R1_hi`), for the campaign's ring of contacts; the
-classifier never reads them, so their agreement with mu* is a check, not a construction.
+else its first sticking radius `R1_hi`), for the campaign's ring of contacts. The collapse
+bound is never read by the classifier; the shakedown bound decides a braked disk on its
+small orbit (frictiondisk/outcome/shakedown_verdict.py, at the disk's own layout angle), so
+there its agreement with mu* is by construction and the watching runs are the check.
 """
 
 from __future__ import annotations

@@ -12,10 +12,12 @@ import math
 import numpy as np
 
 from frictiondisk.kernel import monitor as mon
+from frictiondisk.kernel import status as st
 from frictiondisk.kernel.record import KernelRun
 from frictiondisk.outcome.classify import Evidence, Revolutions, RunFacts, classify, revolution
 from frictiondisk.outcome.reserve import friction_reserve
 from frictiondisk.outcome.result import SimulationResult, Trajectory
+from frictiondisk.outcome.shakedown_verdict import decide as bound_decides
 
 
 def initial_state(config) -> np.ndarray:
@@ -68,6 +70,9 @@ def build_result(
         evidence=_evidence(mf, mi) if ring else None,
     )
     outcome, reason = classify(facts)
+    rows = revolution_log(run.rv, mi) if ring else None
+    if run.status in (st.HORIZON_REACHED, st.COROTATING, st.CREEPING, st.SHAKEN_DOWN):
+        outcome, reason = bound_decides(config, outcome, reason, run.y, rows, t_end)
     revs = facts.revs
     if outcome == "stick" and run.steps == 0:
         # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
@@ -101,7 +106,7 @@ def build_result(
         wall_s=wall,
         method=num.method,
         trajectory=trajectory,
-        revolutions=revolution_log(run.rv, mi) if ring else None,
+        revolutions=rows,
         sections=section_log(run.ring_all, mi),
         slip_total=run.slip_total,
         reserve=friction_reserve(config, R1),
