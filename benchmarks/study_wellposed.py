@@ -74,6 +74,8 @@ REFERENCE_RTOL = 0.01
 SETTLE_HORIZON = 1500.0  # [s] t_decide of a settling run
 SETTLE_BUDGET = 8.0  # its horizon_budget: up to 12 000 s
 SETTLE_RTOL = 0.01  # rtol factor of a settling run
+SETTLE_EPS = 0.01  # eps factor of a settling run: slip eps T a revolution counts as none,
+# and a braked disk's answer moves with eps below its Melan bound (docs/model.md section 6)
 SETTLE_MAX = 6  # settling runs per disagreement at most (the nearest to the dispute)
 SETTINGS = ("default", "uncertified", "reference")
 PERSIST_STEPS = (2, 5, 10, 20)  # [tol] above the reference's mu_hi, watched for a missed jump
@@ -234,6 +236,7 @@ def settle(scene: dict, mu: float) -> dict:
             "numerics.horizon_budget": SETTLE_BUDGET,
             "numerics.rtol": num.rtol * SETTLE_RTOL,
             "numerics.atol": num.atol * SETTLE_RTOL,
+            "contact.eps": config.contact.eps * SETTLE_EPS,
             "numerics.evidence": "observe",
         }
     )
