@@ -20,6 +20,14 @@ FALL_Z = 2.0
 
 
 @kernel_jit
+def shown_steady(slope, se, count):
+    """Whether a least-squares trend of ln(slip) over `count` points, `slope` per point with
+    standard error `se`, is shown not to fall: less FALL_Z standard errors, it loses at
+    most STEADY_FALL over the span."""
+    return (slope - FALL_Z * se) * (count - 1) >= -STEADY_FALL
+
+
+@kernel_jit
 def period_slip(slip, n, lag, back):
     """Slip over period `back` (0 = newest) of `lag` steps of the sequence `slip` [m]."""
     total = 0.0
@@ -55,4 +63,4 @@ def steady(slip, n, lag):
         sum_ky += x * y
         sum_yy += y * y
     slope, se = slope_and_error(count, sum_k, sum_y, sum_kk, sum_ky, sum_yy)
-    return (slope - FALL_Z * se) * (count - 1) >= -STEADY_FALL
+    return shown_steady(slope, se, count)

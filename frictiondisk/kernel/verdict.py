@@ -52,7 +52,7 @@ from .monitor_slots import (
     VERDICT_NONE,
     VERDICT_STICK,
 )
-from .steady_slip import FALL_Z, STEADY_FALL
+from .steady_slip import shown_steady
 
 # Revolutions behind a verdict on the slip trend. Five give four decay ratios, enough for
 # a standard error; fewer make one grazing contact's lumpy slip look like a trend.
@@ -239,7 +239,7 @@ def corotation_verdict(mf, mi, rv):
 def _shown_not_falling(mi, rv, n_orbit):
     """Whether the slip per revolution over the newer half of the orbit history (at least
     VERDICT_REVS revolutions) is shown not to fall: the least-squares slope of its
-    logarithm, less FALL_Z standard errors, loses at most STEADY_FALL over that span.
+    logarithm is shown steady (steady_slip.shown_steady, the test of a repeat's slip).
     Comparing the newest slip with one a quarter of the history back called a disk whose
     slip fell by 9 % a revolution `creep` (well-posedness seed 1 scene 17, mu = 0.2945,
     at 59 s: its slip falls geometrically from 7e-9 to 6.5e-10 m by 600 s and it sticks):
@@ -248,7 +248,7 @@ def _shown_not_falling(mi, rv, n_orbit):
     slope, se = _slip_slope(mi, rv, count)
     if math.isnan(slope):
         return False
-    return (slope - FALL_Z * se) * (count - 1) >= -STEADY_FALL
+    return shown_steady(slope, se, count)
 
 
 @kernel_jit
