@@ -300,10 +300,11 @@ def verdict(row: dict) -> str:
     return "unsettled" if unsettled else "both"
 
 
-def study_scene(args: tuple[int, int, bool, bool, dict | None]) -> dict:
+def study_scene(args: tuple[int, int, bool, bool, dict | None, dict]) -> dict:
     """One row; `known_reference`: the reference of an earlier study of this scene (its
-    JSON), taken instead of located again."""
-    seed, index, reference, observe, known_reference = args
+    JSON), taken instead of located again; `known_settled`: mu -> a settling run of an
+    earlier study at this scene and mu, taken instead of run again (marked `reused`)."""
+    seed, index, reference, observe, known_reference, known_settled = args
     scene = draw_scene(seed, index)
     row = {"seed": seed, "index": index, "scene": scene}
     for setting in SETTINGS if reference else SETTINGS[:2]:
@@ -313,12 +314,34 @@ def study_scene(args: tuple[int, int, bool, bool, dict | None]) -> dict:
             row[setting] = locate(scene, setting, observe)
     row["settled"] = []
     row["persisted"] = []
+
+    def settled_at(mu: float) -> dict:
+        if mu in known_settled:
+            return {**known_settled[mu], "reused": True}
+        return settle(scene, mu)
+
     if reference and disagrees(row["default"], row["reference"]):
-        row["settled"] = [settle(scene, mu) for mu in disputed(row["default"], row["reference"])]
+        row["settled"] = [settled_at(mu) for mu in disputed(row["default"], row["reference"])]
         if lower_reference(row):
             above = row["reference"].mu_hi
-            row["persisted"] = [settle(scene, above + k * TOL) for k in PERSIST_STEPS]
+            row["persisted"] = [settled_at(above + k * TOL) for k in PERSIST_STEPS]
     return row
+
+
+def _known_settled(paths: list[Path]) -> dict[tuple[int, int], dict[float, dict]]:
+    """(seed, index) -> mu -> every settling run in the rows of `paths` (JSON lines). A
+    settling run watches (numerics.evidence observe): it reads neither the default's rules
+    nor the bound, so a change to those leaves it as it was. A change to the settling
+    numerics (SETTLE_*) or to the kernel's integration makes these stale: then run afresh."""
+    known: dict[tuple[int, int], dict[float, dict]] = {}
+    for path in paths:
+        for line in path.read_text().splitlines():
+            entry = json.loads(line)
+            runs = entry["row"].get("settled", []) + entry["row"].get("persisted", [])
+            scene = known.setdefault((entry["seed"], entry["index"]), {})
+            for run in runs:
+                scene[float(run["mu"])] = {k: v for k, v in run.items() if k != "reused"}
+    return known
 
 
 CODE = ("kernel", "outcome", "simulation", "search", "model")  # what decides a row
@@ -380,6 +403,7 @@ def run_study(
     observe: bool = False,
     reference_from: Path | None = None,
     only: str = "all",
+    settled_from: list[Path] | None = None,
 ) -> list[dict]:
     """Every scene of every seed; rows already in `cache` (same code) are not run again.
     reference False: the default and uncertified settings only (the cost of certification).
@@ -387,10 +411,13 @@ def run_study(
     each scene's reference from the rows of an earlier study (JSON lines, any code) instead
     of locating it again (the reference dominates the study's cost); the disagreements are
     settled anew. only: "braked", the disks with a brake (beta_b > 0), the class that the
-    co-rotation verdict decides; "unbraked", the other scenes; "all"."""
+    co-rotation verdict decides; "unbraked", the other scenes; "all". settled_from: the
+    rows of earlier studies whose settling runs are taken where the same scene and mu are
+    disputed again (`_known_settled`)."""
     known, ref_code = _known_references(reference_from) if reference_from else ({}, "")
+    settled = _known_settled(settled_from or [])
     jobs = [
-        (seed, index, reference, observe, known.get((seed, index)))
+        (seed, index, reference, observe, known.get((seed, index)), settled.get((seed, index), {}))
         for seed in seeds
         for index in range(scenes)
         if only == "all" or (only == "braked") == _braked(draw_scene(seed, index))
@@ -584,6 +611,14 @@ def main(argv: list[str] | None = None) -> int:
         action="store_true",
         help="only the scenes without a brake (pins, unbraked disks)",
     )
+    parser.add_argument(
+        "--settled-from",
+        type=Path,
+        action="append",
+        default=[],
+        help="take settling runs at a disputed scene and mu from an earlier study's rows "
+        "(JSON lines; repeatable): they watch, so a change to the rules leaves them as they were",
+    )
     args = parser.parse_args(argv)
     if args.default_step is not None:
         os.environ[DEFAULT_STEP_ENV] = repr(args.default_step)
@@ -599,6 +634,7 @@ def main(argv: list[str] | None = None) -> int:
         args.observe,
         args.reference_from,
         "braked" if args.braked_only else "unbraked" if args.unbraked_only else "all",
+        args.settled_from,
     )
     print("\n".join(report(rows, time.perf_counter() - t0)))
     return 1 if silent_errors(rows) else 0

@@ -86,6 +86,56 @@ def test_undetermined_prescan_values_are_retried_then_skipped_and_reported():
     assert res.certification == "uncertain"
 
 
+def drive_one_by_one(search, outcome_of):
+    """As `drive`, one pending request at a time (a retry can withdraw the others)."""
+    while not search.done:
+        request = next(iter(search.pending()))
+        search.feed(request, {"outcome": outcome_of(request), "reason": "test"})
+
+
+def _bands(*bands):
+    """Outcome by mu: bands of (lo, outcome), each up to the next lo."""
+
+    def outcome(r):
+        found = "stick_slip"
+        for lo, what in bands:
+            if r.mu >= lo - 1e-12:
+                found = what
+        return found
+
+    return outcome
+
+
+def test_a_change_that_fails_above_the_headline_leaves_the_headline_standing():
+    """The lowest rising jump is bisected and certified; the falling change above it lies
+    in a band undecided over 300 tol and fails. It cannot be a lower rising jump, so the
+    point is converged on its headline and tells the failure in its reason."""
+    mus = tuple(np.round(np.linspace(0.10, 0.30, 21), 10))
+    outcome = _bands((0.1523, "stick"), (0.22, "undetermined"), (0.25, "stick_slip"))
+    search = JumpSearch(mus, 1e-4, 1, certify=Certify(levels=1))
+    drive_one_by_one(search, outcome)
+    res = search.result()
+    assert res.status == "converged", res.reason
+    assert res.mu_lo < 0.1523 <= res.mu_hi
+    assert "above mu*, a change in [0.21, 0.25] failed" in res.reason
+    assert res.certification == "certified"
+    assert any(j.status != "converged" for j in res.jumps)
+
+
+def test_a_change_that_fails_below_the_headline_fails_the_point():
+    """The same undecided band below the only rising jump that converged: it may hide a
+    lower one, so there is no headline to certify."""
+    mus = tuple(np.round(np.linspace(0.10, 0.30, 21), 10))
+    outcome = _bands(
+        (0.12, "undetermined"), (0.16, "stick"), (0.1823, "stick_slip"), (0.2541, "stick")
+    )
+    search = JumpSearch(mus, 1e-4, 1, certify=Certify(levels=1))
+    drive_one_by_one(search, outcome)
+    res = search.result()
+    assert res.status == "failed", res.reason
+    assert res.certification == "failed"
+
+
 def test_no_jump_fails_with_the_reason():
     search = JumpSearch((0.1, 0.2, 0.3), 1e-3, 0)
     drive(search, lambda r: "stick")

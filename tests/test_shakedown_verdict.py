@@ -9,9 +9,13 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
+from frictiondisk.kernel import monitor_slots as ms
+from frictiondisk.kernel import shakedown_bound as sdb
 from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.outcome import admissibility as ad
 from frictiondisk.outcome import shakedown_verdict as sv
 from frictiondisk.simulation.simulate import simulate
 
@@ -63,19 +67,51 @@ def bound() -> float:
     return lo - r_lo * (hi - lo) / (r_hi - r_lo)
 
 
+def _still_to_come(history) -> float:
+    return sdb.still_to_come(np.asarray(history, dtype=float), len(history))
+
+
 def test_the_reserve_history_needs_a_monotone_geometric_approach():
     """How far the reserve may still move towards zero: nothing where it moves away, the
     geometric sum of its steps where they shrink, and no answer otherwise."""
     away = [1.0e-3, 0.9e-3, 0.8e-3, 0.7e-3]
-    assert sv._still_to_come(away) == 0.0
+    assert _still_to_come(away) == 0.0
     shrinking = [100.0, 102.0, 106.0, 114.0]  # steps 2, 4, 8: ratio 1/2, 2 still to come
-    assert sv._still_to_come(shrinking) == pytest.approx(2.0)
+    assert _still_to_come(shrinking) == pytest.approx(2.0)
     steady_approach = [100.0, 102.0, 104.0, 106.0]  # ratio 1: it may reach zero
-    assert sv._still_to_come(steady_approach) == math.inf
+    assert _still_to_come(steady_approach) == math.inf
     crossing = [1e-4, -1e-4, -3e-4, -5e-4]
-    assert sv._still_to_come(crossing) == math.inf
+    assert _still_to_come(crossing) == math.inf
     short = [100.0, 102.0]  # one step towards zero: no ratio to extrapolate with
-    assert sv._still_to_come(short) == math.inf
+    assert _still_to_come(short) == math.inf
+
+
+def test_the_kernel_stops_once_the_bound_decides_and_reads_admissibilitys_reserve(bound):
+    """Three tol above the bound the kernel stops at the revolution end where three blocks
+    of 5 revolutions on the small orbit back Melan's verdict, long before its horizon
+    budget; the reserve it wrote there is admissibility.py's shakedown demand at that state
+    (layout angle from C = A r and the spin angle, assembled independently)."""
+    config = _scene(bound + 3 * TOL)
+    res = simulate(config, record=True)  # every step: the last is the stop
+    assert res.outcome == "stick" and "Melan" in res.reason, res.reason
+    assert "the rules said" not in res.reason
+    rows = res.revolutions
+    assert res.t_end == pytest.approx(rows[-1, ms.RV_T], abs=1e-9)
+    budget = config.numerics.t_decide * config.numerics.horizon_budget
+    assert res.t_end < budget / 2
+    on_orbit = rows[-sv.BLOCKS * sv.ON_ORBIT_REVS :, ms.RV_ANY_STUCK]
+    assert np.all(on_orbit == 1.0)
+    traj = res.trajectory
+    assert traj.t[-1] == pytest.approx(res.t_end, abs=1e-9)
+    x, y, phi = traj.x[-1], traj.y[-1], traj.phi[-1]
+    assert math.hypot(x - rows[-1, ms.RV_X], y - rows[-1, ms.RV_Y]) < 1e-12
+    par = config.params
+    k = par.c_s - par.m_s * par.omega_m**2
+    d = par.beta_s * par.omega_m
+    angle = math.atan2(k * y + d * x, k * x - d * y) - phi
+    case = ad.LoadCase.of(par, math.hypot(x, y), par.beta_b)
+    demand = ad.shakedown_demand(case, config.contact_positions(), angle)
+    assert rows[-1, ms.RV_RESERVE] == pytest.approx(par.mu - demand / par.F_n, abs=1e-6 * TOL)
 
 
 def test_the_bound_decides_both_sides_where_the_rules_cannot(bound):
@@ -117,3 +153,87 @@ def _reserve_of(res) -> float:
     key = "friction reserve mu - shakedown demand / F_n = "
     assert key in text, text
     return float(text.split(key)[1].split(" ")[0])
+
+
+@pytest.mark.parametrize(
+    "positions",
+    [None, [[0.05, 0.0], [-0.02, 0.04], [-0.03, -0.045]]],
+    ids=["ring", "three points off centre"],
+)
+def test_the_floor_is_the_least_shakedown_demand_of_any_circle(positions):
+    """floor_reserve against admissibility.py's shakedown demand scanned over circles and
+    layout angles: the floor is never above a scanned demand, and the scan comes within its
+    resolution of it (at R = 0 for the centrally symmetric ring)."""
+    data = {**BRAKED, "params": {**BRAKED["params"], "mu": 0.3}}
+    if positions is not None:
+        data["contact"] = {"layout": "points", "positions": positions}
+    config = scene_from_dict(data)
+    from frictiondisk.simulation.simulate import pack_parameters
+
+    p, pts = pack_parameters(config)
+    floor_demand = (config.params.mu - sdb.floor_reserve(p, pts)) * config.params.F_n
+    par = config.params
+    g = ad.g_factor(par.omega_m, par.c_s, par.m_s, par.beta_s)
+    # the resultant of equal tangential forces carrying T: where the least demand lies
+    arms = np.asarray(config.contact_positions(), dtype=float)
+    tangents = np.column_stack((-arms[:, 1], arms[:, 0])) / np.hypot(*arms.T)[:, None]
+    best = par.beta_b * par.omega_m / np.hypot(*arms.T).sum() * tangents.sum(axis=0)
+    lowest, nearest = math.inf, math.inf
+    for radius in np.linspace(0.0, 0.2, 201):
+        case = ad.LoadCase.of(par, radius, par.beta_b)
+        for angle in np.linspace(0.0, 2 * math.pi, 73):
+            demand = ad.shakedown_demand(case, config.contact_positions(), angle)
+            assert demand >= floor_demand * (1 - 1e-9)
+            lowest = min(lowest, demand)
+            c_vec = g * radius * np.array([math.cos(angle), math.sin(angle)])
+            nearest = min(nearest, float(np.hypot(*(c_vec - best))))
+    # Lambda(C, T) moves by at most |dC| (spread dC over the N points): the scan comes
+    # within its distance from the best resultant
+    assert lowest - floor_demand <= nearest + 1e-9 * floor_demand
+
+
+def test_below_the_floor_the_disk_is_decided_not_to_stick_at_once():
+    """Study scene 8/13 (floor 0.13338) at mu = 0.12: the rules followed its centre drifting
+    inwards 3e-5 m a revolution, undecided for 960 s; no circle can hold it, so it is not
+    stick at its t_decide, and a stick of the rules there becomes Koiter's creep."""
+    scene = {
+        "scene": "disk",
+        "params": {
+            "x_ms": 0.0766148418966727,
+            "x0": 0.027719596859956258,
+            "m_s": 0.8119763169685195,
+            "omega_m": 0.6808955167804953,
+            "J_s": 0.14929698284274945,
+            "phidot0": 0.6808955167804953,
+            "beta_b": 0.004168245707039673,
+            "mu": 0.12,
+        },
+        "numerics": {"rtol": 1e-6, "atol": 1e-12, "t_decide": 30.0},
+    }
+    config = scene_from_dict(scene)
+    res = simulate(config)
+    assert res.outcome in ("stick_slip", "slide"), res.reason
+    assert "least shakedown demand" in res.reason and res.t_end == pytest.approx(30.0)
+    observed = simulate(config.with_overrides({"numerics.evidence": "observe"}))
+    assert observed.outcome == "undetermined", observed.reason  # the rules alone cannot
+    outcome, reason = sv.decide(config, "stick", "the rules' stick", None, -1e-2)
+    assert outcome == "creep" and "Koiter" in reason
+
+
+def test_a_stick_of_the_rules_waits_while_its_own_circle_cannot_hold_it():
+    """Fig 11 from a co-rotating start at beta_b = 0.0275 and mu = 0.705794, 15 tol below
+    the Melan bound of its own circle: its slip per revolution falls below eps T within
+    80 s, which the rules alone read as `stick`. A disk stuck for good is shaken down on
+    its own circle, so that stick waits while the circle cannot hold it, and 15
+    revolutions on the small orbit later Koiter decides: it ratchets."""
+    scene = {
+        "scene": "disk",
+        "params": {"x_ms": 0.1, "phidot0": 1.1, "beta_b": 0.0275, "mu": 0.705794},
+        "numerics": {"rtol": 1e-6, "atol": 1e-12, "t_decide": 30.0},
+    }
+    config = scene_from_dict(scene)
+    res = simulate(config)
+    assert res.outcome == "creep" and "Koiter" in res.reason, res.reason
+    assert res.revolutions[-1, ms.RV_RESERVE] < -10 * sv.margin(config)
+    rules = simulate(config.with_overrides({"numerics.evidence": "observe"}))
+    assert rules.outcome == "stick" and rules.t_end < res.t_end, rules.reason

@@ -23,6 +23,7 @@ import numpy as np
 from . import energy as en
 from . import monitor as mon
 from . import sections as sec
+from . import shakedown_bound as sdb
 from . import status as st
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, brent_root, find_graze
 from .jit import kernel_jit
@@ -30,6 +31,7 @@ from .linalg import stage_workspace
 from .model import (
     P_EPS,
     P_OMEGA,
+    P_STR_R,
     SLIDE,
     STICK,
     n_coords,
@@ -38,6 +40,7 @@ from .model import (
     switch_rate,
     switch_value,
 )
+from .recording import record_dense, record_state
 from .rodas import (
     N_WORK_ROWS,
     W_K6,
@@ -60,7 +63,8 @@ O_RECORD = 6
 O_STICK_RULE = 7  # RULE_CONTACTS or RULE_COROTATION
 O_DENSE_LU = 8  # 1 = dense LU of the stage matrix (O(N^3), for comparison), 0 = arrow (O(N))
 O_OBSERVE = 9  # 1 = verdicts only on what the run shows (numerics.evidence observe)
-N_IOPT = 10
+O_BOUND = 10  # 1 = the shakedown bound reads this run (kernel/shakedown_bound.py)
+N_IOPT = 11
 
 RULE_CONTACTS = 0  # stick = every contact stuck for one revolution
 RULE_COROTATION = 1  # stick = co-rotation without net slip (monitor.corotation_verdict)
@@ -82,8 +86,7 @@ C_STEPS = 0
 C_REJECTED = 1
 C_EVENTS = 2
 C_REFUSED = 3
-C_RECORDED = 4
-C_TRUNCATED = 5
+# 4, 5: C_RECORDED and C_TRUNCATED (kernel/recording.py)
 C_EXTENDED = 6  # 1 while the horizon is extended to finish a sticking phase; 2 once it broke
 C_SETTLE_REVS = 7  # revolutions the horizon was extended by for a run still settling
 C_BUDGET_SPENT = 8  # 1 if a run still settling hit the horizon budget
@@ -92,31 +95,6 @@ N_OUT_I = 9
 SAME_TIME = 1e-12  # [s] events closer than this count as one instant (Zeno guard)
 SIMULTANEOUS = 1e-9  # [s] crossings this close are switched together
 T_TOL_ABS = 1e-11  # [s] time tolerance of the event root finder
-
-
-@kernel_jit
-def _record(rec_t, rec_y, rec_m, out_i, t, y, modes):
-    k = out_i[C_RECORDED]
-    if k >= rec_t.shape[0]:
-        out_i[C_TRUNCATED] = 1
-        return
-    rec_t[k] = t
-    rec_y[k, :] = y
-    rec_m[k, :] = modes
-    out_i[C_RECORDED] = k + 1
-
-
-@kernel_jit
-def _record_dense(rec_t, rec_y, rec_m, out_i, t0, h, s_end, y0, y1, wk, modes, dt_out, ybuf):
-    """Record dense-output samples at multiples of dt_out in (t0, t0 + s_end h]; none once
-    the buffer is full (C_TRUNCATED), so a tiny dt_out cannot loop without bound."""
-    t_end = t0 + s_end * h
-    k = math.floor(t0 / dt_out) + 1
-    while k * dt_out <= t_end and out_i[C_TRUNCATED] == 0:
-        s = (k * dt_out - t0) / h
-        dense_eval(y0, y1, wk, s, ybuf)
-        _record(rec_t, rec_y, rec_m, out_i, k * dt_out, ybuf, modes)
-        k += 1
 
 
 @kernel_jit
@@ -197,6 +175,8 @@ def run(
     corotation = iopt[O_STICK_RULE] == RULE_COROTATION
     budget = fopt[O_BUDGET]
     spin = p[P_OMEGA] * hold  # the master's turn over one revolution [rad]
+    bound = corotation and iopt[O_BOUND] == 1
+    bound_values = np.empty(sdb.BLOCKS + 1)
 
     y1 = np.empty(n)
     f = np.empty(n)
@@ -232,14 +212,16 @@ def run(
     mf[mon.F_RTOL] = rtol
     mf[mon.F_ATOL] = atol
     mi[mon.I_OBSERVE] = iopt[O_OBSERVE]
+    mi[mon.I_STRIBECK] = 1 if p[P_STR_R] < 1.0 else 0
     mf[mon.F_ARM] = 0.0
     if nq == 3:
         for i in range(ncon):
             mf[mon.F_ARM] = max(mf[mon.F_ARM], math.hypot(pts[i, 0], pts[i, 1]))
-    cannot_stick = mon.cannot_corotate(p, pts, mf[mon.F_ARM])
+    mi[mon.I_BOUND] = 1 if bound else 0
+    cannot_stick = mon.cannot_corotate(p, pts, mf[mon.F_ARM], bound)
     t_rev = hold  # end of the current revolution [s]
     if record:
-        _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
+        record_state(rec_t, rec_y, rec_m, out_i, t, y, modes)
 
     h = fopt[O_DT] if fixed else min(h_max, 1e-4)
     err = 1.0
@@ -254,6 +236,7 @@ def run(
         # ---- stopping rules --------------------------------------------------------------
         t_eps = 1e-12 * max(1.0, abs(t))
         verdict = mon.VERDICT_NONE
+        says = 0  # the shakedown bound's verdict at a revolution closed at this t
         if t >= t_rev - t_eps:
             mon.monitor_revolution(
                 mf,
@@ -270,6 +253,8 @@ def run(
                 out_i[C_STEPS],
             )
             t_rev += hold
+            if bound:
+                says = sdb.close_revolution(p, pts, y, rv, mi[mon.I_NREV], bound_values)
             verdict = mon.corotation_verdict(mf, mi, rv)
             if (
                 corotation
@@ -279,6 +264,10 @@ def run(
             ):
                 verdict = mon.VERDICT_SHAKEN
                 mi[mon.I_VERDICT] = verdict
+            stuck = verdict == mon.VERDICT_STICK or verdict == mon.VERDICT_SHAKEN
+            if bound and stuck and not sdb.holds_here(p, rv, mi[mon.I_NREV]):
+                verdict = mon.VERDICT_NONE
+                mi[mon.I_VERDICT] = verdict
         if corotation:
             if stop_on_stick and verdict == mon.VERDICT_STICK:
                 return st.COROTATING, t
@@ -286,6 +275,8 @@ def run(
                 return st.SHAKEN_DOWN, t
             if not converge and verdict == mon.VERDICT_CREEP:
                 return st.CREEPING, t
+            if (says == 1 and stop_on_stick) or (says == -1 and not converge):
+                return st.BOUND_DECIDED, t  # Melan or Koiter (outcome/shakedown_verdict.py)
         elif stop_on_stick and mon.stuck_for(mf, mi, t) >= hold - t_eps:
             return st.STICK_HELD, t
         if converge and mon.cycle_converged(mi):
@@ -308,7 +299,9 @@ def run(
                     p, pts, mf, mi, ring_all, rv, omega, hold, seq, corotation, held
                 )
                 if evidence == mon.EV_SHAKEDOWN and corotation:
-                    return st.SHAKEN_DOWN, t
+                    if not bound or sdb.holds_here(p, rv, mi[mon.I_NREV]):
+                        return st.SHAKEN_DOWN, t
+                    evidence = mon.EV_NONE
                 go_on = evidence == mon.EV_NONE
             if go_on:  # no not-stick verdict without evidence: extend, within the budget
                 if t_stop + hold <= budget + t_eps:
@@ -414,14 +407,14 @@ def run(
         if s_event <= 1.0:
             t_ev = t + s_event * h
             if record and dt_out > 0.0:
-                _record_dense(
+                record_dense(
                     rec_t, rec_y, rec_m, out_i, t, h, s_event, y, y1, wk, modes, dt_out, ybuf
                 )
             dense_eval(y, y1, wk, s_event, ybuf)
             en.integrate_piece(p, pts, modes, y, y1, wk, s_event, h, ybuf, ymid, out_f)
             mon.monitor_step(mf, mi, y, ybuf, s_event * h)
             if record:
-                _record(rec_t, rec_y, rec_m, out_i, t_ev, ybuf, modes)
+                record_state(rec_t, rec_y, rec_m, out_i, t_ev, ybuf, modes)
             y[:] = ybuf
             window = max(SIMULTANEOUS / h, stol)
             for i in range(ncon):
@@ -457,7 +450,7 @@ def run(
             t_last_event = t_ev
             t = t_ev
             if record:
-                _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
+                record_state(rec_t, rec_y, rec_m, out_i, t, y, modes)
             first = True  # the dynamics changed: no step-size prediction across the switch
             if fixed:
                 h = fopt[O_DT]
@@ -465,7 +458,7 @@ def run(
 
         # ---- accept the whole step ---------------------------------------------------------
         if record and dt_out > 0.0:
-            _record_dense(rec_t, rec_y, rec_m, out_i, t, h, 1.0, y, y1, wk, modes, dt_out, ybuf)
+            record_dense(rec_t, rec_y, rec_m, out_i, t, h, 1.0, y, y1, wk, modes, dt_out, ybuf)
         en.integrate_piece(p, pts, modes, y, y1, wk, 1.0, h, y1, ymid, out_f)
         mon.monitor_step(mf, mi, y, y1, h)
         t += h
@@ -474,7 +467,7 @@ def run(
         for i in range(ncon):
             fresh[i] = 0
         if record and dt_out <= 0.0:
-            _record(rec_t, rec_y, rec_m, out_i, t, y, modes)
+            record_state(rec_t, rec_y, rec_m, out_i, t, y, modes)
 
         # A band contact whose switching function changed sign is an ordinary one again.
         for i in range(ncon):

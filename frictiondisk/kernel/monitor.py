@@ -65,6 +65,7 @@ from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
     F_Y_ALL,
     I_ALL,
     I_ANY,
+    I_BOUND,
     I_CYCLE_COUNT,
     I_EV_LAG,
     I_EV_SOURCE,
@@ -83,6 +84,7 @@ from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
     I_REV_NTRANS,
     I_REV_STEPS,
     I_RS_N,
+    I_STRIBECK,
     I_VERDICT,
     N_MF,
     N_MI,
@@ -101,6 +103,7 @@ from .monitor_slots import (  # noqa: F401  (re-exported: mon.F_*, mon.I_*, ...)
     RV_DRIFT_PHI,
     RV_DRIFT_R,
     RV_EVER_ALL,
+    RV_RESERVE,
     RV_SLIP,
     RV_STICK_T,
     RV_STILL,
@@ -365,5 +368,6 @@ def monitor_revolution(mf, mi, rv, yrev, ring_all, t, y, slip, spin, rtol, atol,
     rv[k, RV_U] = y[nq] * scale
     rv[k, RV_V] = y[nq + 1] * scale
     rv[k, RV_W] = y[nq + 2] * arm * scale if nq == 3 else 0.0
+    rv[k, RV_RESERVE] = math.nan  # the driver writes it where the bound applies
     mi[I_NREV] += 1
     begin_revolution(mf, mi, t, y, slip, yrev, steps)

@@ -62,7 +62,9 @@ I_EV_SOURCE = 17  # which section gave it: SOURCE_CYCLES or SOURCE_REVOLUTIONS
 I_EV_LAG = 18  # sticking phases (or revolutions) per period of the cycle behind EV_REPEAT
 I_EV_STEPS = 19  # section points behind the evidence
 I_OBSERVE = 20  # 1: verdicts only on what the run shows, no extrapolation (numerics.evidence)
-N_MI = 21
+I_STRIBECK = 21  # 1: the friction law falls with the slip speed (Stribeck ratio r < 1)
+I_BOUND = 22  # 1: the shakedown bound applies (kernel/shakedown_bound.py)
+N_MI = 23
 
 # Columns of the revolution ring rv (one row per completed revolution, newest at
 # (I_NREV - 1) % REV_RING)
@@ -82,7 +84,10 @@ RV_Y = 11  # slave centre y [m]
 RV_U = 12  # x velocity / omega_m [m]
 RV_V = 13  # y velocity / omega_m [m]
 RV_W = 14  # spin rate x longest arm / omega_m [m] (0 for the pin)
-N_RV = 15
+# mu - shakedown demand / F_n at the end of the revolution [1] (kernel/shakedown_bound.py;
+# braked disks with stick_rule corotation only, else NaN)
+RV_RESERVE = 15
+N_RV = 16
 # Revolutions kept: enough for log-spaced extrapolation over the horizon budget
 # (8 x 30 s at the fastest master of the studies, T = 2.5 s, is 96 revolutions).
 REV_RING = 512

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from . import driver
+from . import driver, recording
 from . import energy as en
 from . import monitor as mon
 
@@ -155,12 +155,12 @@ class KernelRun:
     @property
     def recorded(self) -> int:
         """Rows written to rec_t, rec_y, rec_m."""
-        return int(self.out_i[driver.C_RECORDED])
+        return int(self.out_i[recording.C_RECORDED])
 
     @property
     def truncated(self) -> bool:
         """Whether the recording ran out of rows."""
-        return bool(self.out_i[driver.C_TRUNCATED])
+        return bool(self.out_i[recording.C_TRUNCATED])
 
     @property
     def budget_spent(self) -> bool:

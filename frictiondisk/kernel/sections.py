@@ -52,6 +52,7 @@ from .monitor_slots import (
     I_EV_STEPS,
     I_NREV,
     I_RS_N,
+    I_STRIBECK,
     RA_SLIP,
     RA_T0,
     RA_T1,
@@ -68,7 +69,7 @@ from .monitor_slots import (
     RV_X,
     RV_Y,
 )
-from .steady_slip import period_slip, steady
+from .steady_slip import STEADY_FALL, period_slip, steady
 
 SEQ_MAX = 512  # newest section points read (the revolution ring's length)
 N_COORD = 5  # coordinates of a section point [m]: columns 0 .. 4 of a sequence
@@ -82,7 +83,10 @@ Q_MAX = 0.98  # largest extrapolated contraction ratio accepted as convergence
 RHO_MAX = 0.9  # the ratio's own changes must shrink at least this fast ...
 Q_STEADY = 0.01  # ... unless each of them is below this
 GEOMETRIC_KEEP = 0.75  # 1 - q now must keep this share of 1 - q half the sequence ago
-CONTRACT_SLIP_FALL = 0.1  # share of the slip per step that may still fall on the way
+CONTRACT_SLIP_FALL = 0.1  # share of the slip per step that may still fall on the way ...
+# ... under a Stribeck law, whose friction rises as the slip slows, feeding its own fall:
+# only what a steady slip may lose (docs/model.md section 6, study scene 1/43)
+CONTRACT_SLIP_FALL_STRIBECK = STEADY_FALL
 SLIP_STEADY = 1e-4  # changes of the slip per step below this share of it are no change
 DEPART_STEPS = 4  # steps of growing slip and shrinking sticking time behind EV_DEPART
 STICK_NOISE = 1e-9  # [s] sticking times closer than this are equal (event location ~1e-11 s)
@@ -97,14 +101,11 @@ SHAKEDOWN_DEPTH = 1e-2
 # a slip below s0 is a cycle there, not sticking (the demo disk at x_ms 0.12, mu = 0.142785:
 # 1.4e-9 m a revolution falling to a limit of 8.2e-10 m, then rising again, at 1 500 s)
 SHAKEDOWN_ZERO = 1e-2
-# Smallest spacing (steps) of an equally spaced Aitken triple: at spacings of 2 the last
-# fast transient of an approach is mistaken for the limit (kernel/verdict.py).
-MIN_SPACING = 4
-# The fall between the second and third of an Aitken triple must be at most this share of
-# the fall before: a fall that hardly slows (a slip falling almost linearly) gives no
-# well-conditioned limit (a disk at x_ms 0.065, mu 0.0653 fell by 9.9e-4 and 8.4e-4 m over
-# two spans of 4 revolutions, which extrapolates to 0, then kept a cycle slipping 2e-3 m).
-# Over log-spaced steps n/2, n/sqrt(2), n it means S ~ n^-p with p >= 1.03.
+MIN_SPACING = 4  # least spacing of an Aitken triple: at 2 a last transient looks a limit
+# The second fall of an Aitken triple must be at most this share of the first: a slip
+# falling almost linearly gives no well-conditioned limit (a disk at x_ms 0.065, mu 0.0653
+# fell 9.9e-4 then 8.4e-4 m in 4 revolutions each, extrapolating to 0, then kept a cycle
+# slipping 2e-3 m). Over log-spaced steps n/2, n/sqrt(2), n: S ~ n^-p with p >= 1.03.
 AITKEN_SLOWING = 0.7
 # A power law's log-spaced fall ratio does not grow with n: it may have grown by at most
 # this much since LOOKBACK n (a fall that levels off at a cycle grows it)
@@ -258,9 +259,10 @@ def _repeats(mf, mi, pts, slip, stick, n):
 
 
 @kernel_jit
-def _contracts(mf, pts, slip, n, s0):
+def _contracts(mf, pts, slip, n, s0, fall_share):
     """EV_CONTRACT: the newest CONTRACT_DISTANCES distances shrink geometrically at an
-    established ratio, towards a cycle whose slip per step stays above s0."""
+    established ratio, towards a cycle whose slip per step stays above s0 and keeps all
+    but `fall_share` of itself."""
     m = CONTRACT_DISTANCES
     if n < m + 1:
         return False
@@ -309,18 +311,15 @@ def _contracts(mf, pts, slip, n, s0):
         return False
     mf[F_EV_LIMIT] = d_prev * q_up / (1.0 - q_up)
     # the cycle it converges to still slips, nearly as much as now: the slip per step,
-    # extrapolated at the slower of its own ratio and the section's, keeps all but
-    # CONTRACT_SLIP_FALL of itself (a slip that still falls by much is an approach to
-    # sticking, whatever its section's ratio: a Stribeck disk spinning up contracts at 0.88
-    # a revolution, then sticks for good). Its own ratio counts because the section's
-    # distances can shrink fast along one direction while the slip follows a slower one: a
-    # Stribeck pin (study scene 6/10) contracted by 0.665 a revolution while its slip fell
-    # by 0.57, 0.66, 0.75 ... of the fall before, then left the cycle and stuck at 102 s.
+    # extrapolated at the slower of its own ratio and the section's (the distances can
+    # shrink fast along one direction while the slip follows a slower one), keeps all but
+    # fall_share of itself: a slip that still falls by much is an approach to sticking,
+    # whatever its section's ratio (the cases: docs/model.md section 6, "contract")
     r = max(q_up, _slip_ratio_bound(slip, n, m, max(s0, SLIP_STEADY * slip[n - 1])))
     if not r < 1.0:
         return False
     fall = abs(slip[n - 1] - slip[n - 2]) * r / (1.0 - r)
-    return slip[n - 1] - fall > s0 and fall <= CONTRACT_SLIP_FALL * slip[n - 1]
+    return slip[n - 1] - fall > s0 and fall <= fall_share * slip[n - 1]
 
 
 @kernel_jit
@@ -473,7 +472,8 @@ def section_evidence(mf, mi, seq, n, s0):
         return EV_SHAKEDOWN
     if _repeats(mf, mi, pts, slip, stick, n):
         return EV_REPEAT
-    if _contracts(mf, pts, slip, n, s0):
+    share = CONTRACT_SLIP_FALL_STRIBECK if mi[I_STRIBECK] == 1 else CONTRACT_SLIP_FALL
+    if _contracts(mf, pts, slip, n, s0, share):
         return EV_CONTRACT
     if _departs(mf, pts, slip, stick, n):
         return EV_DEPART

@@ -7,6 +7,7 @@ TMAX_REACHED = 4  # convergence mode reached t_max without convergence
 COROTATING = 5  # co-rotation without net slip (stick_rule corotation): outcome `stick`
 CREEPING = 6  # steady slip per revolution on the small orbit: outcome `creep`
 SHAKEN_DOWN = 7  # slip per cycle or revolution falls to nothing (kernel/sections.py): `stick`
+BOUND_DECIDED = 8  # Melan or Koiter decides on the small orbit (kernel/shakedown_bound.py)
 MAX_STEPS = 10  # work budget: step limit
 MAX_EVENTS = 11  # work budget: event limit
 STEP_TOO_SMALL = 12  # step size underflow

@@ -13,9 +13,10 @@ these rules are the constants below and in kernel/sections.py.
 import math
 
 from . import sections as sec
+from . import shakedown_bound as sdb
 from .jit import kernel_jit
 from .line_fit import slope_and_error
-from .model import P_BETAB, P_BETAI, P_CS, P_EPS, P_FNI, P_MU, P_OMEGA, P_XMS
+from .model import P_BETAB, P_BETAI, P_CI, P_CS, P_EPS, P_FNI, P_MU, P_OMEGA, P_XMS
 from .monitor_slots import (
     EV_CANNOT,
     EV_NONE,
@@ -31,6 +32,7 @@ from .monitor_slots import (
     F_S_INF,
     F_S_INF_SPREAD,
     F_SLIP_TOL,
+    I_BOUND,
     I_EV_SOURCE,
     I_EVIDENCE,
     I_NREV,
@@ -412,21 +414,28 @@ def horizon_evidence(mf, mi, ring_all, rv, omega, hold, seq):
 
 
 @kernel_jit
-def cannot_corotate(p, pts, arm):
+def cannot_corotate(p, pts, arm, bound):
     """Whether no permanent co-rotation can be held at all, whatever the circle: a rigidly
     co-rotating slave needs a contact force whose largest value over a revolution is at
     least the spring's pull c_s |x_ms| (the preload sweeps every direction; docs/model.md
     section 7), and a torque beta_b omega_m that no contact force pattern within mu F_n
     can carry beyond a lever of the longest arm. Below either, the slave can never stick:
     a bound, not a measurement (kernel/sections.py EV_CANNOT). The band beta eps of the
-    stuck contacts is added to the friction limit. arm: longest contact arm [m] (0: pin)."""
+    stuck contacts is added to the friction limit. arm: longest contact arm [m] (0: pin).
+    bound: the shakedown bound applies (kernel/shakedown_bound.py); then also below the
+    least shakedown demand of any circle, by more than the bound's margin."""
     hold = 0.0
     for i in range(pts.shape[0]):
         hold += (p[P_MU] * p[P_FNI] + p[P_BETAI] * p[P_EPS]) * pts[i, 2]
     pull = p[P_CS] * abs(p[P_XMS])
     if arm > 0.0:
         pull = max(pull, abs(p[P_BETAB] * p[P_OMEGA]) / arm)
-    return hold < pull
+    if hold < pull:
+        return True
+    if not bound:
+        return False
+    width = sdb.margin(p[P_MU], p[P_BETAI], p[P_CI], p[P_OMEGA])
+    return sdb.floor_reserve(p, pts) < -width
 
 
 @kernel_jit
@@ -438,7 +447,7 @@ def evidence_at_horizon(p, pts, mf, mi, ring_all, rv, omega, hold, seq, corotati
     (still_settling) goes on. Under stick_rule contacts a shakedown to co-rotation with
     grazing contacts is no `stick` (that rule needs every contact stuck for a revolution)
     and counts as not-stick evidence."""
-    if cannot_corotate(p, pts, mf[F_ARM]):
+    if cannot_corotate(p, pts, mf[F_ARM], mi[I_BOUND] == 1):
         mi[I_EVIDENCE] = EV_CANNOT
         return EV_CANNOT
     if held:

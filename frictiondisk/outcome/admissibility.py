@@ -48,6 +48,8 @@ import math
 
 import numpy as np
 
+from frictiondisk.kernel.shakedown_bound import limit_motion
+
 __all__ = [
     "Demands",
     "LoadCase",
@@ -174,34 +176,12 @@ def elastic_pattern(force, torque: float, points: np.ndarray) -> np.ndarray:
     return d + dphi * jay
 
 
-def _irls(force, torque, points, iters=100, tol=1e-10):
-    """min sum_i |v + w J a_i| subject to F.v + T w = 1 (IRLS); returns (v, w, value)."""
-    pts = np.asarray(points, dtype=float)
-    n = pts.shape[0]
-    fx, fy = float(force[0]), float(force[1])
-    # rows of the map (v, w) -> slip velocity of point i: B_i (2x3)
-    b = np.zeros((n, 2, 3))
-    b[:, 0, 0] = 1.0
-    b[:, 1, 1] = 1.0
-    b[:, 0, 2] = -pts[:, 1]
-    b[:, 1, 2] = pts[:, 0]
-    cvec = np.array([fx, fy, float(torque)])
-    x = cvec / float(cvec @ cvec)  # feasible start
-    delta = 1e-9 * (np.linalg.norm(cvec) + 1e-300) ** -1
-    prev = math.inf
-    for _ in range(iters):
-        s = np.einsum("nij,j->ni", b, x)
-        norms = np.sqrt((s**2).sum(1) + delta**2)
-        w = 1.0 / norms
-        h = np.einsum("n,nki,nkj->ij", w, b, b) + 1e-300 * np.eye(3)
-        # min x^T H x s.t. c.x = 1 -> x = H^-1 c / (c H^-1 c)
-        hc = np.linalg.solve(h, cvec)
-        x = hc / float(cvec @ hc)
-        val = float(np.linalg.norm(np.einsum("nij,j->ni", b, x), axis=1).sum())
-        if abs(prev - val) <= tol * val:
-            break
-        prev = val
-    return x[0:2], x[2], val
+def _irls(force, torque, points):
+    """min sum_i |v + w J a_i| subject to F.v + T w = 1 (IRLS, kernel/shakedown_bound.py,
+    which the kernel also reads on the run); returns (v, w, value)."""
+    pts = np.ascontiguousarray(points, dtype=float)
+    vx, vy, w, val = limit_motion(float(force[0]), float(force[1]), float(torque), pts)
+    return np.array([vx, vy]), float(w), float(val)
 
 
 def limit_pattern(force, torque: float, points: np.ndarray):

@@ -89,7 +89,8 @@ class Evidence:
         if kind == mon.EV_CANNOT:
             return (
                 "no co-rotation can hold: mu F_n is below the spring's pull c_s |x_ms| (or the "
-                "brake torque over the longest arm) on every sticking circle"
+                "brake torque over the longest arm, or, with a brake, the least shakedown "
+                "demand c_s |x_ms| + N beta_b omega_m / sum |a_i|) on every sticking circle"
             )
         if kind == mon.EV_SHAKEDOWN:
             return (
@@ -175,6 +176,12 @@ def classify(facts: RunFacts) -> tuple[str, str]:
         return "creep", (
             f"ratchets on its small orbit at t = {t:.6g} s: {_rates(revs)}, not decaying "
             f"to zero ({_trend(revs)}{limit})"
+        )
+    if facts.status == st.BOUND_DECIDED:
+        # worded by outcome/shakedown_verdict.py, which reads the same reserves
+        return "undetermined", (
+            f"the run stopped at t = {t:.6g} s for the shakedown bound, which then did not "
+            "decide (a kernel and outcome mismatch)"
         )
     # integrators without revolution measures apply the contacts rule (the pin only)
     contacts_rule = facts.stick_rule == "contacts" or revs is None

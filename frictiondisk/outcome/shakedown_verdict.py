@@ -19,7 +19,10 @@ sign of the reserve mu - demand / F_n at its own state decides, where the reserv
 than the margin the quasi-static bound neglects, and stays wider: its distance from zero
 does not shrink, or shrinks by steps that fall geometrically (BLOCKS blocks of
 ON_ORBIT_REVS revolutions) and sum to less than the rest. A state drifting steadily towards
-the bound is left to the rules.
+the bound is left to the rules. The kernel writes the reserve at every revolution end
+(kernel/shakedown_bound.py, column RV_RESERVE of the revolution log) and stops a run as
+soon as BLOCKS blocks back the bound's verdict; this module words that verdict, and
+applies it to runs that ended otherwise (on a shorter history).
 
 Not applied with `numerics.evidence: observe` (watching runs count only what they show),
 with stick_rule `contacts`, to pins and unbraked disks (there the shakedown demand equals
@@ -29,18 +32,15 @@ with unequal weights (the bound assumes equal normal force per point).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from frictiondisk.kernel import monitor as mon
-from frictiondisk.outcome import admissibility as ad
+from frictiondisk.kernel import shakedown_bound as sdb
 
-__all__ = ["ON_ORBIT_REVS", "applies", "corotation_reserve", "decide", "margin"]
+__all__ = ["BLOCKS", "ON_ORBIT_REVS", "applies", "decide", "margin"]
 
-ON_ORBIT_REVS = 5  # revolutions on the small orbit before the bound decides (as the rules)
-BLOCKS = 3  # blocks of ON_ORBIT_REVS revolutions whose reserves show it approaching zero
-SOLVER_RTOL = 1e-8  # relative accuracy of Lambda from admissibility._irls (measured 1e-9)
+ON_ORBIT_REVS = sdb.ON_ORBIT_REVS
+BLOCKS = sdb.BLOCKS
 
 
 def applies(config) -> bool:
@@ -54,92 +54,61 @@ def applies(config) -> bool:
     return bool(np.all(weights == weights[0]))
 
 
-def corotation_reserve(config, x: float, y: float, phi: float) -> float:
-    """mu - shakedown demand / F_n [1] of the disk co-rotating with centre (x, y) [m] and
-    spin angle phi [rad]: the body-frame direction of C = A r fixes the layout angle."""
-    par = config.params
-    k = par.c_s - par.m_s * par.omega_m**2
-    d = par.beta_s * par.omega_m
-    layout_angle = math.atan2(k * y + d * x, k * x - d * y) - phi
-    case = ad.LoadCase.of(par, math.hypot(x, y), par.beta_b)
-    demand = ad.shakedown_demand(case, config.contact_positions(), layout_angle)
-    return par.mu - demand / par.F_n
-
-
 def margin(config) -> float:
     """What the quasi-static bound neglects [1, units of mu]: terms of relative order
     (beta omega_m / c)^2 (contact damping of a co-rotating contact), and the solver."""
     par = config.params
-    ratio = config.contact_damping * par.omega_m / config.contact.stiffness
-    return par.mu * (ratio**2 + SOLVER_RTOL)
+    return float(sdb.margin(par.mu, config.contact_damping, config.contact.stiffness, par.omega_m))
 
 
-def _reserve_history(config, state: np.ndarray, rows: np.ndarray, t_end: float) -> list[float]:
-    """The reserve at the end of the last revolution and every ON_ORBIT_REVS revolutions
-    back while the disk was on its small orbit (at most BLOCKS + 1 values, newest first)."""
-    omega = config.params.omega_m
-    # all at revolution ends: within a revolution the centre swings with the turning
-    # preload (by about F / c), which would read as a change of the reserve
-    phi = state[2] - omega * (t_end - rows[-1, mon.RV_T])  # at the end of the last row
-    out = [corotation_reserve(config, rows[-1, mon.RV_X], rows[-1, mon.RV_Y], phi)]
-    end = rows.shape[0]
-    for _ in range(BLOCKS):
-        start = end - ON_ORBIT_REVS
-        if start < 1 or not np.all(rows[start:end, mon.RV_ANY_STUCK] == 1.0):
-            break
-        # the spin angle at the end of row start - 1: whole turns drop out of the layout angle
-        phi -= float(np.sum(rows[start:end, mon.RV_DRIFT_PHI]))
-        row = rows[start - 1]
-        out.append(corotation_reserve(config, row[mon.RV_X], row[mon.RV_Y], phi))
-        end = start
-    return out
-
-
-def _still_to_come(history: list[float]) -> float:
-    """How far the reserve may still move towards zero [1]: 0 where it moves away from
-    zero (or stands); else the geometric sum of its steps, each block's step a ratio q < 1
-    of the one before (the larger of the measured ratios); infinite without that evidence."""
-    now = history[0]
-    steps = [abs(history[k + 1]) - abs(history[k]) for k in range(len(history) - 1)]
-    if not steps or any(now * value <= 0.0 for value in history):
-        return math.inf
-    if steps[0] <= 0.0:
-        return 0.0
-    if len(steps) < BLOCKS or min(steps) <= 0.0:
-        return math.inf
-    ratio = max(steps[k] / steps[k + 1] for k in range(len(steps) - 1))
-    if ratio >= 1.0:
-        return math.inf
-    return steps[0] * ratio / (1.0 - ratio)
-
-
-def decide(config, outcome: str, reason: str, state: np.ndarray, rows: np.ndarray, t_end: float):
+def decide(
+    config,
+    outcome: str,
+    reason: str,
+    rows: np.ndarray | None,
+    floor: float,
+    stopped: bool = False,
+):
     """(outcome, reason) after the bound: unchanged unless it applies and decides.
 
-    outcome, reason: the rules' verdict (only `stick`, `creep` and an `undetermined`
-    horizon are reconsidered); state: the final state (x, y, phi, ...); rows: the revolution
-    log, oldest first (monitor.RV_* columns); t_end [s].
+    outcome, reason: the rules' verdict (`stick`, `creep` and `undetermined` are
+    reconsidered; below the floor also `slide` and `stick_slip` on the small orbit in
+    the last revolution); rows: the revolution log, oldest first (monitor.RV_* columns, with the
+    reserve the kernel wrote); floor: the reserve against the least demand of any circle
+    (kernel/shakedown_bound.floor_reserve) [1]; stopped: the kernel stopped the run for
+    the bound.
     """
-    if outcome not in ("stick", "creep", "undetermined") or not applies(config):
+    if not applies(config):
         return outcome, reason
-    if rows is None or rows.shape[0] < ON_ORBIT_REVS + 1:
-        return outcome, reason
-    if not np.all(rows[-ON_ORBIT_REVS:, mon.RV_ANY_STUCK] == 1.0):
-        return outcome, reason
-    history = _reserve_history(config, state, rows, t_end)
-    now = history[0]
     width = margin(config)
-    left = abs(now) - _still_to_come(history)
-    if abs(now) <= width or left <= width:
+    on_orbit = rows is not None and _on_orbit(rows)
+    orbiting = rows is not None and rows.shape[0] > 0 and rows[-1, mon.RV_ANY_STUCK] == 1.0
+    if floor < -width and (outcome == "stick" or (orbiting and outcome != "undetermined")):
+        # no circle holds it: a stick of the rules is a ratchet slower than eps T, and a
+        # disk on its small orbit ratchets there (`slide` or `stick_slip` by the rules)
+        where = " on its small orbit" if orbiting else ""
+        return "creep", (
+            f"ratchets for ever (Koiter){where}: mu F_n lies below the least shakedown "
+            f"demand of any sticking circle, c_s |x_ms| + N beta_b omega_m / sum |a_i| "
+            f"(reserve {floor:+.3g}; the bound's margin {width:.2g}), so no circle holds it "
+            f"for good (the rules said: {reason})"
+        )
+    if outcome not in ("stick", "creep", "undetermined") or not on_orbit:
         return outcome, reason
-    radius = math.hypot(rows[-1, mon.RV_X], rows[-1, mon.RV_Y])
+    values = np.empty(BLOCKS + 1)
+    count = int(sdb.history(rows, rows.shape[0] - 1, rows.shape[0], values))
+    says = int(sdb.verdict(values, count, width))
+    if says == 0:
+        return outcome, reason
+    now = values[0]
+    radius = float(np.hypot(rows[-1, mon.RV_X], rows[-1, mon.RV_Y]))
     where = (
         f"on its small orbit at t = {rows[-1, mon.RV_T]:.6g} s, radius {radius:.6g} m: "
         f"friction reserve mu - shakedown demand / F_n = {now:+.3g} ("
-        + ", ".join(f"{value:+.6g}" for value in history[1:])
+        + ", ".join(f"{value:+.6g}" for value in values[1:count])
         + f" every {ON_ORBIT_REVS} revolutions before; the bound's margin {width:.2g})"
     )
-    if now > 0.0:
+    if says > 0:
         bound_says = "stick"
         text = (
             f"shakes down (Melan) {where}: a safe residual contact pattern exists, so the "
@@ -151,6 +120,14 @@ def decide(config, outcome: str, reason: str, state: np.ndarray, rows: np.ndarra
             f"ratchets for ever (Koiter) {where}: no residual contact pattern carries the "
             "load, so the contacts slip in every revolution"
         )
+    if stopped:
+        return bound_says, text
     if bound_says == outcome:
         return outcome, f"{reason}; {text}"
     return bound_says, f"{text} (the rules said: {reason})"
+
+
+def _on_orbit(rows: np.ndarray) -> bool:
+    """Some contact stuck at every instant of the last ON_ORBIT_REVS revolutions."""
+    last = rows[-ON_ORBIT_REVS:, mon.RV_ANY_STUCK]
+    return rows.shape[0] >= ON_ORBIT_REVS and bool(np.all(last == 1.0))

@@ -107,10 +107,22 @@ class JumpSearchResult:
         headline (`failed` if it has no jump)."""
         if self.status != "converged":
             return "failed"
-        flags = [j.certification for j in self.jumps]
+        flags = [j.certification for j in self.jumps if not above_headline(j, self.primary)]
         if self.grid_flag != "off":
             flags.append(self.grid_flag)
         return point_certification(flags)
+
+
+def above_headline(jump: BisectionResult, head: BisectionResult | None) -> bool:
+    """A jump that failed wholly above the headline's bracket: it cannot be a lower rising
+    jump, so the headline stands without it (its failure is told, not hidden)."""
+    return (
+        head is not None
+        and jump is not head
+        and jump.status != "converged"
+        and not math.isnan(jump.mu_lo)
+        and jump.mu_lo >= head.mu_hi
+    )
 
 
 def _windows(jumps, persist_width: float) -> tuple[Window, ...]:
@@ -199,9 +211,11 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         undecided_note = f"prescan undetermined at mu = {mus} after every retry"
         if not jumps:
             problems.append(undecided_note)
+    unresolved = [j for j in failed if above_headline(j, head)]
     problems += [
         j.reason if math.isnan(j.mu_lo) else f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}"
         for j in failed
+        if j not in unresolved
     ]
     if not jumps and vanished and not problems:
         problems.append(
@@ -217,13 +231,16 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
     if problems:
         status, reason = "failed", "; ".join(problems)
     else:
+        resolved = [j for j in jumps if j not in unresolved]
         kinds = ", ".join(
             f"{'rising' if j.rising else 'falling'} at {j.mu_star:.6g}"
             + ("" if j.certification == "off" else f" ({j.certification})")
-            for j in jumps
+            for j in resolved
         )
         status = "converged"
-        reason = f"{len(jumps)} jump(s) to tol {search.tol:.3g}: {kinds}"
+        reason = f"{len(resolved)} jump(s) to tol {search.tol:.3g}: {kinds}"
+        for j in unresolved:
+            reason += f"; above mu*, a change in [{j.mu_lo:.6g}, {j.mu_hi:.6g}] failed: {j.reason}"
         if windows:
             reason += "; sticking windows " + ", ".join(
                 f"[{w.lo:.6g}, {w.hi:.6g}]" + (" (narrow)" if w.narrow else "") for w in windows

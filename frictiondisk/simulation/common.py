@@ -14,6 +14,7 @@ import numpy as np
 from frictiondisk.kernel import monitor as mon
 from frictiondisk.kernel import status as st
 from frictiondisk.kernel.record import KernelRun
+from frictiondisk.kernel.shakedown_bound import floor_reserve
 from frictiondisk.outcome.classify import Evidence, Revolutions, RunFacts, classify, revolution
 from frictiondisk.outcome.reserve import friction_reserve
 from frictiondisk.outcome.result import SimulationResult, Trajectory
@@ -71,8 +72,16 @@ def build_result(
     )
     outcome, reason = classify(facts)
     rows = revolution_log(run.rv, mi) if ring else None
-    if run.status in (st.HORIZON_REACHED, st.COROTATING, st.CREEPING, st.SHAKEN_DOWN):
-        outcome, reason = bound_decides(config, outcome, reason, run.y, rows, t_end)
+    if run.status in (
+        st.HORIZON_REACHED,
+        st.COROTATING,
+        st.CREEPING,
+        st.SHAKEN_DOWN,
+        st.BOUND_DECIDED,
+    ):
+        stopped = run.status == st.BOUND_DECIDED
+        floor = float(floor_reserve(run.p, run.pts)) if run.p is not None else math.nan
+        outcome, reason = bound_decides(config, outcome, reason, rows, floor, stopped)
     revs = facts.revs
     if outcome == "stick" and run.steps == 0:
         # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts

@@ -14,6 +14,7 @@ from frictiondisk.model.limits import MAX_RECORD_ROWS, record_rows_limit
 from frictiondisk.outcome.classify import revolution
 from frictiondisk.outcome.horizon import horizon_of
 from frictiondisk.outcome.result import SimulationResult, Trajectory
+from frictiondisk.outcome.shakedown_verdict import applies as bound_applies
 from frictiondisk.simulation.common import build_result, initial_state
 
 METHOD_CODES = {"rodas4": 0, "rodas4-fixed": 1}
@@ -110,6 +111,7 @@ def _simulate_numba(config, record: bool, dt_out: float, dense_lu: bool) -> Simu
     iopt[driver.O_STICK_RULE] = STICK_RULE_CODES[num.stick_rule]
     iopt[driver.O_DENSE_LU] = 1 if dense_lu else 0
     iopt[driver.O_OBSERVE] = 1 if num.evidence == "observe" else 0
+    iopt[driver.O_BOUND] = 1 if bound_applies(config) else 0
     fopt = run.fopt
     fopt[driver.O_RTOL] = num.rtol
     fopt[driver.O_ATOL] = num.atol
