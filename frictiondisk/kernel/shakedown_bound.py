@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 from .jit import kernel_jit
+from .linalg import lu_factor, lu_solve
 from .model import P_BETAB, P_BETAI, P_BETAS, P_CI, P_CS, P_FNI, P_MS, P_MU, P_OMEGA, P_XMS
 from .monitor_slots import RV_ANY_STUCK, RV_RESERVE
 
@@ -39,6 +40,7 @@ def limit_motion(fx, fy, torque, pts):
     delta = 1e-9 / (math.sqrt(cc) + 1e-300)
     h = np.empty((3, 3))
     hc = np.empty(3)
+    piv = np.empty(3, dtype=np.int64)
     prev = math.inf
     value = math.inf
     for _ in range(IRLS_ITERS):
@@ -58,7 +60,8 @@ def limit_motion(fx, fy, torque, pts):
         h[2, 1] = h[1, 2]
         for k in range(3):
             h[k, k] += 1e-300
-        _solve3(h, c, hc)
+        lu_factor(h, piv)
+        lu_solve(h, piv, c, hc)
         scale = c[0] * hc[0] + c[1] * hc[1] + c[2] * hc[2]
         for k in range(3):
             x[k] = hc[k] / scale
@@ -71,33 +74,6 @@ def limit_motion(fx, fy, torque, pts):
             break
         prev = value
     return x[0], x[1], x[2], value
-
-
-@kernel_jit
-def _solve3(a, b, out):
-    """out = a^-1 b for a 3 x 3 matrix a (Gaussian elimination, partial pivoting)."""
-    m = np.empty((3, 4))
-    for i in range(3):
-        for j in range(3):
-            m[i, j] = a[i, j]
-        m[i, 3] = b[i]
-    for col in range(3):
-        piv = col
-        for row in range(col + 1, 3):
-            if abs(m[row, col]) > abs(m[piv, col]):
-                piv = row
-        if piv != col:
-            for j in range(4):
-                m[col, j], m[piv, j] = m[piv, j], m[col, j]
-        for row in range(col + 1, 3):
-            f = m[row, col] / m[col, col]
-            for j in range(col, 4):
-                m[row, j] -= f * m[col, j]
-    for i in range(2, -1, -1):
-        s = m[i, 3]
-        for j in range(i + 1, 3):
-            s -= m[i, j] * out[j]
-        out[i] = s / m[i, i]
 
 
 @kernel_jit
@@ -145,6 +121,12 @@ def margin(mu, damping, stiffness, omega):
 
 
 @kernel_jit
+def run_margin(p):
+    """`margin` of a run's packed parameters p (kernel/model.py) [1]."""
+    return margin(p[P_MU], p[P_BETAI], p[P_CI], p[P_OMEGA])
+
+
+@kernel_jit
 def history(rv, newest, count, out):
     """The reserves (out, newest first) at the end of the newest row and every
     ON_ORBIT_REVS rows back while the disk stayed on its small orbit: how many (0 where
@@ -155,16 +137,16 @@ def history(rv, newest, count, out):
     if count < ON_ORBIT_REVS + 1:
         return 0
     m = 0
-    for block in range(BLOCKS + 1):
-        for k in range(block * ON_ORBIT_REVS, (block + 1) * ON_ORBIT_REVS):
+    for j in range(BLOCKS + 1):
+        back = j * ON_ORBIT_REVS  # the value's row, counted back from the newest
+        if back >= count:
+            break
+        # the ON_ORBIT_REVS rows after it (the newest ones for the newest value) on the orbit
+        after = max(back - ON_ORBIT_REVS, 0)
+        for k in range(after, after + ON_ORBIT_REVS):
             if rv[(newest - k) % ring, RV_ANY_STUCK] != 1.0:
                 return m
-        if block == 0:
-            out[0] = rv[newest % ring, RV_RESERVE]
-            m = 1
-        if (block + 1) * ON_ORBIT_REVS >= count or block == BLOCKS:
-            break
-        out[m] = rv[(newest - (block + 1) * ON_ORBIT_REVS) % ring, RV_RESERVE]
+        out[m] = rv[(newest - back) % ring, RV_RESERVE]
         m += 1
     return m
 
@@ -230,8 +212,7 @@ def close_revolution(p, pts, y, rv, count, values):
     backs it (`stop_ready`). values: scratch of BLOCKS + 1."""
     newest = (count - 1) % rv.shape[0]
     rv[newest, RV_RESERVE] = corotation_reserve(p, pts, y[0], y[1], y[2])
-    width = margin(p[P_MU], p[P_BETAI], p[P_CI], p[P_OMEGA])
-    return stop_ready(rv, newest, count, width, values)
+    return stop_ready(rv, newest, count, run_margin(p), values)
 
 
 @kernel_jit
@@ -242,4 +223,4 @@ def holds_here(p, rv, count):
     the rules extrapolate to nothing while its own circle cannot hold it is still on its
     way (or never gets there) and runs on. True where no reserve was written."""
     reserve = rv[(count - 1) % rv.shape[0], RV_RESERVE]
-    return not reserve < -margin(p[P_MU], p[P_BETAI], p[P_CI], p[P_OMEGA])
+    return not reserve < -run_margin(p)

@@ -16,7 +16,7 @@ from . import sections as sec
 from . import shakedown_bound as sdb
 from .jit import kernel_jit
 from .line_fit import slope_and_error
-from .model import P_BETAB, P_BETAI, P_CI, P_CS, P_EPS, P_FNI, P_MU, P_OMEGA, P_XMS
+from .model import P_BETAB, P_BETAI, P_CS, P_EPS, P_FNI, P_MU, P_OMEGA, P_XMS
 from .monitor_slots import (
     EV_CANNOT,
     EV_NONE,
@@ -434,8 +434,7 @@ def cannot_corotate(p, pts, arm, bound):
         return True
     if not bound:
         return False
-    width = sdb.margin(p[P_MU], p[P_BETAI], p[P_CI], p[P_OMEGA])
-    return sdb.floor_reserve(p, pts) < -width
+    return sdb.floor_reserve(p, pts) < -sdb.run_margin(p)
 
 
 @kernel_jit

@@ -81,7 +81,6 @@ def decide(
     if not applies(config):
         return outcome, reason
     width = margin(config)
-    on_orbit = rows is not None and _on_orbit(rows)
     orbiting = rows is not None and rows.shape[0] > 0 and rows[-1, mon.RV_ANY_STUCK] == 1.0
     if floor < -width and (outcome == "stick" or (orbiting and outcome != "undetermined")):
         # no circle holds it: a stick of the rules is a ratchet slower than eps T, and a
@@ -93,7 +92,7 @@ def decide(
             f"(reserve {floor:+.3g}; the bound's margin {width:.2g}), so no circle holds it "
             f"for good (the rules said: {reason})"
         )
-    if outcome not in ("stick", "creep", "undetermined") or not on_orbit:
+    if outcome not in ("stick", "creep", "undetermined") or rows is None:
         return outcome, reason
     values = np.empty(BLOCKS + 1)
     count = int(sdb.history(rows, rows.shape[0] - 1, rows.shape[0], values))
@@ -125,9 +124,3 @@ def decide(
     if bound_says == outcome:
         return outcome, f"{reason}; {text}"
     return bound_says, f"{text} (the rules said: {reason})"
-
-
-def _on_orbit(rows: np.ndarray) -> bool:
-    """Some contact stuck at every instant of the last ON_ORBIT_REVS revolutions."""
-    last = rows[-ON_ORBIT_REVS:, mon.RV_ANY_STUCK]
-    return rows.shape[0] >= ON_ORBIT_REVS and bool(np.all(last == 1.0))
