@@ -53,6 +53,24 @@ find_jump:
 """
 
 
+# [s] bounds a hang only: a wait for a campaign subprocess polls its progress, and a busy
+# machine (a niced suite beside two studies) took more than 120 s to reach a mid-way goal
+HANG_S = 600.0
+
+
+def wait_until(ready, proc=None, what: str = "the campaign's progress", timeout: float = HANG_S):
+    """Poll `ready()` every 20 ms until it is true. Fails, naming `what`, if subprocess
+    `proc` ends first or `timeout` s pass, so a test never goes on to signal or kill a
+    campaign that has not reached the state it needs."""
+    import time
+
+    deadline = time.monotonic() + timeout
+    while not ready():
+        assert proc is None or proc.poll() is None, f"the campaign ended before {what}"
+        assert time.monotonic() < deadline, f"no {what} within {timeout:.0f} s"
+        time.sleep(0.02)
+
+
 def points_done(out) -> int:
     """points_done in out/status.json (0 while there is none)."""
     import json
@@ -88,7 +106,6 @@ def start_campaign_until(spec, out, points: int = 2, until=None):
     if it ended before. spec: one campaign file, or a list of them (a folder of campaigns)."""
     import subprocess
     import sys
-    import time
 
     specs = [str(path) for path in spec] if isinstance(spec, list | tuple) else [str(spec)]
     proc = subprocess.Popen(
@@ -97,11 +114,8 @@ def start_campaign_until(spec, out, points: int = 2, until=None):
         stderr=subprocess.PIPE,
         text=True,
     )
-    t0 = time.time()
     ready = until or (lambda: points_done(out) >= points)
-    while time.time() - t0 < 120 and proc.poll() is None and not ready():
-        time.sleep(0.02)
-    assert proc.poll() is None, "the campaign finished before the signal"
+    wait_until(ready, proc, "the state the signal needs")
     return proc
 
 

@@ -7,13 +7,13 @@ import random
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
+from conftest import wait_until
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
@@ -138,12 +138,8 @@ def test_sigkill_and_resume_give_the_uninterrupted_fractions(adaptive_runs, tmp_
     out = tmp_path / "killed"
     goal = random.Random(5).randint(n_runs // 4, n_runs // 2)  # mid-way, past a batch
     proc = _cli("run", campaign_file, "-o", out)
-    t0 = time.time()
-    while time.time() - t0 < 120 and proc.poll() is None:
-        if (out / "journal").exists() and Journal.count(out) >= goal:
-            break
-        time.sleep(0.01)
-    assert proc.poll() is None, "the campaign finished before the kill"
+    reached = lambda: (out / "journal").exists() and Journal.count(out) >= goal  # noqa: E731
+    wait_until(reached, proc, f"{goal} journaled runs")
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     assert goal <= len(Journal(out)) < n_runs

@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import coulomb_mu_star
+from conftest import coulomb_mu_star, wait_until
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
@@ -195,9 +195,7 @@ def test_killed_worker_is_retried_and_the_campaign_completes(tmp_path):
 
         thread = threading.Thread(target=target)
         thread.start()
-        t0 = time.time()
-        while len(Journal(out)) < 5 and time.time() - t0 < 120:
-            time.sleep(0.02)
+        wait_until(lambda: len(Journal(out)) >= 5 or not thread.is_alive(), what="5 runs")
         assert thread.is_alive() and len(Journal(out)) < len(Journal(tmp_path / "reference"))
         os.kill(pids[0], signal.SIGKILL)  # the nanny restarts it; its task is rescheduled
         thread.join(timeout=300)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import LONG_CAMPAIGN, points_done, start_campaign_until, wait_for_cpu
+from conftest import HANG_S, LONG_CAMPAIGN, points_done, start_campaign_until, wait_for_cpu
 
 from frictiondisk.cli import main
 
@@ -44,7 +44,7 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
     out = tmp_path / "stopped"
     proc = start_campaign_until(spec, out)
     proc.send_signal(sig)
-    _, err = proc.communicate(timeout=120)
+    _, err = proc.communicate(timeout=HANG_S)
     assert proc.returncode == code, err
     assert word in err and "frictiondisk resume" in err
     if sig != signal.SIGINT:  # a drain notice, if any, names the signal that was sent
@@ -95,7 +95,7 @@ def test_a_stop_before_the_first_point_leaves_every_point_pending(tmp_path):
     out = tmp_path / "out"
     proc = start_campaign_until(spec, out, until=lambda: any(out.glob("journal/*/*")))
     proc.send_signal(signal.SIGTERM)
-    _, err = proc.communicate(timeout=120)
+    _, err = proc.communicate(timeout=HANG_S)
     assert proc.returncode == 143, err
     assert "results.nc" in err, err  # the stop names the file it wrote
 
@@ -227,7 +227,7 @@ def test_a_closed_terminal_stops_the_campaign_gracefully(reference, tmp_path):
             [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
         )
     t0 = time.time()
-    while time.time() - t0 < 120 and points_done(out) < 2:
+    while time.time() - t0 < HANG_S and points_done(out) < 2:
         if select.select([terminal], [], [], 0.02)[0]:
             try:
                 os.read(terminal, 65536)  # keep the terminal drained, as a terminal does

@@ -25,7 +25,7 @@ import pytest
 import xarray as xr
 import yaml
 from click.testing import CliRunner
-from conftest import wait_for_cpu
+from conftest import HANG_S, wait_for_cpu
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -463,7 +463,7 @@ def test_ctrl_c_stops_simulate_within_two_seconds(tmp_path):
     # Wait until the kernel runs: `simulate` starts it in a second (daemon) thread after its
     # imports; a SIGINT during the imports would test the imports, not the kernel.
     child = psutil.Process(process.pid)
-    deadline = time.monotonic() + 120.0
+    deadline = time.monotonic() + HANG_S
     while child.num_threads() < 2 and time.monotonic() < deadline:
         time.sleep(0.2)
     # the cached kernel loads, then runs for minutes: 2 s of the child's CPU time, not of

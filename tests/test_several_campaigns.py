@@ -10,7 +10,7 @@ import signal
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import points_done, start_campaign_until
+from conftest import HANG_S, points_done, start_campaign_until
 
 from frictiondisk import run_campaigns
 from frictiondisk.cli import main
@@ -158,7 +158,7 @@ def test_sigterm_stops_every_campaign_and_resume_finishes_them_identically(long_
     out = tmp_path / "stopped"
     proc = start_campaign_until(specs, out, until=lambda: min(_folder_points(out, names)) >= 1)
     proc.send_signal(signal.SIGTERM)
-    _, err = proc.communicate(timeout=120)
+    _, err = proc.communicate(timeout=HANG_S)
     assert proc.returncode == 143, err
     assert "terminated" in err and f"frictiondisk resume {out}" in err
 
