@@ -249,6 +249,32 @@ def line():
     )
 
 
+def test_points_without_a_jump_are_marked_at_the_top_not_listed_as_failed():
+    status = ["converged", "converged", "converged", "no_jump", "failed"]
+    reason = [*REASON[:3], "no jump: no value from mu = 0.03 to 0.6 sticks", REASON[4]]
+    data = jump_results({"params.x_ms": X_MS}, LO, HI, status, reason)
+    fig = plot_jump_line(data)
+    (ax,) = main_axes(fig)[:1]
+    (mark,) = by_gid(ax, "no_jump")
+    np.testing.assert_allclose(mark.get_xdata(), [0.125])
+    assert mark.get_ydata()[0] > 0.9  # axes fraction: the top edge, mu* above the view
+    assert not by_gid(ax, "failed_points")  # 0.15 kept its bracket; 0.125 is no failure
+    text = all_text(fig)
+    assert "failed points (1)" in text and "x_ms = 0.125 m" not in text
+    assert "no jump: no value of the grid sticks" in all_text(fig)
+    assert outside_the_figure(fig) == []
+    # on a grid: a grey cell that says so, not a hatched failure
+    grid = jump_results(
+        {"params.x_ms": X_MS[:2], "params.x0": [0.0, 0.01]},
+        np.array([[0.06, np.nan], [0.09, 0.095]]),
+        np.array([[0.061, np.nan], [0.091, 0.096]]),
+        np.array([["converged", "no_jump"], ["converged", "converged"]]),
+        np.array([["ok", "no jump: none sticks"], ["ok", "ok"]]),
+    )
+    ax = main_axes(plot_jump_grid(grid))[0]
+    assert len(by_gid(ax, "no_jump_cell")) == 1 and not by_gid(ax, "failed_cell")
+
+
 def test_uncertain_points_are_hollow_named_in_the_legend_and_summed_up():
     flags = ["certified", "uncertain", "recertified", "certified", "uncertain"]
     data = jump_results(

@@ -10,7 +10,7 @@ from conftest import coulomb_mu_star
 
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.model.campaign import campaign_from_text
-from frictiondisk.model.search_settings import Certify
+from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.search.bisection import RunRequest
 from frictiondisk.search.jumps import JumpSearch
 
@@ -136,13 +136,33 @@ def test_a_change_that_fails_below_the_headline_fails_the_point():
     assert res.certification == "failed"
 
 
-def test_no_jump_fails_with_the_reason():
+def test_a_grid_that_sticks_everywhere_fails_with_the_reason():
     search = JumpSearch((0.1, 0.2, 0.3), 1e-3, 0)
     drive(search, lambda r: "stick")
     res = search.result()
     assert res.status == "failed" and res.jumps == ()
     assert "every prescan value" in res.reason and "gave stick" in res.reason
     assert math.isnan(res.mu_star)
+
+
+@pytest.mark.parametrize("certify", [Certify(levels=1), OFF])
+def test_a_grid_on_which_nothing_sticks_is_the_answer_no_jump(certify):
+    """No jump, every value decided not stick: an answer (mu* above the grid), certified
+    only on the whole grid; one undecided value leaves it uncertain, never failed."""
+    mus = tuple(np.round(np.linspace(0.10, 0.30, 21), 10))
+    search = JumpSearch(mus, 1e-4, 1, certify=certify, stride=5)
+    drive(search, lambda r: "stick_slip")
+    res = search.result()
+    assert res.status == "no_jump" and res.jumps == () and math.isnan(res.mu_star)
+    assert res.grid_below.decided == res.grid_below.total == len(mus)
+    assert res.certification == ("certified" if certify.enabled else "off")
+    assert "no jump: no value from mu = 0.1 to 0.3 sticks" in res.reason
+    # one grid value the coarse prescan skipped stays undecided after every retry
+    search = JumpSearch(mus, 1e-4, 1, certify=certify, stride=5)
+    drive(search, lambda r: "undetermined" if abs(r.mu - 0.22) < 1e-9 else "stick_slip")
+    res = search.result()
+    assert res.status == "no_jump" and res.grid_below.decided == len(mus) - 1
+    assert res.certification == ("uncertain" if certify.enabled else "off")
 
 
 def test_bad_prescan_values_are_refused():

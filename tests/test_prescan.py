@@ -108,13 +108,31 @@ def test_a_reserve_that_contradicts_its_verdict_makes_the_prescan_dense_there():
     assert ran == {mu for mu in GRID if not 0.2 <= mu <= 0.23} | {0.2, 0.23}
 
 
-def test_a_window_the_reserve_does_not_show_and_no_run_contradicts_is_missed():
-    # the documented limit: stick in [0.2, 0.23] with a reserve that is NaN (never stuck)
-    # at every not-stick run, between coarse values that do not stick
+def test_a_window_the_reserve_does_not_show_is_missed_above_a_headline_only():
+    # the documented limit: stick in [0.3, 0.33] with a reserve that is NaN (never stuck)
+    # at every not-stick run, between coarse values that do not stick (0.29, 0.40), above
+    # a headline (a jump at 0.1234, sticking up to 0.25 over the coarse value 0.17): skipped
+    def sticks(mu):
+        return 0.1234 <= mu <= 0.25 or 0.3 <= mu <= 0.33
+
+    window = islands(sticks, lambda mu: 0.01 if sticks(mu) else None)
+    (dense, _), (adaptive, _) = both(window, stride=12)
+    assert len(dense.jumps) == 4
+    assert jumps(adaptive) == jumps(dense)[:2]
+
+
+def test_without_any_change_the_whole_grid_runs_and_finds_the_hidden_window():
+    # the same hidden window with nothing sticking anywhere else: a point without a jump
+    # is an answer only on its whole grid, so every value the prescan skipped runs
     window = islands(lambda mu: 0.2 <= mu <= 0.23, lambda mu: 0.01 if 0.2 <= mu <= 0.23 else None)
     (dense, _), (adaptive, _) = both(window, stride=12)
     assert len(dense.jumps) == 2
-    assert len(adaptive.jumps) == 0 and adaptive.status == "failed"
+    assert jumps(adaptive) == jumps(dense) and adaptive.status == "converged"
+    # and where nothing sticks at all: no jump, on every grid value
+    (dense, _), (adaptive, runs) = both(islands(lambda mu: False), stride=12)
+    assert adaptive.status == dense.status == "no_jump"
+    assert {r.mu for r in runs} == set(GRID)
+    assert adaptive.grid_below.decided == adaptive.grid_below.total == len(GRID)
 
 
 def test_undetermined_values_are_refined_around_as_in_the_dense_prescan():

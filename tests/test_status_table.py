@@ -50,6 +50,22 @@ def test_a_failed_point_shows_no_mu_star_and_says_why():
     assert any(line.startswith("failed points") for line in lines), lines
 
 
+def test_a_point_without_a_jump_is_an_answer_with_its_reason_not_a_failure():
+    why = "no jump: no value from mu = 0.03 to 0.6 sticks; 58 of 58 grid values decided"
+    ds = _line(
+        [0.05, 0.06],
+        [0.0632, np.nan],
+        [0.0633, np.nan],
+        ["converged", "no_jump"],
+        ["bracket ok", why],
+    )
+    lines = mu_star_table(ds)
+    assert lines[3].split() == ["0.06", "-", "-", "14", "no_jump"], lines
+    assert any(line.startswith("points without a jump on their grid (1)") for line in lines)
+    assert f"  x_ms = 0.06: {why}" in lines, lines
+    assert not any(line.startswith("failed points") for line in lines), lines
+
+
 def test_a_table_without_failures_lists_no_reasons():
     ds = _line([0.05], [0.0632], [0.0633], ["converged"], ["bracket ok"])
     lines = mu_star_table(ds)

@@ -26,9 +26,13 @@ from frictiondisk.figures.shared import (
     axis_label,
     fitted_legend,
     new_figure,
+    no_jump_label,
     scene_title,
 )
 from frictiondisk.figures.style import styled
+from frictiondisk.search.jump_result import NO_JUMP
+
+NO_JUMP_FACE = "#eeeeee"  # a cell without a jump on its grid (mu* above it)
 
 
 def _edges(values: np.ndarray) -> np.ndarray:
@@ -63,12 +67,13 @@ def plot_jump_grid(
     status = np.asarray(results["status"].values).astype(str)[np.ix_(ix, iy)]
     monotone = np.asarray(results["monotone"].values).astype(int)[np.ix_(ix, iy)]
     n_runs = np.asarray(results["n_runs"].values)[np.ix_(ix, iy)] if "n_runs" in results else None
-    failed = status != "converged"
+    without = status == NO_JUMP  # an answer: no value of the grid sticks
+    failed = (status != "converged") & ~without
 
     labels = _point_labels(results)
-    fail_lines = _failure_lines(
-        results, labels, np.asarray(results["status"].values) != "converged"
-    )
+    flat_status = np.asarray(results["status"].values).reshape(-1)
+    flat_failed = np.flatnonzero((flat_status != "converged") & (flat_status != NO_JUMP))
+    fail_lines = _failure_lines(results, labels, np.isin(np.arange(flat_status.size), flat_failed))
     fig, main, note = new_figure(results, 7.2, 5.4, len(fail_lines) + 1 if fail_lines else 0)
     ax = main.add_subplot()
     ex, ey = _edges(xs), _edges(ys)
@@ -81,7 +86,6 @@ def plot_jump_grid(
     digits = max(2, math.ceil(-math.log10(float(tol))) + 1) if tol else 4
 
     # number failed cells in the order of the list (the Dataset's C order)
-    flat_failed = np.flatnonzero(np.asarray(results["status"].values).reshape(-1) != "converged")
     number = {int(i): k for k, i in enumerate(flat_failed[:MAX_LISTED], start=1)}
     norm = mesh.norm
     handles: list[Any] = []
@@ -108,6 +112,21 @@ def plot_jump_grid(
                 k = number.get(original)
                 lines.append(f"[{k}]" if k else "failed")
                 color = FAIL_COLOR
+            elif without[a, b]:
+                ax.add_patch(
+                    Rectangle(
+                        (x_lo, y_lo),
+                        x_hi - x_lo,
+                        y_hi - y_lo,
+                        facecolor=NO_JUMP_FACE,
+                        edgecolor="0.6",
+                        linewidth=0.6,
+                        zorder=2,
+                        gid="no_jump_cell",
+                    )
+                )
+                lines.append("no jump")
+                color = "black"
             else:
                 lines.append(f"{mu_star[a, b]:.{digits}f}")
                 shade = norm(mu_star[a, b])
@@ -128,7 +147,7 @@ def plot_jump_grid(
                     if failed[a, b]
                     else None,
                 )
-            if monotone[a, b] == 0 and not failed[a, b]:
+            if monotone[a, b] == 0 and not failed[a, b] and not without[a, b]:
                 ax.add_patch(
                     Rectangle(
                         (x_lo, y_lo),
@@ -145,6 +164,8 @@ def plot_jump_grid(
         handles.append(
             Patch(facecolor="#fde0dd", edgecolor=FAIL_COLOR, hatch="xx", label="failed (listed)")
         )
+    if without.any():
+        handles.append(Patch(facecolor=NO_JUMP_FACE, edgecolor="0.6", label=no_jump_label(results)))
     if (monotone == 0).any():
         handles.append(
             Patch(

@@ -35,10 +35,13 @@ from frictiondisk.figures.shared import (
     _point_labels,
     axis_label,
     fitted_legend,
+    mark_no_jump,
     new_figure,
+    no_jump_label,
     scene_title,
 )
 from frictiondisk.figures.style import styled
+from frictiondisk.search.jump_result import NO_JUMP
 from frictiondisk.store.cf import flag_meanings
 
 RUNS_VIEW = 2.0  # runs above this many times the largest bracket end are drawn at the top
@@ -217,7 +220,8 @@ def plot_jump_line(
     mu_hi = np.asarray(results["mu_hi"].values, dtype=float)
     status = np.asarray(results["status"].values).astype(str)
     monotone = np.asarray(results["monotone"].values).astype(int)
-    failed = status != "converged"
+    without = status == NO_JUMP  # an answer: no value of the grid sticks
+    failed = (status != "converged") & ~without
     bracketed = np.isfinite(mu_lo) & np.isfinite(mu_hi)
     ok = ~failed & bracketed
     order = np.argsort(x)
@@ -365,6 +369,8 @@ def plot_jump_line(
                 label="failed: no bracket (listed below)",
             )
         )
+    if without.any():
+        handles.append(mark_no_jump(ax, x[without], no_jump_label(results)))
     failed_idx = np.flatnonzero(failed)
     for k, i in enumerate(failed_idx[:MAX_LISTED], start=1):
         if bracketed[i]:

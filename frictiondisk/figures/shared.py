@@ -7,6 +7,7 @@ them, nor the kernel.
 
 from __future__ import annotations
 
+import math
 import re
 import textwrap
 from typing import Any
@@ -17,7 +18,9 @@ import yaml
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure, SubFigure
 from matplotlib.legend import Legend
+from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter
+from matplotlib.transforms import blended_transform_factory
 
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 from frictiondisk.outcome.horizon import horizon_key
@@ -308,6 +311,26 @@ def _failure_lines(results: xr.Dataset, labels: list[str], failed: np.ndarray) -
             f"... and {len(indices) - MAX_LISTED} more failed points (variable 'reason' in results.nc)"
         )
     return lines
+
+
+# ---- points without a jump on their grid (status no_jump) ---------------------------------
+def no_jump_label(results: xr.Dataset) -> str:
+    """Legend text for points on whose whole prescan grid nothing sticks."""
+    top = float(results["scan_mu"].max()) if "scan_mu" in results.coords else math.nan
+    grid = f"up to \u03bc = {top:.3g}" if math.isfinite(top) else "of the grid"
+    return f"no jump: no value {grid} sticks (\u03bc* above)"
+
+
+def mark_no_jump(ax: Axes, x: np.ndarray, label: str) -> Line2D:
+    """Such points as open triangles at the top edge of a line's axes (mu* lies above the
+    view); returns the legend entry."""
+    style = {"linestyle": "none", "marker": "^", "markersize": 8, "color": STICK_COLOR}
+    top = blended_transform_factory(ax.transData, ax.transAxes)
+    style["markerfacecolor"] = "white"
+    ax.plot(
+        x, np.full(x.size, 0.955), transform=top, clip_on=False, zorder=6, gid="no_jump", **style
+    )
+    return Line2D([], [], label=label, **style)
 
 
 def _point_labels(results: xr.Dataset) -> list[str]:

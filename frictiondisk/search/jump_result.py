@@ -17,6 +17,9 @@ from frictiondisk.search.bisection import (
 from frictiondisk.search.certify import point_certification
 
 RUN_ROLES = ("search", "prescan", "certification")
+# a point's status: "converged" (a headline), NO_JUMP (no value of the whole grid sticks,
+# every one decided: mu* lies above it) or "failed" (no answer)
+NO_JUMP = "no_jump"
 
 
 def run_role(request: RunRequest) -> str:
@@ -59,7 +62,7 @@ class JumpSearchResult:
     jump (the headline: the lowest rising jump that persists; else the lowest jump), so
     code written for one jump keeps working; `jumps` holds every one, in increasing mu."""
 
-    status: str  # "converged" if the prescan settled and every jump converged
+    status: str  # "converged", NO_JUMP or "failed" (see NO_JUMP)
     reason: str
     jumps: tuple[BisectionResult, ...]
     scan: tuple[RunRecord, ...]  # the prescan runs, one per mu (its last retry level)
@@ -67,7 +70,7 @@ class JumpSearchResult:
     primary: BisectionResult | None
     prescan_runs: tuple[RunRecord, ...] = ()  # every prescan run, retries included
     windows: tuple[Window, ...] = ()
-    grid_below: GridBelow | None = None  # None: no headline
+    grid_below: GridBelow | None = None  # the whole grid for NO_JUMP; None: no headline
     checks: tuple[RunRecord, ...] = ()  # persistence and fill runs (settled)
     roles: dict[RunRequest, str] = dataclasses.field(default_factory=dict)
     grid_flag: str = "off"  # certification of the grid below the headline
@@ -104,7 +107,10 @@ class JumpSearchResult:
     @property
     def certification(self) -> str:
         """The weakest certification of the point's jumps and of the grid below its
-        headline (`failed` if it has no jump)."""
+        headline; of a point without a jump, that of its whole grid (`failed` if it has
+        no answer)."""
+        if self.status == NO_JUMP:
+            return self.grid_flag
         if self.status != "converged":
             return "failed"
         flags = [j.certification for j in self.jumps if not above_headline(j, self.primary)]
@@ -136,16 +142,17 @@ def _windows(jumps, persist_width: float) -> tuple[Window, ...]:
     return tuple(found)
 
 
-def _grid_below(search, head: BisectionResult | None) -> GridBelow | None:
-    if head is None:
-        return None
+def _grid_below(search, top: float) -> GridBelow:
+    """The grid below `top`: the headline's mu_lo, or math.inf for the whole grid (the
+    answer "no jump")."""
     decided = {}
     for source in (search._last_scan(), search.checks()):
         for mu, run in source.items():
             if run.outcome != UNDETERMINED:
                 decided[mu] = run.outcome == STICK
-    below = [mu for mu in search.mus if mu < head.mu_lo]
-    seen = sorted(mu for mu in decided if mu < head.mu_lo) + [head.mu_lo]
+    below = [mu for mu in search.mus if mu < top]
+    end = top if math.isfinite(top) else search.mus[-1]
+    seen = sorted(mu for mu in decided if mu < top) + [end]
     gaps = [b - a for a, b in zip([search.mus[0], *seen], seen, strict=False)]
     return GridBelow(sum(mu in decided for mu in below), len(below), max(gaps) if gaps else 0.0)
 
@@ -196,7 +203,7 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
     primary = head or (rising or list(jumps) or [None])[0]
     persist_width = search.persist * search.tol
     windows = _windows(jumps, persist_width)
-    grid = _grid_below(search, head)
+    grid = None if head is None else _grid_below(search, head.mu_lo)
     problems = []
     if search._failure:
         problems.append(search._failure)
@@ -221,14 +228,22 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
         problems.append(
             f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"
         )
-    if not jumps and not problems:
-        kinds = {r.outcome == STICK for r in scan}
-        which = "stick" if kinds == {True} else "not stick"
+    no_jump = not jumps and not problems and search.never_sticks()
+    if not jumps and not problems and not no_jump:
         problems.append(
             f"no jump: every prescan value from mu = {search.mus[0]:.6g} to "
-            f"{search.mus[-1]:.6g} gave {which}"
+            f"{search.mus[-1]:.6g} gave stick (the jump lies below the prescan)"
         )
-    if problems:
+    if no_jump:
+        # an answer, not a failure: mu* lies above the grid, as far as the grid can tell
+        grid = _grid_below(search, math.inf)
+        status = NO_JUMP
+        reason = (
+            f"no jump: no value from mu = {search.mus[0]:.6g} to {search.mus[-1]:.6g} "
+            f"sticks; {grid.decided} of {grid.total} grid values decided not stick "
+            f"(resolution {grid.resolution:.3g})"
+        )
+    elif problems:
         status, reason = "failed", "; ".join(problems)
     else:
         resolved = [j for j in jumps if j not in unresolved]
@@ -265,7 +280,7 @@ def compose_result(search, runs: tuple[RunRecord, ...]) -> JumpSearchResult:
             reason += f"; {vanished} more vanished at stricter numerics"
     grid_flag = "off"
     if search.certify.enabled and grid is not None:
-        whole = grid.decided == grid.total and search.headline_judged()
+        whole = grid.decided == grid.total and (no_jump or search.headline_judged())
         grid_flag = "certified" if whole else "uncertain"
     elif search.persists_nowhere:
         grid_flag = "uncertain"

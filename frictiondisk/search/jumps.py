@@ -18,7 +18,10 @@ verdict at every prescan value below it:
 * the grid below: every prescan value below the headline that the adaptive prescan
   skipped is run (an interval skipped on the friction reserve alone is unexamined), and a
   change it reveals is bisected like any other (`JumpSearchResult.grid_below`). The
-  adaptive prescan saves runs above the headline only.
+  adaptive prescan saves runs above the headline only;
+* no jump: where the prescan finds no change and no value sticks, every grid value runs,
+  and a point on whose whole grid nothing sticks has the answer `no_jump` (mu* lies
+  above the grid), not a failure; its `grid_below` is the whole grid.
 
 With `certify` enabled every jump's bracket is re-checked at stricter numerics
 (frictiondisk.search.certify), and the point is certified only with the whole grid below
@@ -323,14 +326,28 @@ class JumpSearch:
         return found is None or (found[0] not in self.unjudged and not self.persists_nowhere)
 
     def _fill_wanted(self) -> set[float]:
-        """Every grid value below the headline not run yet."""
+        """Every grid value below the headline not run yet; the whole grid where the
+        prescan found no change and every value it ran does not stick (the answer "no
+        jump" stands on the whole grid, as a headline on the grid below it)."""
+        ran = set(self._last_scan()) | set(self._checks)
         head = self.headline()
         if head is None:
+            if not self.bisections and self.never_sticks():
+                return {mu for mu in self.mus if mu not in ran}
             return set()
         base = self.bisections[self._headline()[0]].searches[0].result()
-        ran = set(self._last_scan()) | set(self._checks)
         below = min(head.mu_lo, base.mu_lo)  # certification may have moved the bracket
         return {mu for mu in self.mus if mu < below and mu not in ran}
+
+    def never_sticks(self) -> bool:
+        """Every prescan value run decided not stick (its last retry), and no fill run
+        sticks (one left undetermined leaves the grid less than wholly decided)."""
+        scan = self._last_scan().values()
+        return (
+            bool(scan)
+            and all(run.outcome not in (STICK, UNDETERMINED) for run in scan)
+            and all(run.outcome != STICK for run in self._checks.values())
+        )
 
     # ---- the answer -------------------------------------------------------------------
     def result(self) -> JumpSearchResult:

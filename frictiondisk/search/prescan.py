@@ -18,7 +18,9 @@ reserve: the reserve is mu minus a demand that moves slowly with mu), else the m
 An interval whose ends agree in verdict and whose reserves agree with those verdicts is
 not run inside: the prescan takes it to hold no change. A change the dense prescan sees
 is missed only there, as an island narrower than stride grid steps whose ends' reserves
-both agree with their verdicts. Measured against dense prescans (docs/benchmarks.md):
+both agree with their verdicts, and only above a headline: the search runs every grid
+value below its headline, and the whole grid of a point where the prescan found no change
+and nothing sticks (frictiondisk.search.jumps). Measured against dense prescans (docs/benchmarks.md):
 no miss on the figure campaigns and the well-posedness study's scenes; under
 `stick_rule: contacts` one, which is why that rule keeps a dense prescan by default.
 

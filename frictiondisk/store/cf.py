@@ -68,7 +68,11 @@ TEXT: dict[str, tuple[str, str]] = {
         f"one of: {OUTCOMES}; empty: a value the adaptive prescan did not need to run",
     ),
     "reason": ("why this outcome", "free text; for undetermined: what went wrong"),
-    "status": ("status of the point", "converged or failed; pending: not finished (partial)"),
+    "status": (
+        "status of the point",
+        "converged (mu* found), no_jump (no value of the prescan grid sticks, each decided) "
+        "or failed; pending: not finished (partial)",
+    ),
     "jump_status": ("status of the jump", "converged or failed; empty: no jump"),
     "mode": ("numerics.mode of the run", "decide or converge"),
     "key": ("journal key", "sha256 of the canonical scene and the numerics version"),

@@ -10,6 +10,7 @@ import math
 import numpy as np
 import xarray as xr
 
+from frictiondisk.search.jump_result import NO_JUMP
 from frictiondisk.search.jumps import RUN_ROLES
 from frictiondisk.store.cf import flag_meanings
 from frictiondisk.store.partial import PENDING
@@ -65,8 +66,9 @@ def _why(title: str, dims: list[str], which: list[tuple[tuple, str]]) -> list[st
 
 def mu_star_table(results: xr.Dataset) -> list[str]:
     """Lines of the mu* table of a find_jump results.nc; [] for any other task. A point
-    that did not converge shows no mu* and no bracket (its last bracket is no answer), and
-    the failed points are listed under the table with their reasons."""
+    that did not converge shows no mu* and no bracket (its last bracket is no answer); the
+    points without a jump on their grid (NO_JUMP) and the failed points are listed under
+    the table with their reasons."""
     if results.attrs.get("task") != "find_jump" or "mu_star" not in results:
         return []
     dims = list(results["mu_star"].dims)
@@ -76,7 +78,7 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
     jumps = results.get("jump_mu_star")
     windows = results.get("n_windows")
     below = _grid_below_column(results)
-    rows, failed = [], []
+    rows, failed, without = [], [], []
     for i, (coords, row) in enumerate(_points(results, names)):
         status = str(row["status"].values.item())
         mu, lo, hi = (float(row[v]) for v in ("mu_star", "mu_lo", "mu_hi"))
@@ -98,8 +100,9 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
             + ([_flag(results["certification"], row["certification"])] if certified else [])
             + ([below[i]] if below else [])
         )
-        if status == "failed" and "reason" in row:
-            failed.append((coords, str(row["reason"].values.item())))
+        if status in ("failed", NO_JUMP) and "reason" in row:
+            which = failed if status == "failed" else without
+            which.append((coords, str(row["reason"].values.item())))
     heads = [f"{d}{_unit(results[d])}" for d in dims]
     heads += ["mu*", "bracket [mu_lo, mu_hi]", "runs", "status"]
     heads += ["certification"] if certified else []
@@ -109,6 +112,7 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
     return [
         title,
         *_columns(heads, rows),
+        *_why(f"points without a jump on their grid ({len(without)}):", dims, without),
         *_why(f"failed points ({len(failed)}), why:", dims, failed),
     ]
 
