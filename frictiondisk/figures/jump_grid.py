@@ -72,8 +72,8 @@ def plot_jump_grid(
 
     labels = _point_labels(results)
     flat_status = np.asarray(results["status"].values).reshape(-1)
-    flat_failed = np.flatnonzero((flat_status != "converged") & (flat_status != NO_JUMP))
-    fail_lines = _failure_lines(results, labels, np.isin(np.arange(flat_status.size), flat_failed))
+    failed_in_order = (flat_status != "converged") & (flat_status != NO_JUMP)  # C order
+    fail_lines = _failure_lines(results, labels, failed_in_order)
     fig, main, note = new_figure(results, 7.2, 5.4, len(fail_lines) + 1 if fail_lines else 0)
     ax = main.add_subplot()
     ex, ey = _edges(xs), _edges(ys)
@@ -86,6 +86,7 @@ def plot_jump_grid(
     digits = max(2, math.ceil(-math.log10(float(tol))) + 1) if tol else 4
 
     # number failed cells in the order of the list (the Dataset's C order)
+    flat_failed = np.flatnonzero(failed_in_order)
     number = {int(i): k for k, i in enumerate(flat_failed[:MAX_LISTED], start=1)}
     norm = mesh.norm
     handles: list[Any] = []

@@ -325,8 +325,8 @@ def mark_no_jump(ax: Axes, x: np.ndarray, label: str) -> Line2D:
     """Such points as open triangles at the top edge of a line's axes (mu* lies above the
     view); returns the legend entry."""
     style = {"linestyle": "none", "marker": "^", "markersize": 8, "color": STICK_COLOR}
+    style |= {"markerfacecolor": "white"}  # open: no mu* to mark, only where it is not
     top = blended_transform_factory(ax.transData, ax.transAxes)
-    style["markerfacecolor"] = "white"
     ax.plot(
         x, np.full(x.size, 0.955), transform=top, clip_on=False, zorder=6, gid="no_jump", **style
     )

@@ -20,9 +20,10 @@ not run inside: the prescan takes it to hold no change. A change the dense presc
 is missed only there, as an island narrower than stride grid steps whose ends' reserves
 both agree with their verdicts, and only above a headline: the search runs every grid
 value below its headline, and the whole grid of a point where the prescan found no change
-and nothing sticks (frictiondisk.search.jumps). Measured against dense prescans (docs/benchmarks.md):
-no miss on the figure campaigns and the well-posedness study's scenes; under
-`stick_rule: contacts` one, which is why that rule keeps a dense prescan by default.
+and nothing sticks (frictiondisk.search.jumps). Measured against dense prescans
+(docs/benchmarks.md): no miss on the figure campaigns and the well-posedness study's
+scenes; under `stick_rule: contacts` one, which is why that rule keeps a dense prescan by
+default.
 
 Pure Python: grid indices in, grid indices out; the run summaries are fed by the caller.
 """
