@@ -116,6 +116,7 @@ def start_campaign_until(spec, out, points: int = 2, until=None):
     )
     ready = until or (lambda: points_done(out) >= points)
     wait_until(ready, proc, "the state the signal needs")
+    assert proc.poll() is None, "the campaign finished before the signal"
     return proc
 
 

@@ -140,6 +140,7 @@ def test_sigkill_and_resume_give_the_uninterrupted_fractions(adaptive_runs, tmp_
     proc = _cli("run", campaign_file, "-o", out)
     reached = lambda: (out / "journal").exists() and Journal.count(out) >= goal  # noqa: E731
     wait_until(reached, proc, f"{goal} journaled runs")
+    assert proc.poll() is None, "the campaign finished before the kill"
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     assert goal <= len(Journal(out)) < n_runs
