@@ -195,17 +195,23 @@ def modelled_walls(
     return walls
 
 
-def time_campaign(text: str, workers: int, repeats: int, keep: Path | None = None):
+def time_campaign(
+    text: str, workers: int, repeats: int, keep: Path | None = None, processes: bool = False
+):
     """Best wall time [s] of a fresh run on `workers` local workers, runs used, the
     results (results.nc, loaded), the measured cost per task [s] and the driver thread's
     CPU time [s]; with `keep`, the journal is copied there and the CPU time is counted
-    without the fixed part (lock, replay, netCDF writes: a rerun on the full journal)."""
+    without the fixed part (lock, replay, netCDF writes: a rerun on the full journal).
+    processes: the workers are processes (`run --processes`), not threads of the driver's
+    process."""
     best = None
     for _ in range(repeats):
         with tempfile.TemporaryDirectory() as tmp:
             campaign = campaign_from_text(text, "<bench>")
             t0, cpu0 = time.perf_counter(), time.thread_time()
-            summary = run_campaign(campaign, Path(tmp), workers=workers, progress=False)
+            summary = run_campaign(
+                campaign, Path(tmp), workers=workers, processes=processes, progress=False
+            )
             wall, cpu = time.perf_counter() - t0, time.thread_time() - cpu0
             with xr.open_dataset(Path(tmp) / "results.nc") as ds:
                 found = ds.load()
@@ -220,7 +226,15 @@ def time_campaign(text: str, workers: int, repeats: int, keep: Path | None = Non
     return best
 
 
-def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops, driver_task_s: float):
+def scaling_table(
+    text,
+    workers,
+    repeats,
+    model_to: int,
+    loops: KernelLoops,
+    driver_task_s: float,
+    processes: bool = False,
+):
     """Time the campaign on each worker count and the machine's limit in `repeats` rounds.
 
     The machine is shared and its speed drifts by tens of per cent within a minute, so
@@ -241,7 +255,7 @@ def scaling_table(text, workers, repeats, model_to: int, loops: KernelLoops, dri
             for n in order:
                 loop_wall[n] = loops.wall(n)
                 keep_here = Path(keep) if n == workers[0] and repeat == 0 else None
-                candidate = time_campaign(text, n, 1, keep_here)
+                candidate = time_campaign(text, n, 1, keep_here, processes)
                 if keep_here is not None:
                     driver_cpu = candidate[4]  # without the fixed part (see time_campaign)
                 wall[n] = candidate[0]
@@ -356,6 +370,11 @@ def main() -> None:
     parser.add_argument(
         "--split", type=int, default=3, help="(c), (d): parts per round (default 3)"
     )
+    parser.add_argument(
+        "--processes",
+        action="store_true",
+        help="workers as processes (run --processes): the driver keeps its GIL to itself",
+    )
     args = parser.parse_args()
     quick = not args.full
     cores = os.cpu_count() or 1
@@ -384,9 +403,10 @@ def main() -> None:
             "c": "(c) one point searched to tol 1e-8",
             "d": "(d) one prescanned disk point",
         }[name]
-        print(f"== {title} [{what}] ==")
+        kind = "worker processes" if args.processes else "worker threads"
+        print(f"== {title} [{what}; {kind}] ==")
         rows, limit, of_limit = scaling_table(
-            text, workers, args.repeats, cores, loops, driver_task_s
+            text, workers, args.repeats, cores, loops, driver_task_s, args.processes
         )
         if 2 in rows:
             speedup = rows[2]
@@ -402,7 +422,7 @@ def main() -> None:
             print(f"  target, {target}: {'met' if verdict else 'NOT MET'}")
         if name in "cd" and args.split != 2:
             plain = text.replace(f"split: {args.split}", "split: 2")
-            wall, runs, *_ = time_campaign(plain, 1, args.repeats)
+            wall, runs, *_ = time_campaign(plain, 1, args.repeats, processes=args.processes)
             print(
                 f"  plain bisection (split 2) on 1 worker: {wall:.2f} s (best of "
                 f"{args.repeats}), {runs} runs"
