@@ -173,6 +173,22 @@ def test_a_growing_slip_and_shrinking_sticking_time_is_a_departure():
     assert code == ms.EV_NONE
 
 
+def test_a_slip_below_the_tolerance_that_does_not_fall_is_no_departure():
+    """A pin creeping onto the rim of its sticking disc (well-posedness seed 2 scene 24,
+    mu = 0.103125) sticks for all but milliseconds of a cycle and slips about 5e-11 m a
+    cycle, at the friction law's floor: a slip that does not fall there was read as a
+    departure from sticking, and the point's certified mu* lay 1.3 tol above the jump."""
+    n = 6
+    steps = 5.3e-11 * (1.0 + 0.01 * np.arange(n - 1))
+    slip = 5.0e-11 * (1.0 + 0.02 * np.arange(n))
+    stick = 6.31 - 1e-8 * np.arange(n)
+    code, _ = evidence(along(steps), slip, stick)
+    assert code == ms.EV_NONE
+    # the same shape with a slip per step above the tolerance still departs
+    code, _ = evidence(along(steps * 1e4), slip * 1e4, stick)
+    assert code == ms.EV_DEPART
+
+
 @pytest.mark.parametrize("law", ["geometric", "power"])
 def test_a_slip_that_falls_to_nothing_is_shakedown(law):
     k = np.arange(1, 41)

@@ -23,7 +23,8 @@ over windows are never evidence, because a transient's scatter hides its trend.
   tolerance (a cycle, not an approach to sticking). An approach with a growing ratio (a
   slow passage, or sticking ahead) is no evidence.
 * EV_DEPART: for DEPART_STEPS steps the slip per step grows, the sticking time shrinks and
-  the distances do not shrink: the motion moves away from sticking, ever faster.
+  the distances do not shrink, with a slip per step above the slip tolerance: the motion
+  moves away from sticking, ever faster.
 * EV_SHAKEDOWN (stick): the slip per step falls at every step over the newer three
   quarters of the sequence, and extrapolates to a limit <= the slip tolerance and at most
   SHAKEDOWN_ZERO of the slip still left (nothing; a floor below s0 is a cycle): Aitken's
@@ -348,12 +349,15 @@ def _slip_ratio_bound(slip, n, m, floor):
 
 
 @kernel_jit
-def _departs(mf, pts, slip, stick, n):
+def _departs(mf, pts, slip, stick, n, s0):
     """EV_DEPART: for DEPART_STEPS steps the slip per step did not fall and the sticking
     time did not grow (beyond atol and STICK_NOISE), and the distances did not shrink: a
-    departure from sticking, accelerating or steady (a slow ratchet away)."""
+    departure from sticking, accelerating or steady (a slow ratchet away). The newest slip
+    per step must exceed s0: below the slip that counts as none, a slip that does not fall
+    is the friction law's floor, not a departure (a pin creeping onto the rim of its
+    sticking disc slips 5e-11 m a cycle there, docs/model.md section 6)."""
     m = DEPART_STEPS
-    if n < m + 1:
+    if n < m + 1 or not slip[n - 1] > s0:
         return False
     for back in range(m - 1):
         i = n - 1 - back
@@ -475,7 +479,7 @@ def section_evidence(mf, mi, seq, n, s0):
     share = CONTRACT_SLIP_FALL_STRIBECK if mi[I_STRIBECK] == 1 else CONTRACT_SLIP_FALL
     if _contracts(mf, pts, slip, n, s0, share):
         return EV_CONTRACT
-    if _departs(mf, pts, slip, stick, n):
+    if _departs(mf, pts, slip, stick, n, s0):
         return EV_DEPART
     return EV_NONE
 
