@@ -228,8 +228,9 @@ def disputed(default: Found, reference: Found) -> list[float]:
     return sorted({*ends, *inside[: max(0, SETTLE_MAX - len(ends))]})
 
 
-def settle(scene: dict, mu: float) -> dict:
-    """A long run at mu that counts only what it shows (numerics.evidence: observe)."""
+def settle(scene: dict, mu: float, longer: int = 1) -> dict:
+    """A long run at mu that counts only what it shows (numerics.evidence: observe).
+    longer: a factor on its horizon budget and its step budget (benchmarks/settle_longer.py)."""
     from frictiondisk.simulation.simulate import simulate
 
     config = _config(scene, "default")
@@ -238,7 +239,8 @@ def settle(scene: dict, mu: float) -> dict:
         {
             "params.mu": mu,
             "numerics.t_decide": SETTLE_HORIZON,
-            "numerics.horizon_budget": SETTLE_BUDGET,
+            "numerics.horizon_budget": SETTLE_BUDGET * longer,
+            "numerics.max_steps": num.max_steps * longer,
             "numerics.rtol": num.rtol * SETTLE_RTOL,
             "numerics.atol": num.atol * SETTLE_RTOL,
             "contact.eps": config.contact.eps * SETTLE_EPS,
@@ -273,8 +275,11 @@ def missed_jump(row: dict) -> bool:
     """Sticking that persists below the default's headline: the settling run at the
     reference's lower mu_hi sticks, and so does every watching run PERSIST_STEPS above it.
     The lowest rising jump then lies at or below that mu_hi (below it still where the
-    reference's mu_lo sticks too), and the default did not report it."""
+    reference's mu_lo sticks too), and the default did not report it. A default bracket that
+    holds that mu_hi (one straddling undetermined mu, wider than tol) reported it."""
     if not lower_reference(row) or not row.get("persisted"):
+        return False
+    if row["reference"].mu_hi >= row["default"].mu_lo:
         return False
     seen = {run["mu"]: run["sticks"] for run in row["settled"]}
     sticks_above = seen.get(row["reference"].mu_hi) is True

@@ -3,6 +3,7 @@ was right in a dispute, and one scene end to end against the dense reference."""
 
 from __future__ import annotations
 
+import dataclasses
 import importlib.util
 import math
 import sys
@@ -96,6 +97,55 @@ def test_a_lower_jump_that_persists_is_one_the_default_missed(study):
     row["settled"][1]["sticks"] = True
     row["settled"][0]["sticks"] = True
     assert study.missed_jump(row) and study.verdict(row) == "neither"
+
+
+def test_a_wide_bracket_that_holds_the_lower_jump_did_not_miss_it(study):
+    """Well-posedness seed 1 scene 43: the default's bracket straddles undetermined mu and
+    is 4 tol wide, [0.174781, 0.175188]; the reference's, [0.174785, 0.174883], lies inside
+    it, so their mid points are 1.5 tol apart. A stick at the reference's mu_hi is then no
+    jump the default missed: its bracket reported it."""
+    default = found(study, 0.1749845, [(0.174781, False), (0.175188, True)])
+    default = dataclasses.replace(default, mu_lo=0.174781, mu_hi=0.175188)
+    reference = found(study, 0.174834, [(0.174785, False), (0.174883, True)])
+    reference = dataclasses.replace(reference, mu_lo=0.174785, mu_hi=0.174883)
+    row = {"default": default, "reference": reference}
+    row["settled"] = [
+        {"mu": 0.174781, "sticks": None},
+        {"mu": 0.174785, "sticks": None},
+        {"mu": 0.174883, "sticks": True},
+        {"mu": 0.175188, "sticks": True},
+    ]
+    row["persisted"] = [{"mu": 0.174883 + k * study.TOL, "sticks": True} for k in (2, 5)]
+    assert study.disagrees(default, reference) and study.lower_reference(row)
+    assert not study.missed_jump(row) and study.verdict(row) == "unsettled"
+    # the same reference below the default's bracket is a jump the default missed
+    low = dataclasses.replace(default, mu_lo=0.17490, mu_star=0.17504)
+    assert study.missed_jump({**row, "default": low})
+
+
+def test_a_longer_watch_replaces_only_the_undetermined_ones(study):
+    """benchmarks/settle_longer.py: an unsettled dispute is run again only where a watch
+    ended undetermined, and the longer watch then settles it."""
+    spec = importlib.util.spec_from_file_location(
+        "settle_longer", STUDY.with_name("settle_longer.py")
+    )
+    longer = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(longer)  # imports study_wellposed, registered by the fixture
+    default = found(study, 0.25, [(0.20, False), (0.25, True)])
+    reference = found(study, 0.15, [(0.15, True), (0.20, True)])
+    row = {
+        "default": default,
+        "reference": reference,
+        "settled": [{"mu": 0.15, "sticks": True}, {"mu": 0.20, "sticks": None}],
+        "persisted": [],
+    }
+    assert longer.unsettled([row]) == [row]
+    assert longer.undecided_watches(row) == [0.20]
+    watched = {0.15: {"mu": 0.15, "sticks": False}, 0.20: {"mu": 0.20, "sticks": False}}
+    after = longer.with_longer(row, watched)
+    assert after["settled"][0]["sticks"] is True  # decided before: kept
+    assert study.verdict(after) == "default"
+    assert study.verdict(longer.with_longer(row, {})) == "unsettled"
 
 
 def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default(study):
