@@ -1,6 +1,5 @@
 """Evidence from the motion's own section (numba): is a run that has not stuck converging
-to a cycle, moving away from sticking, or shaking down to sticking? (docs/model.md
-section 6, "Evidence from the section").
+to a cycle, moving away from sticking, or shaking down to sticking? (docs/model.md section 6)
 
 The monitor keeps two sections of the motion:
 
@@ -22,9 +21,8 @@ over windows are never evidence, because a transient's scatter hides its trend.
   approach to a cycle, whose slip per step extrapolates to a limit above the slip
   tolerance (a cycle, not an approach to sticking). An approach with a growing ratio (a
   slow passage, or sticking ahead) is no evidence.
-* EV_DEPART: for DEPART_STEPS steps the slip per step grows, the sticking time shrinks and
-  the distances do not shrink, with a slip per step above the slip tolerance: the motion
-  moves away from sticking, ever faster.
+* EV_DEPART: for DEPART_STEPS steps the slip per step (above the slip tolerance) grows,
+  the sticking time shrinks and the distances do not shrink: it moves away from sticking.
 * EV_SHAKEDOWN (stick): the slip per step falls at every step over the newer three
   quarters of the sequence, and extrapolates to a limit <= the slip tolerance and at most
   SHAKEDOWN_ZERO of the slip still left (nothing; a floor below s0 is a cycle): Aitken's
@@ -352,10 +350,8 @@ def _slip_ratio_bound(slip, n, m, floor):
 def _departs(mf, pts, slip, stick, n, s0):
     """EV_DEPART: for DEPART_STEPS steps the slip per step did not fall and the sticking
     time did not grow (beyond atol and STICK_NOISE), and the distances did not shrink: a
-    departure from sticking, accelerating or steady (a slow ratchet away). The newest slip
-    per step must exceed s0: below the slip that counts as none, a slip that does not fall
-    is the friction law's floor, not a departure (a pin creeping onto the rim of its
-    sticking disc slips 5e-11 m a cycle there, docs/model.md section 6)."""
+    departure from sticking, accelerating or steady (a slow ratchet away). Not below a slip
+    s0 per step: there it is the law's floor (a pin on its rim, docs/model.md section 6)."""
     m = DEPART_STEPS
     if n < m + 1 or not slip[n - 1] > s0:
         return False
