@@ -24,13 +24,13 @@ from frictiondisk.figures.shared import (
     _failure_lines,
     _point_labels,
     axis_label,
+    failed_and_without,
     fitted_legend,
     new_figure,
     no_jump_label,
     scene_title,
 )
 from frictiondisk.figures.style import styled
-from frictiondisk.search.jump_result import NO_JUMP
 
 NO_JUMP_FACE = "#eeeeee"  # a cell without a jump on its grid (mu* above it)
 
@@ -64,15 +64,13 @@ def plot_jump_grid(
     ix, iy = np.argsort(cx.values), np.argsort(cy.values)
     xs, ys = np.asarray(cx.values, float)[ix], np.asarray(cy.values, float)[iy]
     mu_star = np.asarray(results["mu_star"].values, float)[np.ix_(ix, iy)]
-    status = np.asarray(results["status"].values).astype(str)[np.ix_(ix, iy)]
     monotone = np.asarray(results["monotone"].values).astype(int)[np.ix_(ix, iy)]
     n_runs = np.asarray(results["n_runs"].values)[np.ix_(ix, iy)] if "n_runs" in results else None
-    without = status == NO_JUMP  # an answer: no value of the grid sticks
-    failed = (status != "converged") & ~without
+    failed_all, without_all = failed_and_without(results)
+    failed, without = failed_all[np.ix_(ix, iy)], without_all[np.ix_(ix, iy)]
 
     labels = _point_labels(results)
-    flat_status = np.asarray(results["status"].values).reshape(-1)
-    failed_in_order = (flat_status != "converged") & (flat_status != NO_JUMP)  # C order
+    failed_in_order = failed_all.reshape(-1)  # C order
     fail_lines = _failure_lines(results, labels, failed_in_order)
     fig, main, note = new_figure(results, 7.2, 5.4, len(fail_lines) + 1 if fail_lines else 0)
     ax = main.add_subplot()

@@ -34,6 +34,7 @@ from frictiondisk.figures.shared import (
     _padded,
     _point_labels,
     axis_label,
+    failed_and_without,
     fitted_legend,
     mark_no_jump,
     new_figure,
@@ -41,7 +42,6 @@ from frictiondisk.figures.shared import (
     scene_title,
 )
 from frictiondisk.figures.style import styled
-from frictiondisk.search.jump_result import NO_JUMP
 from frictiondisk.store.cf import flag_meanings
 
 RUNS_VIEW = 2.0  # runs above this many times the largest bracket end are drawn at the top
@@ -218,10 +218,8 @@ def plot_jump_line(
     mu_star = np.asarray(results["mu_star"].values, dtype=float)
     mu_lo = np.asarray(results["mu_lo"].values, dtype=float)
     mu_hi = np.asarray(results["mu_hi"].values, dtype=float)
-    status = np.asarray(results["status"].values).astype(str)
     monotone = np.asarray(results["monotone"].values).astype(int)
-    without = status == NO_JUMP  # an answer: no value of the grid sticks
-    failed = (status != "converged") & ~without
+    failed, without = failed_and_without(results)
     bracketed = np.isfinite(mu_lo) & np.isfinite(mu_hi)
     ok = ~failed & bracketed
     order = np.argsort(x)

@@ -24,6 +24,7 @@ from matplotlib.transforms import blended_transform_factory
 
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 from frictiondisk.outcome.horizon import horizon_key
+from frictiondisk.search.jump_result import NO_JUMP
 
 MU_LABEL = "friction coefficient \u03bc [-]"
 MU_STAR_LABEL = "\u03bc* [-]"
@@ -314,6 +315,14 @@ def _failure_lines(results: xr.Dataset, labels: list[str], failed: np.ndarray) -
 
 
 # ---- points without a jump on their grid (status no_jump) ---------------------------------
+def failed_and_without(results: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """Boolean masks, in the Dataset's order, of the failed points and of the points without
+    a jump on their grid: NO_JUMP is an answer (no value of the grid sticks), not a failure."""
+    status = np.asarray(results["status"].values).astype(str)
+    without = status == NO_JUMP
+    return (status != "converged") & ~without, without
+
+
 def no_jump_label(results: xr.Dataset) -> str:
     """Legend text for points on whose whole prescan grid nothing sticks."""
     top = float(results["scan_mu"].max()) if "scan_mu" in results.coords else math.nan
