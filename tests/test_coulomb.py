@@ -56,3 +56,40 @@ def test_coulomb_is_for_the_pin_only():
     with pytest.raises(ConfigError) as err:
         scene_from_dict({"scene": "disk", "numerics": {"method": "coulomb"}})
     assert "numerics.method" in str(err.value)
+
+
+def rim_pin(offset, **numerics):
+    """Well-posedness study scene 1/48 at mu = c_s |x_ms| / F_n + offset."""
+    params = {"x_ms": 0.0551237, "x0": 0.0174313, "m_s": 0.572235, "omega_m": 0.875483}
+    base = scene_from_dict({"scene": "pin", "params": params})
+    bound = base.params.c_s * abs(base.params.x_ms) / base.params.F_n
+    numerics = {"method": "coulomb", "evidence": "observe", **numerics}
+    return base.with_overrides(
+        {"params.mu": bound + offset, **{f"numerics.{k}": v for k, v in numerics.items()}}
+    )
+
+
+def test_a_pin_creeping_onto_the_rim_of_its_sticking_disc_sticks_in_the_limit():
+    config = rim_pin(1.25e-4, t_decide=600.0)
+    result = simulate(config)
+    assert result.outcome == "stick", result.reason
+    assert "in the limit" in result.reason
+    p = config.params
+    g = g_factor(p.omega_m, p.c_s, p.beta_s, p.m_s)
+    # it sticks on the rim: g R* + c_s |x_ms| = mu F_n exactly
+    assert g * result.size + p.c_s * abs(p.x_ms) == pytest.approx(p.mu * p.F_n, rel=1e-12)
+    assert result.t_end < 600.0
+
+
+def test_below_its_bound_a_watched_pin_is_shown_not_to_stick():
+    result = simulate(rim_pin(-5e-5, t_decide=60.0))
+    assert result.outcome in ("slide", "stick_slip")
+    assert "it cannot stick" in result.reason
+
+
+def test_a_watched_stick_slip_cycle_needs_its_onsets_to_repeat():
+    # decided stick_slip from its final window (test_outcomes_and_the_exact_sticking_circle),
+    # but at 100 s its onsets still move 1e-4 m an onset
+    early = simulate(pin(0.11, method="coulomb", evidence="observe", t_decide=100.0))
+    assert early.outcome == "undetermined"
+    assert "without evidence that it will not stick" in early.reason

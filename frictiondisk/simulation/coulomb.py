@@ -32,7 +32,9 @@ from frictiondisk.outcome.classify import revolution
 from frictiondisk.outcome.horizon import horizon_of
 from frictiondisk.outcome.reserve import friction_reserve
 from frictiondisk.outcome.result import SimulationResult
+from frictiondisk.outcome.rim_approach import repeats, rim_limit
 
+RIM_CHECK_EVERY = 8  # stick onsets between two tests of a creep onto the rim
 V_STICK = 1e-10  # [m/s] sliding speed taken as zero (the stop takes ~1e-9 s from here)
 RTOL, ATOL = 1e-11, 1e-14
 
@@ -54,9 +56,18 @@ class _Pin:
         mr = (self.c_s - self.m * self.om**2) * r + self.beta_s * self.om * np.array([-r[1], r[0]])
         return mr - self.c_s * self.r0
 
+    def g(self) -> float:
+        return math.hypot(self.c_s - self.m * self.om**2, self.beta_s * self.om)
+
     def permanent(self, r) -> bool:
-        g = math.hypot(self.c_s - self.m * self.om**2, self.beta_s * self.om)
-        return g * math.hypot(*r) + self.c_s * abs(self.r0[0]) <= self.limit
+        return self.g() * math.hypot(*r) + self.c_s * abs(self.r0[0]) <= self.limit
+
+    def disc_radius(self) -> float:
+        """R* [m]: radius of the sticking disc, g R* + c_s |x_ms| = mu F_n (< 0: none)."""
+        reserve = self.limit - self.c_s * abs(self.r0[0])
+        if self.g() == 0.0:
+            return math.inf if reserve >= 0.0 else -math.inf
+        return reserve / self.g()
 
     def breakaway(self, r_s) -> float:
         """Time [s] after sticking at r_s when |F_req| first exceeds mu F_n (inf if never)."""
@@ -87,6 +98,32 @@ class _Pin:
         return math.hypot(y[2] + self.om * y[1], y[3] - self.om * y[0])
 
 
+def _not_stuck(frac, lo, t_end, disc, sticks, num) -> tuple[str, str]:
+    """The verdict of a run that reached its horizon unstuck. With numerics.evidence
+    observe only where it is shown: no sticking disc exists (mu F_n < c_s |x_ms|), so no
+    motion can stick, or the stick onsets repeat off the rim (a cycle); otherwise
+    `undetermined` with the onsets' approach to the rim."""
+    if frac > 0.0:
+        outcome = "stick_slip"
+        reason = f"sticking and sliding alternate in the final window [{lo:.6g}, {t_end:.6g}] s"
+    else:
+        outcome = "slide"
+        reason = f"no sticking in the final window [{lo:.6g}, {t_end:.6g}] s"
+    if disc < 0.0:
+        return outcome, reason + "; no sticking disc exists (mu F_n < c_s |x_ms|): it cannot stick"
+    if num.evidence != "observe":
+        return outcome, reason
+    gaps = [s[2] - disc for s in sticks]
+    cycle, shown = repeats(gaps, num.cycle_tol)
+    if cycle:
+        return outcome, f"{reason}; {shown}: a cycle reached"
+    _, evidence = rim_limit(gaps, num.cycle_tol)
+    return "undetermined", (
+        f"horizon reached at t = {t_end:.6g} s without evidence that it will not stick "
+        f"(numerics.evidence observe; {reason}): {evidence}; {shown}"
+    )
+
+
 def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
     """Run the pin with exact Coulomb friction; outcome rules as in docs/model.md section 6."""
     if config.scene != "pin":
@@ -100,6 +137,7 @@ def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> Simul
     y = np.array([p.x_ms + p.x0, p.y0, p.vx0, p.vy0])
     t = 0.0
     sticks: list[tuple[float, float, float]] = []  # (t_start, t_end, radius)
+    disc = pin.disc_radius()
     n_steps = 0
     outcome, reason = None, ""
 
@@ -127,6 +165,17 @@ def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> Simul
                         f"g R + c_s |x_ms| <= mu F_n (exact Coulomb stick from t = {t:.6g} s)"
                     )
                     break
+                if disc > 0.0 and len(sticks) % RIM_CHECK_EVERY == 0:
+                    onto, evidence = rim_limit([s[2] - disc for s in sticks], num.cycle_tol)
+                    if onto:
+                        sticks.append((t, math.inf, disc))
+                        outcome = "stick"
+                        reason = (
+                            f"sticks in the limit on the rim of its sticking disc R* = "
+                            f"{disc:.9g} m (exact Coulomb, creeping onto it by t = {t:.6g} s): "
+                            f"{evidence}"
+                        )
+                        break
                 tau = pin.breakaway(r_s)
                 t_break = min(t + tau, horizon)
                 sticks.append((t, t_break, radius))
@@ -169,12 +218,7 @@ def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> Simul
     stuck = sum(max(0.0, min(b, t_end) - max(a, lo)) for a, b, _ in sticks)
     frac = stuck / (t_end - lo) if t_end > lo else 0.0
     if outcome is None:
-        if frac > 0.0:
-            outcome = "stick_slip"
-            reason = f"sticking and sliding alternate in the final window [{lo:.6g}, {t_end:.6g}] s"
-        else:
-            outcome = "slide"
-            reason = f"no sticking in the final window [{lo:.6g}, {t_end:.6g}] s"
+        outcome, reason = _not_stuck(frac, lo, t_end, disc, sticks, num)
     first = sticks[0] if sticks else (math.nan, math.nan, math.nan)
     return SimulationResult(
         outcome=outcome,
