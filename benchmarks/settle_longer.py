@@ -7,6 +7,8 @@ its section repeated. This script runs each such watch again with both budgets m
 by --longer (the same numerics otherwise: rtol, atol and eps / 100, evidence observe) and
 prints every unsettled row's verdict before and after. The new runs go to --out (JSON
 lines), so an interrupted call loses no finished watch and a second call reuses them.
+--longer 1 asks a changed judge (the exact Coulomb watch of a Coulomb pin) on the same
+budgets; the regularized watch, deterministic, is then taken from the row.
 
     python benchmarks/settle_longer.py out/wellposed.jsonl --out out/longer.jsonl --longer 8
 """
@@ -15,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import multiprocessing
 import sys
 from pathlib import Path
@@ -39,15 +42,18 @@ def unsettled(rows: list[dict]) -> list[dict]:
     ]
 
 
-def undecided_watches(row: dict) -> list[float]:
-    """The mu of the row's settling and persistence runs that ended undetermined."""
+def undecided_watches(row: dict) -> dict[float, dict]:
+    """mu -> the row's settling or persistence run there that ended undetermined."""
     runs = [*row["settled"], *row.get("persisted", [])]
-    return sorted({run["mu"] for run in runs if run["sticks"] is None})
+    return {run["mu"]: run for run in runs if run["sticks"] is None}
 
 
-def _watch(job: tuple[int, int, float, int]) -> dict:
-    seed, index, mu, longer = job
-    run = study.settle(study.draw_scene(seed, index), mu, longer)
+def _watch(job: tuple[int, int, float, int, dict]) -> dict:
+    """A watch again; at --longer 1 (a new judge on the same budgets) its regularized run,
+    deterministic, is taken from the study's row instead of run again."""
+    seed, index, mu, longer, earlier = job
+    known = earlier.get("regularized", earlier) if longer == 1 else None
+    run = study.settle(study.draw_scene(seed, index), mu, longer, regularized=known)
     return {"seed": seed, "index": index, "longer": longer, "run": run}
 
 
@@ -68,7 +74,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--processes", type=int, default=2)
     args = parser.parse_args(argv)
 
-    rows = unsettled(load_rows(args.rows))
+    every = load_rows(args.rows)
+    rows = unsettled(every)
     done: dict[tuple[int, int, float], dict] = {}
     if args.out.is_file():
         for line in args.out.read_text().splitlines():
@@ -76,9 +83,9 @@ def main(argv: list[str] | None = None) -> int:
             if entry["longer"] == args.longer:
                 done[(entry["seed"], entry["index"], entry["run"]["mu"])] = entry["run"]
     jobs = [
-        (r["seed"], r["index"], mu, args.longer)
+        (r["seed"], r["index"], mu, args.longer, run)
         for r in rows
-        for mu in undecided_watches(r)
+        for mu, run in sorted(undecided_watches(r).items())
         if (r["seed"], r["index"], mu) not in done
     ]
     print(f"{len(rows)} unsettled disagreements, {len(jobs)} watches to run x {args.longer}")
@@ -93,9 +100,12 @@ def main(argv: list[str] | None = None) -> int:
                 f"{run['t_end']:.0f} s",
                 flush=True,
             )
+
+    def mine(r):
+        return {mu: run for (s, i, mu), run in done.items() if (s, i) == (r["seed"], r["index"])}
+
     for r in rows:
-        mine = {mu: run for (s, i, mu), run in done.items() if (s, i) == (r["seed"], r["index"])}
-        after = with_longer(r, mine)
+        after = with_longer(r, mine(r))
         text = "; ".join(
             f"{run['mu']:.6f} {run['outcome']} at {run['t_end']:.0f} s"
             for run in [*after["settled"], *after["persisted"]]
@@ -105,6 +115,8 @@ def main(argv: list[str] | None = None) -> int:
         print(
             f"{r['seed']}/{r['index']}: unsettled -> {right}{' (SILENT)' if silent else ''}; {text}"
         )
+    print("\nthe study's report with these watches (kernel times as the rows hold them):")
+    print("\n".join(study.report([with_longer(r, mine(r)) for r in every], math.nan)))
     return 0
 
 

@@ -16,11 +16,16 @@ none. Every disagreement is *settled run by run*: each verdict the two settings 
 the disputed mu (their headline brackets' ends and every decided value between the two
 headlines) is run again with a long horizon (SETTLE_HORIZON s, horizon_budget SETTLE_BUDGET,
 rtol / 100) under `numerics.evidence: observe`, where only what the run shows counts (it
-sticks, or its section repeats), never an extrapolation. The table says which side was
-right: the default (then the reference missed or misjudged something), the reference
-(then the default's verdict was wrong: *silent* if the default called that point
-certified), both (a window between their samples, narrower than the default's grid), or
-neither settled.
+sticks, or its section repeats), never an extrapolation; a pin with Coulomb friction is
+watched by the exact Coulomb integrator too (no regularization; it sticks, creeps onto
+the rim of its sticking disc, or its stick onsets repeat), and two watches that show
+different verdicts settle nothing. The table says which side was right: the default
+(then the reference missed or misjudged something), the reference (then the default's
+verdict was wrong: *silent* if the default called that point certified), both (a window
+between their samples, narrower than the default's grid), or neither settled. A watch
+that stays undetermined leaves a dispute open only where the two sides claim different
+things there (`implied_claim`: below its headline bracket a side says "does not stick",
+over its persistence width above it "sticks").
 
 Where the reference's headline lies lower, a jump the default's grid stepped over is
 checked too: where the settling run at the reference's mu_hi sticks and the slave sticks,
@@ -50,6 +55,7 @@ import os
 import sys
 import time
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -78,8 +84,10 @@ SETTLE_BUDGET = 8.0  # its horizon_budget: up to 12 000 s
 SETTLE_RTOL = 0.01  # rtol factor of a settling run
 SETTLE_EPS = 0.01  # eps factor of a settling run: slip eps T a revolution counts as none,
 # and a braked disk's answer moves with eps below its Melan bound (docs/model.md section 6)
+COULOMB_MAX_STEPS = 50_000_000  # scipy Radau steps of an exact Coulomb watch
 SETTLE_MAX = 6  # settling runs per disagreement at most (the nearest to the dispute)
 SETTINGS = ("default", "uncertified", "reference")
+PERSIST = 3.0  # [tol] a headline's persistence width (prescan.persist's default)
 PERSIST_STEPS = (2, 5, 10, 20)  # [tol] above the reference's mu_hi, watched for a missed jump
 
 
@@ -228,9 +236,21 @@ def disputed(default: Found, reference: Found) -> list[float]:
     return sorted({*ends, *inside[: max(0, SETTLE_MAX - len(ends))]})
 
 
-def settle(scene: dict, mu: float, longer: int = 1) -> dict:
-    """A long run at mu that counts only what it shows (numerics.evidence: observe).
-    longer: a factor on its horizon budget and its step budget (benchmarks/settle_longer.py)."""
+def coulomb_pin(scene: dict) -> bool:
+    """A pin with Coulomb friction: the exact Coulomb integrator watches it too."""
+    stribeck = scene.get("contact", {}).get("stribeck") or {}
+    return scene["scene"] == "pin" and stribeck.get("r", 1.0) == 1.0
+
+
+def settle(scene: dict, mu: float, longer: int = 1, regularized: dict | None = None) -> dict:
+    """Long runs at mu that count only what they show (numerics.evidence: observe): the
+    regularized model at rtol, atol and eps / 100 and, on a Coulomb pin, the exact Coulomb
+    integrator (numerics.method coulomb, no regularization: its stick onsets repeat, or
+    creep onto the rim of the sticking disc, frictiondisk/outcome/rim_approach.py) over
+    the same horizon. The verdict is the one they show; where both show one and they
+    differ, none. longer: a factor on the horizon budget and the step budget
+    (benchmarks/settle_longer.py); regularized: that watch's outcome, t_end and reason from
+    an earlier call with the same longer, taken instead of run again."""
     from frictiondisk.simulation.simulate import simulate
 
     config = _config(scene, "default")
@@ -247,15 +267,34 @@ def settle(scene: dict, mu: float, longer: int = 1) -> dict:
             "numerics.evidence": "observe",
         }
     )
-    result = simulate(config)
-    sticks = None if result.outcome == "undetermined" else result.outcome == "stick"
-    return {
+    if regularized is not None:
+        watches = [SimpleNamespace(**{k: regularized[k] for k in ("outcome", "t_end", "reason")})]
+    else:
+        watches = [simulate(config)]
+    if coulomb_pin(scene):
+        exact = config.with_overrides(
+            {
+                "numerics.method": "coulomb",
+                "numerics.t_decide": SETTLE_HORIZON * SETTLE_BUDGET * longer,
+                "numerics.max_steps": COULOMB_MAX_STEPS * longer,
+            }
+        )
+        watches.append(simulate(exact))
+    decided = [w for w in watches if w.outcome != "undetermined"]
+    shown = {w.outcome == "stick" for w in decided}
+    sticks = next(iter(shown)) if len(shown) == 1 else None
+    head = decided[0] if decided else watches[0]
+    run = {
         "mu": mu,
-        "outcome": result.outcome,
+        "outcome": head.outcome if len(shown) < 2 else "conflict",
         "sticks": sticks,
-        "t_end": result.t_end,
-        "reason": result.reason,
+        "t_end": head.t_end,
+        "reason": head.reason if len(decided) < 2 else "; ".join(w.reason for w in decided),
     }
+    if len(watches) > 1:
+        run["coulomb"] = {k: getattr(watches[1], k) for k in ("outcome", "t_end", "reason")}
+        run["regularized"] = {k: getattr(watches[0], k) for k in ("outcome", "t_end", "reason")}
+    return run
 
 
 def claim_at(found: Found, mu: float) -> bool | None:
@@ -286,28 +325,46 @@ def missed_jump(row: dict) -> bool:
     return sticks_above and all(run["sticks"] is True for run in row["persisted"])
 
 
+def implied_claim(found: Found, mu: float) -> bool | None:
+    """A side's claim at mu: the verdict it decided there; else, below its headline
+    bracket, 'does not stick' (its headline is the lowest rising jump), and over the
+    persistence width above it, 'sticks' (its headline persists)."""
+    claim = claim_at(found, mu)
+    if claim is not None or not math.isfinite(found.mu_star):
+        return claim
+    if mu < found.mu_lo:
+        return False
+    if found.mu_hi <= mu <= found.mu_hi + PERSIST * TOL:
+        return True
+    return None
+
+
 def verdict(row: dict) -> str:
-    """Which side the settling runs proved right: default, reference, both (a window
-    between their samples), neither, or unsettled. A missed jump (`missed_jump`) makes the
-    default wrong."""
+    """Which side the settling runs proved right: default (its claims stand; the
+    reference's are refuted, or some stay open), reference, both (a window between their
+    samples), neither, or unsettled (a claim of the default is open). A decided verdict
+    refutes the side that claimed otherwise there; a missed jump (`missed_jump`) makes the
+    default wrong. A watch that ends undetermined leaves open each side's claim there
+    (`implied_claim`) where the two differ; where both say the same, as on a scene where
+    they agree, the dispute is not there."""
     wrong = {"default": missed_jump(row), "reference": False}
-    unsettled = False
+    open_ = {"default": False, "reference": False}
     for run in row["settled"]:
+        claims = {side: implied_claim(row[side], run["mu"]) for side in wrong}
         for side in wrong:
-            claim = claim_at(row[side], run["mu"])
-            if claim is None:
-                continue
             if run["sticks"] is None:
-                unsettled = True
-            elif run["sticks"] != claim:
+                open_[side] |= claims[side] is not None and len(set(claims.values())) > 1
+            elif claim_at(row[side], run["mu"]) not in (None, run["sticks"]):
                 wrong[side] = True
     if wrong["default"] and wrong["reference"]:
         return "neither"
     if wrong["default"]:
         return "reference"
-    if wrong["reference"]:
+    if open_["default"]:
+        return "unsettled"
+    if wrong["reference"] or open_["reference"]:
         return "default"
-    return "unsettled" if unsettled else "both"
+    return "both"
 
 
 def study_scene(args: tuple[int, int, bool, bool, dict | None, dict]) -> dict:

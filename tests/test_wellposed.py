@@ -8,6 +8,7 @@ import importlib.util
 import math
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -65,6 +66,34 @@ def test_a_dispute_is_settled_against_the_side_a_long_run_contradicts(study):
     assert study.verdict(row) == "unsettled"
 
 
+def test_an_open_watch_where_both_sides_claim_the_same_leaves_no_dispute_there(study):
+    # the default's bracket [0.20, 0.25] holds the reference's jump at 0.22
+    default = found(study, 0.225, [(0.18, False), (0.20, False), (0.25, True)])
+    default = dataclasses.replace(default, mu_lo=0.20, mu_hi=0.25)
+    reference = found(study, 0.22, [(0.20, False), (0.22, True)])
+    row = {"default": default, "reference": reference}
+    row["settled"] = [{"mu": 0.18, "sticks": None}, {"mu": 0.22, "sticks": False}]
+    # 0.18: the default says no stick, and so does the reference (below its headline)
+    assert study.implied_claim(reference, 0.18) is False
+    assert study.verdict(row) == "default"  # the reference's 0.22 does not stick
+    row["settled"][1]["sticks"] = None  # open, and inside the default's bracket
+    assert study.implied_claim(default, 0.22) is None
+    assert study.verdict(row) == "default"
+    # 0.25: the default says it sticks, the reference (5 tol above its mu_hi) says nothing
+    row["settled"] = [{"mu": 0.20, "sticks": None}, {"mu": 0.25, "sticks": None}]
+    assert study.verdict(row) == "unsettled"
+    # the reference's jump 1 tol above the default's mu_hi: the default claims that its
+    # headline persists there, the reference that it does not stick
+    low = found(study, 0.21, [(0.20, False), (0.21, True)])
+    high = found(study, 0.2101, [(0.20995, False), (0.21005, True)])
+    row = {"default": low, "reference": high, "settled": [{"mu": 0.20995, "sticks": None}]}
+    assert study.implied_claim(low, 0.20995) is None  # inside its bracket [0.20995, 0.21005]
+    row["settled"] = [{"mu": 0.21015, "sticks": None}]
+    row["reference"] = dataclasses.replace(high, claims=((0.21015, False), (0.21025, True)))
+    assert study.implied_claim(low, 0.21015) is True
+    assert study.verdict(row) == "unsettled"
+
+
 def test_a_lower_jump_that_persists_is_one_the_default_missed(study):
     """Well-posedness seed 3 scene 14: the default's grid stepped over a jump the
     reference found 0.12 lower. Every verdict either side claimed is right (or stays
@@ -85,9 +114,10 @@ def test_a_lower_jump_that_persists_is_one_the_default_missed(study):
     assert study.missed_jump(row) and study.verdict(row) == "reference"
     assert study.silent_errors([{**row, "seed": 3, "index": 14}]) == 1
     # a window narrower than the watched steps (it slides 10 tol above) is not a jump that
-    # persists: the dispute stays as the claims settle it
+    # persists: the dispute stays as the claims settle it, both right (0.14, open, is
+    # below the default's headline: both say it does not stick)
     row["persisted"][1]["sticks"] = False
-    assert not study.missed_jump(row) and study.verdict(row) == "unsettled"
+    assert not study.missed_jump(row) and study.verdict(row) == "both"
     # nor is a reference jump whose sticking side does not stick when watched
     row["persisted"][1]["sticks"] = True
     row["settled"][1]["sticks"] = None
@@ -117,7 +147,10 @@ def test_a_wide_bracket_that_holds_the_lower_jump_did_not_miss_it(study):
     ]
     row["persisted"] = [{"mu": 0.174883 + k * study.TOL, "sticks": True} for k in (2, 5)]
     assert study.disagrees(default, reference) and study.lower_reference(row)
-    assert not study.missed_jump(row) and study.verdict(row) == "unsettled"
+    assert not study.missed_jump(row)
+    # open: the default's 0.174781 (the reference, lower, says the same: no dispute there)
+    # and the reference's 0.174785 (inside the default's bracket): the default's claims stand
+    assert study.verdict(row) == "default"
     # the same reference below the default's bracket is a jump the default missed
     low = dataclasses.replace(default, mu_lo=0.17490, mu_star=0.17504)
     assert study.missed_jump({**row, "default": low})
@@ -140,7 +173,7 @@ def test_a_longer_watch_replaces_only_the_undetermined_ones(study):
         "persisted": [],
     }
     assert longer.unsettled([row]) == [row]
-    assert longer.undecided_watches(row) == [0.20]
+    assert list(longer.undecided_watches(row)) == [0.20]
     watched = {0.15: {"mu": 0.15, "sticks": False}, 0.20: {"mu": 0.20, "sticks": False}}
     after = longer.with_longer(row, watched)
     assert after["settled"][0]["sticks"] is True  # decided before: kept
@@ -162,3 +195,30 @@ def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default
         assert default.status == "failed" or default.certification == "uncertain"
         assert "stricter numerics" in default.reason, default.reason
     assert study.silent_errors(rows) == 0
+
+
+def test_a_coulomb_pin_is_watched_by_the_exact_integrator_too(study, monkeypatch):
+    """settle: the verdict one watch shows counts; two that differ leave it open."""
+    import frictiondisk.simulation.simulate as simulation
+
+    shown = {}
+
+    def fake(config):
+        outcome = shown[config.numerics.method]
+        return SimpleNamespace(outcome=outcome, t_end=1.0, reason=outcome)
+
+    monkeypatch.setattr(simulation, "simulate", fake)
+    pin = {"scene": "pin", "params": {"x_ms": 0.08}, "contact": {}}
+    assert study.coulomb_pin(pin)
+    assert not study.coulomb_pin({**pin, "contact": {"stribeck": {"r": 0.7, "v_s": 0.01}}})
+    shown.update(rodas4="undetermined", coulomb="stick")
+    run = study.settle(pin, 0.1)
+    assert run["sticks"] is True and run["coulomb"]["outcome"] == "stick"
+    shown.update(rodas4="stick_slip", coulomb="stick")
+    assert study.settle(pin, 0.1)["sticks"] is None  # a conflict settles nothing
+    shown.update(rodas4="stick_slip", coulomb="undetermined")
+    assert study.settle(pin, 0.1)["sticks"] is False
+    # the regularized watch of an earlier call is taken, not run again
+    shown.update(rodas4="stick", coulomb="stick_slip")
+    earlier = {"outcome": "stick_slip", "t_end": 9.0, "reason": "a cycle"}
+    assert study.settle(pin, 0.1, regularized=earlier)["sticks"] is False
