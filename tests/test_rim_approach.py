@@ -52,3 +52,4 @@ def test_onsets_that_scatter_within_the_tolerance_off_the_rim_repeat():
     gaps = 0.02 + 1e-8 * rng.standard_normal(64)
     assert repeats(gaps, CYCLE_TOL)[0]
     assert not repeats(1e-8 * np.abs(rng.standard_normal(64)), CYCLE_TOL)[0]  # on the rim
+    assert repeats(np.full(32, 0.02), CYCLE_TOL)[0]  # repeated to the last bit

@@ -61,8 +61,8 @@ def rim_limit(gaps: np.ndarray, cycle_tol: float) -> tuple[bool, str]:
 def repeats(gaps: np.ndarray, cycle_tol: float) -> tuple[bool, str]:
     """(a cycle reached, the evidence in words) from the gaps d_n [m] of the stick onsets to
     the rim, oldest first. Over the newest half of them (at least MIN_ONSETS) either
-    * they move both ways within cycle_tol [m] (a creep onto the rim falls monotonically,
-      however little), or
+    * they do not move monotonically and stay within cycle_tol [m] (a creep onto the rim
+      falls monotonically, however little), or
     * they converge geometrically, the ratio of successive steps steady within
       MAX_RATIO_DRIFT (on a creep onto the rim 1 - ratio shrinks with the gap) and the
       Aitken remainder within cycle_tol;
@@ -71,7 +71,7 @@ def repeats(gaps: np.ndarray, cycle_tol: float) -> tuple[bool, str]:
     if len(window) < MIN_ONSETS:
         return False, f"{len(gaps)} stick onsets, too few to show a cycle"
     steps = np.diff(window)
-    if np.any(steps > 0.0) and np.any(steps < 0.0):
+    if not (np.all(steps > 0.0) or np.all(steps < 0.0)):
         spread = float(window.max() - window.min())
         return spread <= cycle_tol and window.min() > cycle_tol, (
             f"the newest {len(window)} stick onsets lie {window.min():.6g} m or more off the "
