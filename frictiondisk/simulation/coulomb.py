@@ -50,24 +50,23 @@ class _Pin:
         self.m, self.c_s, self.beta_s = p.m_s, p.c_s, p.beta_s
         self.om, self.limit = p.omega_m, p.mu * p.F_n
         self.r0 = np.array([p.x_ms, 0.0])
+        # [N/m] the force per metre of radius a co-rotating circle asks of the contact
+        self.g = math.hypot(self.c_s - self.m * self.om**2, self.beta_s * self.om)
 
     def stick_force(self, r):
         """F_req [N]: the friction force that keeps the pin on the master at r."""
         mr = (self.c_s - self.m * self.om**2) * r + self.beta_s * self.om * np.array([-r[1], r[0]])
         return mr - self.c_s * self.r0
 
-    def g(self) -> float:
-        return math.hypot(self.c_s - self.m * self.om**2, self.beta_s * self.om)
-
     def permanent(self, r) -> bool:
-        return self.g() * math.hypot(*r) + self.c_s * abs(self.r0[0]) <= self.limit
+        return self.g * math.hypot(*r) + self.c_s * abs(self.r0[0]) <= self.limit
 
     def disc_radius(self) -> float:
         """R* [m]: radius of the sticking disc, g R* + c_s |x_ms| = mu F_n (< 0: none)."""
         reserve = self.limit - self.c_s * abs(self.r0[0])
-        if self.g() == 0.0:
+        if self.g == 0.0:
             return math.inf if reserve >= 0.0 else -math.inf
-        return reserve / self.g()
+        return reserve / self.g
 
     def breakaway(self, r_s) -> float:
         """Time [s] after sticking at r_s when |F_req| first exceeds mu F_n (inf if never)."""
