@@ -76,23 +76,27 @@ def main(argv: list[str] | None = None) -> int:
 
     every = load_rows(args.rows)
     rows = unsettled(every)
-    done: dict[tuple[int, int, float], dict] = {}
+    done: dict[tuple[int, int], dict[float, dict]] = {}  # (seed, index) -> mu -> watch
+
+    def keep(entry):
+        done.setdefault((entry["seed"], entry["index"]), {})[entry["run"]["mu"]] = entry["run"]
+
     if args.out.is_file():
         for line in args.out.read_text().splitlines():
             entry = json.loads(line)
             if entry["longer"] == args.longer:
-                done[(entry["seed"], entry["index"], entry["run"]["mu"])] = entry["run"]
+                keep(entry)
     jobs = [
         (r["seed"], r["index"], mu, args.longer, run)
         for r in rows
         for mu, run in sorted(undecided_watches(r).items())
-        if (r["seed"], r["index"], mu) not in done
+        if mu not in done.get((r["seed"], r["index"]), {})
     ]
     print(f"{len(rows)} unsettled disagreements, {len(jobs)} watches to run x {args.longer}")
     with multiprocessing.get_context("spawn").Pool(args.processes) as pool:
         for entry in pool.imap_unordered(_watch, jobs):
             run = entry["run"]
-            done[(entry["seed"], entry["index"], run["mu"])] = run
+            keep(entry)
             with args.out.open("a") as f:
                 f.write(json.dumps(entry) + "\n")
             print(
@@ -102,7 +106,7 @@ def main(argv: list[str] | None = None) -> int:
             )
 
     def mine(r):
-        return {mu: run for (s, i, mu), run in done.items() if (s, i) == (r["seed"], r["index"])}
+        return done.get((r["seed"], r["index"]), {})
 
     for r in rows:
         after = with_longer(r, mine(r))

@@ -55,7 +55,6 @@ import os
 import sys
 import time
 from pathlib import Path
-from types import SimpleNamespace
 
 import numpy as np
 
@@ -236,6 +235,13 @@ def disputed(default: Found, reference: Found) -> list[float]:
     return sorted({*ends, *inside[: max(0, SETTLE_MAX - len(ends))]})
 
 
+WATCH = ("outcome", "t_end", "reason")  # what a settling run keeps of each watch
+
+
+def _watched(result) -> dict:
+    return {k: getattr(result, k) for k in WATCH}
+
+
 def coulomb_pin(scene: dict) -> bool:
     """A pin with Coulomb friction: the exact Coulomb integrator watches it too."""
     stribeck = scene.get("contact", {}).get("stribeck") or {}
@@ -267,10 +273,11 @@ def settle(scene: dict, mu: float, longer: int = 1, regularized: dict | None = N
             "numerics.evidence": "observe",
         }
     )
-    if regularized is not None:
-        watches = [SimpleNamespace(**{k: regularized[k] for k in ("outcome", "t_end", "reason")})]
-    else:
-        watches = [simulate(config)]
+    watches = [
+        {k: regularized[k] for k in WATCH}
+        if regularized is not None
+        else _watched(simulate(config))
+    ]
     if coulomb_pin(scene):
         exact = config.with_overrides(
             {
@@ -279,21 +286,19 @@ def settle(scene: dict, mu: float, longer: int = 1, regularized: dict | None = N
                 "numerics.max_steps": COULOMB_MAX_STEPS * longer,
             }
         )
-        watches.append(simulate(exact))
-    decided = [w for w in watches if w.outcome != "undetermined"]
-    shown = {w.outcome == "stick" for w in decided}
-    sticks = next(iter(shown)) if len(shown) == 1 else None
+        watches.append(_watched(simulate(exact)))
+    decided = [w for w in watches if w["outcome"] != "undetermined"]
+    shown = {w["outcome"] == "stick" for w in decided}
     head = decided[0] if decided else watches[0]
     run = {
         "mu": mu,
-        "outcome": head.outcome if len(shown) < 2 else "conflict",
-        "sticks": sticks,
-        "t_end": head.t_end,
-        "reason": head.reason if len(decided) < 2 else "; ".join(w.reason for w in decided),
+        "outcome": head["outcome"] if len(shown) < 2 else "conflict",
+        "sticks": next(iter(shown)) if len(shown) == 1 else None,
+        "t_end": head["t_end"],
+        "reason": "; ".join(w["reason"] for w in decided) if len(decided) > 1 else head["reason"],
     }
     if len(watches) > 1:
-        run["coulomb"] = {k: getattr(watches[1], k) for k in ("outcome", "t_end", "reason")}
-        run["regularized"] = {k: getattr(watches[0], k) for k in ("outcome", "t_end", "reason")}
+        run["regularized"], run["coulomb"] = watches
     return run
 
 
@@ -383,8 +388,12 @@ def study_scene(args: tuple[int, int, bool, bool, dict | None, dict]) -> dict:
     row["persisted"] = []
 
     def settled_at(mu: float) -> dict:
-        if mu in known_settled:
-            return {**known_settled[mu], "reused": True}
+        known = known_settled.get(mu)
+        if known is not None and coulomb_pin(scene) and "coulomb" not in known:
+            # settled before the exact Coulomb watch: add it, reusing the regularized one
+            return {**settle(scene, mu, regularized=known), "reused": True}
+        if known is not None:
+            return {**known, "reused": True}
         return settle(scene, mu)
 
     if reference and disagrees(row["default"], row["reference"]):

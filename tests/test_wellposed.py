@@ -222,3 +222,29 @@ def test_a_coulomb_pin_is_watched_by_the_exact_integrator_too(study, monkeypatch
     shown.update(rodas4="stick", coulomb="stick_slip")
     earlier = {"outcome": "stick_slip", "t_end": 9.0, "reason": "a cycle"}
     assert study.settle(pin, 0.1, regularized=earlier)["sticks"] is False
+
+
+def test_a_reused_settling_run_of_a_coulomb_pin_gains_the_exact_watch(study, monkeypatch):
+    """--settled-from rows written before the exact Coulomb watch: the regularized watch
+    is reused, the exact one is added; a run that has both is taken as it is."""
+    default = found(study, 0.25, [(0.20, False), (0.25, True)])
+    reference = found(study, 0.15, [(0.15, True), (0.20, True)])
+    monkeypatch.setattr(
+        study,
+        "locate",
+        lambda scene, setting, observe: {"default": default}.get(setting, reference),
+    )
+    calls = []
+
+    def fake_settle(scene, mu, longer=1, regularized=None):
+        calls.append((mu, regularized))
+        return {"mu": mu, "sticks": True, "coulomb": {}}
+
+    monkeypatch.setattr(study, "settle", fake_settle)
+    seed, index = 1, 48  # a pin with Coulomb friction
+    assert study.coulomb_pin(study.draw_scene(seed, index))
+    old = {"mu": 0.20, "outcome": "undetermined", "sticks": None, "t_end": 1.0, "reason": ""}
+    both = {**old, "mu": 0.15, "coulomb": {}}
+    study.study_scene((seed, index, True, False, None, {0.20: old, 0.15: both}))
+    assert (0.20, old) in calls  # the exact watch added, the regularized one reused
+    assert all(mu != 0.15 for mu, _ in calls)  # taken as it is
