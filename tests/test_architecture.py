@@ -104,6 +104,7 @@ LAYERS = (
     "store",
     "engine",
     "figures",
+    "studies",
     "cli",
 )
 
