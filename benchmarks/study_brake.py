@@ -6,7 +6,7 @@ persistent micro-slip of a co-rotating disk, and the rotation term of the contac
 Prints every number it finds and writes
   figures/brake_admissibility.png   mu*(beta_b) of the `stick` rule (both initial spins), the
                                     mu* of a co-rotation rule, and the four bounds of
-                                    frictiondisk/outcome/admissibility.py; micro-slip per revolution
+                                    frictiondisk/verdict/admissibility.py; micro-slip per revolution
   figures/brake_rotation_term.png   a stuck braked disk integrated with and without the
                                     rotation term of docs/model.md section 3 (scipy-radau)
   OUT/brake_study.json              the numbers
@@ -26,10 +26,10 @@ import time
 import numpy as np
 
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.outcome import admissibility as ad
 from frictiondisk.simulation.numpy_model import NumpyModel
 from frictiondisk.simulation.radau import simulate_radau
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict import admissibility as ad
 
 OMEGA = 1.1  # [rad/s]
 REV = 2 * math.pi / OMEGA  # [s]

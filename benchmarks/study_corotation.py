@@ -21,8 +21,8 @@ from pathlib import Path
 import numpy as np
 
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.outcome import admissibility as ad
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict import admissibility as ad
 
 STARTS = {"rest": 0.0, "corotating": 1.1}  # phidot0 [rad/s]
 

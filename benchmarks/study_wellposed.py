@@ -252,7 +252,7 @@ def settle(scene: dict, mu: float, longer: int = 1, regularized: dict | None = N
     """Long runs at mu that count only what they show (numerics.evidence: observe): the
     regularized model at rtol, atol and eps / 100 and, on a Coulomb pin, the exact Coulomb
     integrator (numerics.method coulomb, no regularization: its stick onsets repeat, or
-    creep onto the rim of the sticking disc, frictiondisk/outcome/rim_approach.py) over
+    creep onto the rim of the sticking disc, frictiondisk/verdict/rim_approach.py) over
     the same horizon. The verdict is the one they show; where both show one and they
     differ, none. longer: a factor on the horizon budget and the step budget
     (benchmarks/settle_longer.py); regularized: that watch's outcome, t_end and reason from

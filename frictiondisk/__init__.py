@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     from frictiondisk.engine.campaign_run import RunSummary
     from frictiondisk.model.campaign import Campaign
     from frictiondisk.model.scene import SceneConfig
-    from frictiondisk.outcome.result import SimulationResult
+    from frictiondisk.simulation.result import SimulationResult
 
 __all__ = [
     "__version__",

@@ -1,4 +1,4 @@
-"""Admissibility of permanent co-rotation (frictiondisk/outcome/admissibility.py).
+"""Admissibility of permanent co-rotation (frictiondisk/verdict/admissibility.py).
 
 Checks: the pin reduction to docs/model.md's oracle; the ordering and limits of the four demands;
 the rigid-plastic capacity against its static certificate and a brute-force search; and a
@@ -13,9 +13,9 @@ import pytest
 from conftest import g_factor
 
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.outcome import admissibility as ad
 from frictiondisk.simulation.numpy_model import NumpyModel
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict import admissibility as ad
 
 OMEGA = 1.1
 REV = 2 * math.pi / OMEGA

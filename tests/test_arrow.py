@@ -9,7 +9,8 @@ import pytest
 from frictiondisk.kernel import linalg, model, rodas
 from frictiondisk.kernel.model import SLIDE, STICK
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.simulation.simulate import initial_state, pack_parameters, simulate
+from frictiondisk.simulation.pack import initial_state, pack_parameters
+from frictiondisk.simulation.simulate import simulate
 
 EPS = np.finfo(float).eps
 

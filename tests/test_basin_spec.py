@@ -15,10 +15,10 @@ from frictiondisk.engine.basin_plan import BasinPlanner
 from frictiondisk.figures.basin import outcome_colors, plot_basin
 from frictiondisk.model.campaign import Basin, campaign_from_dict, campaign_from_text
 from frictiondisk.model.scene import ConfigError
-from frictiondisk.outcome.result import OUTCOMES
 from frictiondisk.search import basin_stats
 from frictiondisk.search.basin_sampling import BLOCK, SampleRequest
 from frictiondisk.store.basin_datasets import results_dataset, runs_dataset, summary_lines
+from frictiondisk.verdict.outcomes import OUTCOMES
 
 BASIN = """\
 name: pin_basin
@@ -233,7 +233,7 @@ def test_adaptive_sampling_ends_at_max_samples_and_says_so():
 
 def test_results_follow_the_outcome_list_and_count_new_outcomes_as_not_stick():
     planner = BasinPlanner(campaign_from_text(BASIN.replace("samples: 400", "samples: 40")))
-    # a fourth kind of outcome (e.g. `creep`, added to frictiondisk.outcome.result later)
+    # a fourth kind of outcome (e.g. `creep`, added to frictiondisk.verdict.outcomes later)
     _feed_all(
         planner,
         lambda x0: "stick" if x0 < -0.02 else ("creep" if x0 < 0.0 else "undetermined"),

@@ -18,7 +18,7 @@ from click.testing import CliRunner
 
 from frictiondisk import __version__
 from frictiondisk.cli import main
-from frictiondisk.outcome.result import SimulationResult, Trajectory
+from frictiondisk.simulation.result import SimulationResult, Trajectory
 
 OMEGA_M = 1.1
 RADIUS = 0.05

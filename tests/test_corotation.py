@@ -1,6 +1,6 @@
 """stick_rule corotation: permanent sticking is co-rotation without net slip (issue 9).
 
-Oracles: the Melan shakedown and collapse bounds of frictiondisk/outcome/admissibility.py, which
+Oracles: the Melan shakedown and collapse bounds of frictiondisk/verdict/admissibility.py, which
 the classifier never reads, and the pin, for which both stick rules must agree.
 """
 
@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from frictiondisk.model.scene import ConfigError, scene_from_dict
-from frictiondisk.outcome import admissibility as ad
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict import admissibility as ad
 
 BRAKE = 0.005  # beta_b [N m s/rad]
 

@@ -1,16 +1,17 @@
 """The co-rotation verdict's ratchet (`creep`) needs a limit that has stopped falling
-(frictiondisk/kernel/verdict.py, docs/model.md section 6): synthetic revolution rings with
+(frictiondisk/verdict/corotation.py, docs/model.md section 6): synthetic revolution rings with
 a known future, and the braked disk of the well-posedness study that the old rule called
 `creep` while it sticks."""
 
 from __future__ import annotations
 
 import numpy as np
+from verdict_records import DEFAULT, ring
 
-from frictiondisk.kernel import monitor_slots as ms
-from frictiondisk.kernel import verdict as vd
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict import records as rc
+from frictiondisk.verdict.corotation import corotation_verdict
 
 # Seed 5 scene 29 (braked disk, mu = 0.129063, default numerics): the slip per revolution
 # [m] of its 16 revolutions on the small orbit when the old rule read `creep` at 124 s.
@@ -50,15 +51,9 @@ RATCHET_DISK = {
 def verdict(slips, tol):
     """corotation_verdict on a ring whose revolutions all kept the small orbit (some
     contact stuck throughout, never every contact) with these slips [m]."""
-    rv = np.zeros((ms.REV_RING, ms.N_RV))
-    rv[: len(slips), ms.RV_SLIP] = slips
-    rv[: len(slips), ms.RV_ANY_STUCK] = 1.0
-    rv[: len(slips), ms.RV_T] = np.arange(1, len(slips) + 1, dtype=float)
-    mf = np.full(ms.N_MF, np.nan)
-    mi = np.zeros(ms.N_MI, dtype=np.int64)
-    mf[ms.F_SLIP_TOL] = tol
-    mi[ms.I_NREV] = len(slips)
-    return int(vd.corotation_verdict(mf, mi, rv)), mf
+    rules, motion, vs, revs = ring(slips, any_stuck=True, slip_tol=tol)
+    rules["observe"] = False
+    return int(corotation_verdict(DEFAULT, rules, motion, vs, revs)), vs
 
 
 def test_a_limit_that_falls_with_the_slip_is_no_ratchet():
@@ -67,10 +62,10 @@ def test_a_limit_that_falls_with_the_slip_is_no_ratchet():
     higher (10.3 ... 9.1e-9 m): the fall slows down more than geometrically, and its limit
     lies below the newest estimate. The verdict waits."""
     code, mf = verdict(SLOW_FALL, SLOW_FALL_TOL)
-    limit = mf[ms.F_S_INF]
+    limit = mf["limit"]
     assert limit > SLOW_FALL_TOL and limit >= 0.5 * SLOW_FALL[-1]  # the old rule's creep
-    assert mf[ms.F_S_INF_SPREAD] > vd.LIMIT_DRIFT * limit
-    assert code != ms.VERDICT_CREEP
+    assert mf["limit_spread"] > DEFAULT["limit_drift"] * limit
+    assert code != rc.CREEPING
 
 
 def test_a_settled_ratchet_is_creep():
@@ -78,15 +73,15 @@ def test_a_settled_ratchet_is_creep():
     tol, limit = 7e-9, 1.05e-8
     slips = limit + 4e-8 * 0.8 ** np.arange(24)
     code, mf = verdict(slips, tol)
-    assert code == ms.VERDICT_CREEP
-    assert abs(mf[ms.F_S_INF] - limit) <= 1e-3 * limit
-    assert mf[ms.F_S_INF_SPREAD] <= 1e-3 * limit
+    assert code == rc.CREEPING
+    assert abs(mf["limit"] - limit) <= 1e-3 * limit
+    assert mf["limit_spread"] <= 1e-3 * limit
 
 
 def test_a_geometric_fall_to_nothing_is_stick():
     slips = 4e-8 * 0.93 ** np.arange(24)
     assert slips[-1] > 7e-9  # not yet below tol: the limit decides
-    assert verdict(slips, 7e-9)[0] == ms.VERDICT_STICK
+    assert verdict(slips, 7e-9)[0] == rc.COROTATING
 
 
 def test_a_limit_whose_estimates_rose_to_it_is_no_shakedown():
@@ -96,8 +91,8 @@ def test_a_limit_whose_estimates_rose_to_it_is_no_shakedown():
     m) would say shakedown, but the estimates rose to it: the fall levels off faster than
     geometrically, and the limit lies above the newest estimate. The verdict waits."""
     code, mf = verdict(RATCHET_LEVELLING, 1.6e-8)
-    assert mf[ms.F_S_INF] <= 1.6e-8  # the newest estimate alone: the old rule's stick
-    assert code == ms.VERDICT_NONE
+    assert mf["limit"] <= 1.6e-8  # the newest estimate alone: the old rule's stick
+    assert code == rc.SETTLING
 
 
 def test_the_braked_disk_whose_ratchet_looked_like_shakedown_is_not_stick():
@@ -146,8 +141,8 @@ def test_a_slip_that_falls_about_its_scatter_is_not_a_ratchet():
     (observe: no extrapolation, no Melan bound) the disk sticks."""
     res = simulate(scene_from_dict(FALLING_SCATTER_DISK))
     assert res.outcome == "stick", res.reason
-    slips = res.revolutions[:, ms.RV_SLIP]
-    on_orbit = res.revolutions[:, ms.RV_ANY_STUCK] == 1.0
+    slips = res.revolutions["slip"]
+    on_orbit = res.revolutions["any_stuck"]
     # the case the old rule misread: a revolution on the orbit whose slip is not below
     # the one a quarter of the history back, while the level falls
     first = int(np.argmax(on_orbit))

@@ -20,10 +20,11 @@ import pytest
 
 from frictiondisk.kernel import model as km
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.outcome.classify import revolution
 from frictiondisk.simulation import radau as crosscheck
+from frictiondisk.simulation.pack import pack_parameters
 from frictiondisk.simulation.radau import NumpyModel, simulate_radau
-from frictiondisk.simulation.simulate import pack_parameters, simulate
+from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict.horizon import revolution
 
 RTOL, ATOL = 1e-8, 1e-11
 OMEGA_M = 1.1  # [rad/s], the default master
@@ -155,7 +156,7 @@ def test_initial_modes_follow_the_rule():
     """Stick iff |k(0)| < F_St: the pin at rest on a turning master starts sliding."""
     config = scene_from_dict({"scene": "pin"})
     model = NumpyModel.from_config(config)
-    from frictiondisk.simulation.simulate import initial_modes, initial_state
+    from frictiondisk.simulation.pack import initial_modes, initial_state
 
     y0 = initial_state(config)
     p, pts = pack_parameters(config)

@@ -18,12 +18,9 @@ import pytest
 from frictiondisk.kernel import energy as ken
 from frictiondisk.kernel import model as km
 from frictiondisk.model.scene import Numerics, scene_from_dict
-from frictiondisk.simulation.simulate import (
-    energy_balance,
-    initial_state,
-    pack_parameters,
-    simulate,
-)
+from frictiondisk.simulation.pack import initial_state, pack_parameters
+from frictiondisk.simulation.rodas_method import energy_balance
+from frictiondisk.simulation.simulate import simulate
 
 STRIBECK = {"r": 0.5, "v_s": 0.05, "delta": 1.5}  # v_s of the order of the sliding speeds
 INSTANT_SCENES = {
@@ -49,21 +46,21 @@ def _random_state(config, p, rng):
         y[2] = rng.uniform(-math.pi, math.pi)
         y[nq + 2] = rng.standard_normal()
     y[nq : nq + 2] = 0.1 * rng.standard_normal(2)
-    y[2 * nq :] = p[km.P_MU] * p[km.P_FNI] * rng.standard_normal(y.shape[0] - 2 * nq)
+    y[2 * nq :] = p["mu"] * p["F_n_i"] * rng.standard_normal(y.shape[0] - 2 * nq)
     return y, nq
 
 
 def _energy_rate_terms(p, pts, y, f, nq):
     """The terms of dE/dt = grad E . f [W], from the rhs f alone (not from energy.py)."""
     terms = [
-        p[km.P_MS] * y[nq] * f[nq],
-        p[km.P_MS] * y[nq + 1] * f[nq + 1],
-        p[km.P_CS] * (y[0] - p[km.P_XMS]) * f[0],
-        p[km.P_CS] * y[1] * f[1],
+        p["m_s"] * y[nq] * f[nq],
+        p["m_s"] * y[nq + 1] * f[nq + 1],
+        p["c_s"] * (y[0] - p["x_ms"]) * f[0],
+        p["c_s"] * y[1] * f[1],
     ]
     if nq == 3:
-        terms.append(p[km.P_JS] * y[nq + 2] * f[nq + 2])
-    c_i = np.repeat(p[km.P_CI] * pts[:, 2], 2)  # stiffness of contact i, for Z_i's x and y
+        terms.append(p["J_s"] * y[nq + 2] * f[nq + 2])
+    c_i = np.repeat(p["c_i"] * pts[:, 2], 2)  # stiffness of contact i, for Z_i's x and y
     terms.extend(y[2 * nq :] * f[2 * nq :] / c_i)
     return np.asarray(terms)
 
@@ -169,7 +166,7 @@ def test_energy_balance_closes_at_each_preset(name, preset):
     # that atol governs them, within atol / F_St,i.
     num = config.numerics
     p, _ = pack_parameters(config)
-    tol = max(num.rtol, num.atol / (p[km.P_MU] * p[km.P_FNI]))
+    tol = max(num.rtol, num.atol / (p["mu"] * p["F_n_i"]))
     assert abs(res.energy_residual) < tol, (
         f"{name} [{preset}: rtol {num.rtol:g}, atol {num.atol:g}]: "
         f"residual {res.energy_residual:.2e}, tolerance {tol:.2e}"

@@ -1,6 +1,7 @@
-"""The numba cache follows every kernel source (issue 22): numba itself checks only the
+"""The numba cache follows every numba source (issue 22): numba itself checks only the
 timestamp of a function's own file, so an edit to monitor.py could run with a stale
-compiled driver.run. kernel/jit.py names the cache folder by a hash of all of them."""
+compiled step loop. kernel/jit.py names the cache folder by a hash of all of them: the
+kernel, the verdict and the step loop (jit.NUMBA_SOURCES)."""
 
 from __future__ import annotations
 
@@ -12,40 +13,55 @@ import numpy as np
 
 from frictiondisk.kernel import jit
 
-KERNEL = Path(jit.__file__).resolve().parent
+PACKAGE = Path(jit.__file__).resolve().parents[1]
 
 
 def _copy(tmp_path: Path) -> Path:
-    sources = tmp_path / "kernel"
-    sources.mkdir()
-    for source in KERNEL.glob("*.py"):
-        shutil.copy(source, sources / source.name)
-    return sources
+    """A copy of the package's numba sources under tmp_path (as jit.numba_sources reads)."""
+    package = tmp_path / "frictiondisk"
+    for source in jit.numba_sources(PACKAGE):
+        target = package / source.relative_to(PACKAGE)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(source, target)
+    return package
 
 
 def test_the_cache_in_use_is_named_by_the_current_sources():
-    assert numba.config.CACHE_DIR == jit.kernel_cache_dir(KERNEL)
+    assert numba.config.CACHE_DIR == jit.kernel_cache_dir(PACKAGE)
 
 
-def test_an_edit_to_any_kernel_file_moves_the_cache(tmp_path, monkeypatch):
+def test_an_edit_to_any_numba_file_moves_the_cache(tmp_path, monkeypatch):
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
-    sources = _copy(tmp_path)
-    before = jit.kernel_cache_dir(sources)
-    assert jit.kernel_cache_dir(sources) == before  # same sources, same folder
-    for name in ("monitor.py", "verdict.py", "model.py"):  # not the dispatcher's own file
-        with (sources / name).open("a") as file:
+    package = _copy(tmp_path)
+    before = jit.kernel_cache_dir(package)
+    assert jit.kernel_cache_dir(package) == before  # same sources, same folder
+    edited = ("kernel/monitor.py", "verdict/machine.py", "verdict/params.py", "simulation/loop.py")
+    for name in edited:  # none of them the dispatcher's own file
+        with (package / name).open("a") as file:
             file.write("\n# edited\n")
-        after = jit.kernel_cache_dir(sources)
+        after = jit.kernel_cache_dir(package)
         assert after != before, name
         before = after
 
 
-def test_a_new_kernel_file_moves_the_cache(tmp_path, monkeypatch):
+def test_a_new_numba_file_moves_the_cache(tmp_path, monkeypatch):
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
-    sources = _copy(tmp_path)
-    before = jit.kernel_cache_dir(sources)
-    (sources / "helpers.py").write_text("X = 1\n")
-    assert jit.kernel_cache_dir(sources) != before
+    package = _copy(tmp_path)
+    before = jit.kernel_cache_dir(package)
+    (package / "verdict" / "helpers.py").write_text("X = 1\n")
+    assert jit.kernel_cache_dir(package) != before
+
+
+def test_every_module_numba_compiles_is_hashed():
+    """A module that uses the kernel's decorator outside NUMBA_SOURCES would keep a stale
+    cache after an edit."""
+    hashed = set(jit.numba_sources(PACKAGE))
+    users = {
+        path
+        for path in PACKAGE.rglob("*.py")
+        if "kernel_jit" in path.read_text() and path.name != "jit.py"
+    }
+    assert users and users <= hashed, sorted(str(p) for p in users - hashed)
 
 
 def test_a_constant_argument_compiles_the_callee_once():
@@ -92,11 +108,13 @@ for scene in ("pin", "disk"):
     simulate(config)
     simulate(config, record=True, dt_out=0.01)
 several = {}
-for source in pathlib.Path(jit.__file__).parent.glob("*.py"):
-    module = importlib.import_module(f"frictiondisk.kernel.{source.stem}")
-    for name, value in vars(module).items():
+package = pathlib.Path(jit.__file__).parents[1]
+for source in jit.numba_sources(package):
+    name = ".".join(source.relative_to(package.parent).with_suffix("").parts)
+    module = importlib.import_module(name)
+    for attr, value in vars(module).items():
         if isinstance(value, numba.core.dispatcher.Dispatcher) and len(value.signatures) > 1:
-            several[f"{source.stem}.{name}"] = [str(s) for s in value.signatures]
+            several[f"{name}.{attr}"] = [str(s) for s in value.signatures]
 from frictiondisk.kernel import model
 print(json.dumps({"several": several, "mode": str(model.switch_value.signatures[0][-1])}))
 """

@@ -11,7 +11,8 @@ import pytest
 from frictiondisk.model import layouts
 from frictiondisk.model.scene import ConfigError, scene_from_dict
 from frictiondisk.model.yamlio import load_yaml_text
-from frictiondisk.simulation.simulate import pack_parameters, simulate
+from frictiondisk.simulation.pack import pack_parameters
+from frictiondisk.simulation.simulate import simulate
 
 CLUTCH = {"layout": "annulus", "inner_radius": 0.063, "outer_radius": 0.087}
 

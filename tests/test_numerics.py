@@ -10,7 +10,8 @@ from scipy.linalg import expm
 from frictiondisk.kernel import events, model, rodas
 from frictiondisk.kernel.model import SLIDE, STICK
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.simulation.simulate import initial_state, pack_parameters, simulate
+from frictiondisk.simulation.pack import initial_state, pack_parameters
+from frictiondisk.simulation.simulate import simulate
 
 
 def _random_state(rng, cfg):

@@ -33,7 +33,7 @@ def test_import_is_cheap():
 
 
 def test_simulate_stays_the_function_after_the_simulation_package_is_imported():
-    from frictiondisk.simulation.simulate import pack_parameters
+    from frictiondisk.simulation.pack import pack_parameters
 
     assert callable(pack_parameters)
     assert frictiondisk.simulate is simulate and callable(frictiondisk.simulate)

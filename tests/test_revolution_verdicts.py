@@ -1,13 +1,15 @@
-"""The sliding evidence read from the revolution ring (frictiondisk/kernel/verdict.py) on
+"""The sliding evidence read from the revolution ring (frictiondisk/verdict/sliding.py) on
 synthetic rings taken from the well-posedness study's seed 6 scene 32, a pin near its
 grazing sticking circle: what a watching run showed, and what the old rule made of it."""
 
 from __future__ import annotations
 
 import numpy as np
+from verdict_records import DEFAULT
+from verdict_records import ring as _ring
 
-from frictiondisk.kernel import monitor_slots as ms
-from frictiondisk.kernel import verdict as vd
+from frictiondisk.verdict.corotation import slip_slope
+from frictiondisk.verdict.sliding import steady_sliding
 
 EPS_T = 1.01e-8  # the pin's eps T [m]: slip per revolution that counts as none
 
@@ -20,34 +22,33 @@ WANDERING = [1.20e-2, 1.31e-2, 1.18e-2, 1.27e-2, 1.22e-2, 1.33e-2, 1.19e-2, 1.26
 
 
 def ring(slips, *, any_stuck, ever_all, still):
-    """A revolution ring holding `slips` [m], oldest first, with the given flags."""
-    rv = np.zeros((ms.REV_RING, ms.N_RV))
-    n = len(slips)
-    rv[:n, ms.RV_SLIP] = slips
-    rv[:n, ms.RV_T] = 10.0 * np.arange(1, n + 1)
-    rv[:n, ms.RV_ANY_STUCK] = float(any_stuck)
-    rv[:n, ms.RV_EVER_ALL] = float(ever_all)
-    rv[:n, ms.RV_STILL] = float(still)
-    mf = np.full(ms.N_MF, np.nan)
-    mf[ms.F_SLIP_TOL] = EPS_T
-    mf[ms.F_ARM] = 0.0  # a pin
-    mf[ms.F_ATOL] = 1e-8
-    mf[ms.F_RTOL] = 1e-5
-    mi = np.zeros(ms.N_MI, dtype=np.int64)
-    mi[ms.I_NREV] = n
-    return mf, mi, rv
+    """(rules, motion, revs) of a pin's revolution ring holding `slips` [m], oldest first,
+    with the given flags."""
+    times = 10.0 * np.arange(1, len(slips) + 1)
+    rules, motion, _, revs = _ring(
+        slips,
+        any_stuck=any_stuck,
+        ever_all=ever_all,
+        still=still,
+        times=times,
+        slip_tol=EPS_T,
+        arm=0.0,  # a pin
+        atol=1e-8,
+        rtol=1e-5,
+    )
+    return rules, motion, revs
 
 
 def test_a_slip_that_falls_while_alternating_is_no_sliding_state():
     """The mean of successive log ratios (-0.12 ± 0.07 a revolution) did not establish the
     fall, so the old rule read a sliding orbit at 121 s. The slope over all eight
     revolutions does (-0.15 a revolution)."""
-    mf, mi, rv = ring(ALTERNATING_FALL, any_stuck=False, ever_all=False, still=False)
-    assert not vd.steady_sliding(mf, mi, rv)
-    slope, se = vd._slip_slope(mi, rv, vd.SLIDE_REVS)
-    assert slope + vd.VERDICT_Z * se < 0.0 < -slope
+    rules, motion, revs = ring(ALTERNATING_FALL, any_stuck=False, ever_all=False, still=False)
+    assert not steady_sliding(DEFAULT, rules, motion, revs)
+    slope, se = slip_slope(motion, revs, DEFAULT["slide_revs"])
+    assert slope + DEFAULT["verdict_z"] * se < 0.0 < -slope
 
 
 def test_a_slip_that_wanders_about_a_level_is_a_sliding_state():
-    mf, mi, rv = ring(WANDERING, any_stuck=False, ever_all=False, still=False)
-    assert vd.steady_sliding(mf, mi, rv)
+    rules, motion, revs = ring(WANDERING, any_stuck=False, ever_all=False, still=False)
+    assert steady_sliding(DEFAULT, rules, motion, revs)

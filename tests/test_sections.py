@@ -1,6 +1,6 @@
-"""Evidence from the motion's own section (frictiondisk/kernel/sections.py, docs/model.md
-section 6): synthetic section sequences with a known future, and the runs of a Stribeck
-pin whose transient the old trend test let through."""
+"""Evidence from the motion's own section (frictiondisk/verdict/section_evidence.py,
+docs/model.md section 6): synthetic section sequences with a known future, and the runs of
+a Stribeck pin whose transient the old trend test let through."""
 
 from __future__ import annotations
 
@@ -8,28 +8,24 @@ import math
 
 import numpy as np
 import pytest
+from verdict_records import DEFAULT, records, sequence
 
-from frictiondisk.kernel import monitor_slots as ms
-from frictiondisk.kernel import sections as sec
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict import records as rc
+from frictiondisk.verdict.params import VerdictParams
+from frictiondisk.verdict.section_evidence import section_evidence
 
 S0 = 1e-8  # slip per step that counts as none [m]
 
 
 def evidence(points, slip, stick, rtol=1e-6, stribeck=False):
-    """The EV_* code of a sequence: points (n, <= 5) [m], slip (n) [m], stick (n) [s];
-    stribeck: the friction law falls with the slip speed."""
-    n = len(slip)
-    seq = np.zeros((max(n, 1), sec.N_SEQ))
-    seq[:n, : np.shape(points)[1]] = points
-    seq[:n, sec.SEQ_SLIP] = slip
-    seq[:n, sec.SEQ_STICK] = stick
-    mf = np.full(ms.N_MF, np.nan)
-    mi = np.zeros(ms.N_MI, dtype=np.int64)
-    mi[ms.I_STRIBECK] = 1 if stribeck else 0
-    mf[ms.F_CYCLE_TOL], mf[ms.F_ATOL], mf[ms.F_RTOL], mf[ms.F_SLIP_TOL] = 1e-6, 1e-9, rtol, S0
-    return int(sec.section_evidence(mf, mi, seq, n, S0)), mf
+    """The EV_* code of a sequence and the verdict record with its diagnostics: points
+    (n, <= 5) [m], slip (n) [m], stick (n) [s]; stribeck: the friction law falls with the
+    slip speed."""
+    rules, _, vs = records(S0, rtol=rtol, stribeck=stribeck)
+    seq = sequence(points, slip, stick)
+    return int(section_evidence(DEFAULT, rules, vs, seq, len(slip), S0)), vs
 
 
 def along(distances, start=(0.05, 0.03)):
@@ -46,7 +42,7 @@ def test_a_section_still_moving_towards_sticking_is_no_evidence():
     slip = 0.2 * 0.9 ** np.arange(n)
     stick = 2.0 + 0.3 * np.arange(n)
     code, _ = evidence(along(steps), slip, stick)
-    assert code == ms.EV_NONE
+    assert code == rc.EV_NONE
 
 
 def test_a_slow_passage_with_a_growing_ratio_is_no_contraction():
@@ -55,7 +51,7 @@ def test_a_slow_passage_with_a_growing_ratio_is_no_contraction():
     steps = 0.02 * np.cumprod(ratios)
     slip = np.full(len(steps) + 1, 0.1) - 1e-3 * np.arange(len(steps) + 1)
     code, mf = evidence(along(steps), slip, np.full(len(slip), 1.4))
-    assert code == ms.EV_NONE and mf[ms.F_EV_QUP] > sec.Q_MAX
+    assert code == rc.EV_NONE and mf["ev_ratio_bound"] > VerdictParams().q_max
 
 
 def test_a_geometric_contraction_to_a_slipping_cycle_is_evidence():
@@ -64,10 +60,12 @@ def test_a_geometric_contraction_to_a_slipping_cycle_is_evidence():
     slip = 0.1 + 0.08 * q ** np.arange(15)  # converges to 0.1 m a cycle
     stick = 1.237 + 0.1 * q ** np.arange(15)  # the sticking time falls to its limit
     code, mf = evidence(along(steps), slip, stick)
-    assert code == ms.EV_CONTRACT
-    assert mf[ms.F_EV_Q] == pytest.approx(q, rel=1e-9)
+    assert code == rc.EV_CONTRACT
+    assert mf["ev_ratio"] == pytest.approx(q, rel=1e-9)
     # the travel still to come is the geometric tail of the newest step
-    assert mf[ms.F_EV_LIMIT] == pytest.approx(steps[-1] * mf[ms.F_EV_QUP] / (1 - mf[ms.F_EV_QUP]))
+    assert mf["ev_limit"] == pytest.approx(
+        steps[-1] * mf["ev_ratio_bound"] / (1 - mf["ev_ratio_bound"])
+    )
 
 
 def test_a_fast_contraction_while_the_slip_falls_ever_slower_is_no_evidence():
@@ -79,14 +77,14 @@ def test_a_fast_contraction_while_the_slip_falls_ever_slower_is_no_evidence():
     slip = [3.1118e-01, 1.2992e-01, 9.2374e-02, 7.5640e-02, 6.7124e-02, 6.2254e-02]
     slip += [5.9043e-02, 5.6636e-02]
     code, mf = evidence(along(steps), slip, np.zeros(len(slip)))
-    assert mf[ms.F_EV_QUP] < 0.7  # the distances alone would have passed
-    assert code == ms.EV_NONE
+    assert mf["ev_ratio_bound"] < 0.7  # the distances alone would have passed
+    assert code == rc.EV_NONE
     # the same distances with a slip whose falls shrink at the distances' ratio: evidence
     q = 0.665
     falls = 2.4e-3 * q ** np.arange(len(slip) - 1)
     steady = 0.05 + np.concatenate([[0.0], np.cumsum(falls[::-1])])[::-1]
     code, _ = evidence(along(steps), steady, np.zeros(len(slip)))
-    assert code == ms.EV_CONTRACT
+    assert code == rc.EV_CONTRACT
 
 
 def test_a_stribeck_slip_still_falling_is_no_evidence_of_a_cycle():
@@ -101,13 +99,13 @@ def test_a_stribeck_slip_still_falling_is_no_evidence_of_a_cycle():
     falls = 4.0e-4 * r ** np.arange(14)
     slip = 0.1 - np.concatenate([[0.0], np.cumsum(falls)])
     remaining = falls[-1] * r / (1 - r) / slip[-1]
-    assert 0.01 < remaining < sec.CONTRACT_SLIP_FALL
+    assert 0.01 < remaining < VerdictParams().contract_slip_fall
     stick = np.zeros(len(slip))
-    assert evidence(along(steps), slip, stick)[0] == ms.EV_CONTRACT
-    assert evidence(along(steps), slip, stick, stribeck=True)[0] == ms.EV_NONE
+    assert evidence(along(steps), slip, stick)[0] == rc.EV_CONTRACT
+    assert evidence(along(steps), slip, stick, stribeck=True)[0] == rc.EV_NONE
     # the same section with a slip that has nearly stopped falling: a cycle either way
     settled = 0.1 - np.concatenate([[0.0], np.cumsum(falls * 1e-2)])
-    assert evidence(along(steps), settled, stick, stribeck=True)[0] == ms.EV_CONTRACT
+    assert evidence(along(steps), settled, stick, stribeck=True)[0] == rc.EV_CONTRACT
 
 
 def test_an_algebraic_contraction_is_not_taken_for_a_geometric_one():
@@ -116,7 +114,7 @@ def test_an_algebraic_contraction_is_not_taken_for_a_geometric_one():
     steps = 1e-2 * (k / 10.0) ** -3.0
     slip = 0.05 + 1e-3 * (k[0] / np.append(k, k[-1] + 1)) ** 2
     code, _ = evidence(along(steps), slip, np.full(len(slip), 1.0))
-    assert code != ms.EV_CONTRACT
+    assert code != rc.EV_CONTRACT
 
 
 def test_a_repeating_section_is_a_cycle_and_a_moving_one_is_not():
@@ -124,14 +122,14 @@ def test_a_repeating_section_is_a_cycle_and_a_moving_one_is_not():
     noise = 1e-10 * rng.standard_normal((12, 2))
     slip = 0.1 + 1e-9 * rng.standard_normal(12)
     code, mf = evidence(np.array([0.0355, 0.0302]) + noise, slip, np.full(12, 1.237))
-    assert code == ms.EV_REPEAT and mf[ms.F_EV_D] < 1e-9
+    assert code == rc.EV_REPEAT and mf["ev_distance"] < 1e-9
     # a period-2 cycle repeats every second step
     two = np.array([[0.03, 0.02], [0.05, -0.01]] * 6) + noise
     code, _ = evidence(two, slip, np.full(12, 1.2))
-    assert code == ms.EV_REPEAT
+    assert code == rc.EV_REPEAT
     # steps of 1e-5 m (ten times cycle_tol) are no repeat
     code, _ = evidence(along(np.full(11, 1e-5)), slip, np.full(12, 1.2))
-    assert code != ms.EV_REPEAT
+    assert code != rc.EV_REPEAT
 
 
 def test_a_creep_onto_a_sticking_circle_never_repeats():
@@ -141,7 +139,7 @@ def test_a_creep_onto_a_sticking_circle_never_repeats():
     slip = 1.7e-7 * (1 - 0.007) ** np.arange(n)
     stick = 10.08 + 1e-3 * np.arange(n)
     code, _ = evidence(along(np.full(n - 1, 4e-8)), slip, stick)
-    assert code == ms.EV_NONE
+    assert code == rc.EV_NONE
 
 
 def test_a_creep_that_sticks_a_whole_revolution_now_and_then_never_repeats():
@@ -158,7 +156,7 @@ def test_a_creep_that_sticks_a_whole_revolution_now_and_then_never_repeats():
     whole = np.arange(n) % 5 == 1  # one of them eight steps before the newest
     slip[whole], stick[whole] = 4e-14, 10.075
     code, _ = evidence(along(7e-8 * 0.94 ** np.arange(n - 1)), slip, stick, rtol=1e-5)
-    assert code != ms.EV_REPEAT
+    assert code != rc.EV_REPEAT
 
 
 def test_a_growing_slip_and_shrinking_sticking_time_is_a_departure():
@@ -167,10 +165,10 @@ def test_a_growing_slip_and_shrinking_sticking_time_is_a_departure():
     slip = 0.0073 * 1.25 ** np.arange(n)
     stick = 3.52 - 0.12 * np.arange(n)
     code, _ = evidence(along(steps), slip, stick)
-    assert code == ms.EV_DEPART
+    assert code == rc.EV_DEPART
     # the same section approaching sticking (slip falling, sticking longer) is not
     code, _ = evidence(along(steps), slip[::-1], stick[::-1])
-    assert code == ms.EV_NONE
+    assert code == rc.EV_NONE
 
 
 def test_a_slip_below_the_tolerance_that_does_not_fall_is_no_departure():
@@ -183,10 +181,10 @@ def test_a_slip_below_the_tolerance_that_does_not_fall_is_no_departure():
     slip = 5.0e-11 * (1.0 + 0.02 * np.arange(n))
     stick = 6.31 - 1e-8 * np.arange(n)
     code, _ = evidence(along(steps), slip, stick)
-    assert code == ms.EV_NONE
+    assert code == rc.EV_NONE
     # the same shape with a slip per step above the tolerance still departs
     code, _ = evidence(along(steps * 1e4), slip * 1e4, stick)
-    assert code == ms.EV_DEPART
+    assert code == rc.EV_DEPART
 
 
 @pytest.mark.parametrize("law", ["geometric", "power"])
@@ -195,10 +193,10 @@ def test_a_slip_that_falls_to_nothing_is_shakedown(law):
     slip = 1e-3 * 0.8**k if law == "geometric" else 1e-3 * k**-2.0
     stick = 10.0 - 5.0 * slip / slip[0]
     code, mf = evidence(along(np.full(len(k) - 1, 1e-4)), slip, stick)
-    assert code == ms.EV_SHAKEDOWN and mf[ms.F_EV_LIMIT] <= S0
+    assert code == rc.EV_SHAKEDOWN and mf["ev_limit"] <= S0
     # the same fall towards a slip that stays (a cycle) is no shakedown
     code, _ = evidence(along(np.full(len(k) - 1, 1e-4)), slip + 1e-4, stick)
-    assert code != ms.EV_SHAKEDOWN
+    assert code != rc.EV_SHAKEDOWN
     # nor towards one that stays below s0 (the demo disk at x_ms 0.12, mu = 0.142785:
     # 1.4e-9 m a revolution levelling off at 8e-10 m, s0 = 6e-9 m, then rising again):
     # the limit must be nothing beside the slip still left, not merely <= s0
@@ -206,7 +204,7 @@ def test_a_slip_that_falls_to_nothing_is_shakedown(law):
     slip = (1e-3 * 0.8**k if law == "geometric" else 1e-3 * k**-6.0) + 0.3 * S0
     stick = 10.0 - 5.0 * slip / slip[0]
     code, _ = evidence(along(np.full(len(k) - 1, 1e-4)), slip, stick)
-    assert code != ms.EV_SHAKEDOWN
+    assert code != rc.EV_SHAKEDOWN
 
 
 # A Stribeck pin of the well-posedness study (seed 2, scene 18). At mu = 0.0885 its
@@ -270,8 +268,8 @@ def test_a_disk_spinning_up_is_not_a_sliding_state():
     about 162 s (settled at rtol 1e-6 and a 240 s horizon: sticks)."""
     res = simulate(scene_from_dict(SPINNING_UP_DISK))
     assert res.outcome == "stick", res.reason
-    spin = res.revolutions[:, ms.RV_W]
-    before = spin[res.revolutions[:, ms.RV_SLIP] > 1e-3]
+    spin = res.revolutions["w"]
+    before = spin[res.revolutions["slip"] > 1e-3]
     assert len(before) >= 8 and np.all(np.diff(before) > 0)  # it spun up at every one
 
 
@@ -299,7 +297,7 @@ def test_a_stribeck_disk_spinning_up_is_extended_not_called_sliding():
     study's settling run (eps / 100, rtol / 100, watched) sticks for good at 1 265 s."""
     res = simulate(scene_from_dict(STRIBECK_SPIN_UP))
     assert res.outcome == "undetermined", res.reason
-    slip = res.revolutions[:, ms.RV_SLIP]
+    slip = res.revolutions["slip"]
     assert slip[-1] < 0.95 * slip[-30]  # still falling: over 5 % in its last 30 revolutions
 
 
@@ -369,13 +367,13 @@ def test_a_creep_below_the_repeat_tolerance_is_no_cycle_until_its_slip_is_steady
     slip = 1.45e-8 * 0.9987 ** np.arange(n) * np.where(low, 0.885, 1.0)
     stick = np.where(low, 5.004, 4.996)
     code, _ = evidence(along(slip[:-1]), slip, stick)
-    assert code != ms.EV_REPEAT
+    assert code != rc.EV_REPEAT
     walk = 3e-7 * np.where(np.arange(n) % 2 == 0, 1.0, 1.006)
     code, _ = evidence(along(1.1 * walk[:-1]), walk, np.full(n, 5.59))
-    assert code == ms.EV_REPEAT
+    assert code == rc.EV_REPEAT
     # summed per period: a period-2 creep alternating long and short sticking phases
     # (seed 2 scene 24, mu = 0.105: steps of 1.2e-8 and 2.2e-13 m) is no cycle either
     pair = np.where(np.arange(n) % 2 == 0, 1.2e-8, 2.2e-13) * 0.9985 ** np.arange(n)
     points = np.array([[0.03, 0.02], [0.05, -0.01]] * (n // 2)) + along(pair[:-1]) - 0.05
     code, _ = evidence(points, pair, np.where(np.arange(n) % 2 == 0, 6.1, 0.02))
-    assert code != ms.EV_REPEAT
+    assert code != rc.EV_REPEAT

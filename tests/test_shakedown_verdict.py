@@ -1,4 +1,4 @@
-"""Melan and Koiter decide a braked disk on its small orbit (frictiondisk/outcome/shakedown_verdict.py).
+"""Melan and Koiter decide a braked disk on its small orbit (frictiondisk/verdict/shakedown_verdict.py).
 
 The oracle is independent of the bound: watching runs (numerics.evidence observe, which
 never consults it) at a friction law ten times finer (eps / 10), long enough to see the
@@ -11,13 +11,15 @@ import math
 
 import numpy as np
 import pytest
+from verdict_records import DEFAULT
 
-from frictiondisk.kernel import monitor_slots as ms
-from frictiondisk.kernel import shakedown_bound as sdb
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.outcome import admissibility as ad
-from frictiondisk.outcome import shakedown_verdict as sv
+from frictiondisk.simulation.pack import pack_parameters
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict import admissibility as ad
+from frictiondisk.verdict import shakedown_bound as sdb
+from frictiondisk.verdict import shakedown_verdict as sv
+from frictiondisk.verdict.params import VerdictParams
 
 TOL = 1e-4
 # Well-posedness study seed 8 scene 21: a braked disk from a co-rotating start. The rules
@@ -68,7 +70,7 @@ def bound() -> float:
 
 
 def _still_to_come(history) -> float:
-    return sdb.still_to_come(np.asarray(history, dtype=float), len(history))
+    return sdb.still_to_come(DEFAULT, np.asarray(history, dtype=float), len(history))
 
 
 def test_the_reserve_history_needs_a_monotone_geometric_approach():
@@ -96,22 +98,23 @@ def test_the_kernel_stops_once_the_bound_decides_and_reads_admissibilitys_reserv
     assert res.outcome == "stick" and "Melan" in res.reason, res.reason
     assert "the rules said" not in res.reason
     rows = res.revolutions
-    assert res.t_end == pytest.approx(rows[-1, ms.RV_T], abs=1e-9)
+    assert res.t_end == pytest.approx(rows[-1]["t"], abs=1e-9)
     budget = config.numerics.t_decide * config.numerics.horizon_budget
     assert res.t_end < budget / 2
-    on_orbit = rows[-sv.BLOCKS * sv.ON_ORBIT_REVS :, ms.RV_ANY_STUCK]
-    assert np.all(on_orbit == 1.0)
+    vp = VerdictParams()
+    on_orbit = rows[-vp.bound_blocks * vp.on_orbit_revs :]["any_stuck"]
+    assert np.all(on_orbit)
     traj = res.trajectory
     assert traj.t[-1] == pytest.approx(res.t_end, abs=1e-9)
     x, y, phi = traj.x[-1], traj.y[-1], traj.phi[-1]
-    assert math.hypot(x - rows[-1, ms.RV_X], y - rows[-1, ms.RV_Y]) < 1e-12
+    assert math.hypot(x - rows[-1]["x"], y - rows[-1]["y"]) < 1e-12
     par = config.params
     k = par.c_s - par.m_s * par.omega_m**2
     d = par.beta_s * par.omega_m
     angle = math.atan2(k * y + d * x, k * x - d * y) - phi
     case = ad.LoadCase.of(par, math.hypot(x, y), par.beta_b)
     demand = ad.shakedown_demand(case, config.contact_positions(), angle)
-    assert rows[-1, ms.RV_RESERVE] == pytest.approx(par.mu - demand / par.F_n, abs=1e-6 * TOL)
+    assert rows[-1]["reserve"] == pytest.approx(par.mu - demand / par.F_n, abs=1e-6 * TOL)
 
 
 def test_the_bound_decides_both_sides_where_the_rules_cannot(bound):
@@ -168,8 +171,6 @@ def test_the_floor_is_the_least_shakedown_demand_of_any_circle(positions):
     if positions is not None:
         data["contact"] = {"layout": "points", "positions": positions}
     config = scene_from_dict(data)
-    from frictiondisk.simulation.simulate import pack_parameters
-
     p, pts = pack_parameters(config)
     floor_demand = (config.params.mu - sdb.floor_reserve(p, pts)) * config.params.F_n
     par = config.params
@@ -216,7 +217,7 @@ def test_below_the_floor_the_disk_is_decided_not_to_stick_at_once():
     assert "least shakedown demand" in res.reason and res.t_end == pytest.approx(30.0)
     observed = simulate(config.with_overrides({"numerics.evidence": "observe"}))
     assert observed.outcome == "undetermined", observed.reason  # the rules alone cannot
-    outcome, reason = sv.decide(config, "stick", "the rules' stick", None, -1e-2)
+    outcome, reason = sv.decide(config, "stick", "the rules' stick", None, -1e-2, VerdictParams())
     assert outcome == "creep" and "Koiter" in reason
 
 
@@ -234,6 +235,6 @@ def test_a_stick_of_the_rules_waits_while_its_own_circle_cannot_hold_it():
     config = scene_from_dict(scene)
     res = simulate(config)
     assert res.outcome == "creep" and "Koiter" in res.reason, res.reason
-    assert res.revolutions[-1, ms.RV_RESERVE] < -10 * sv.margin(config)
+    assert res.revolutions[-1]["reserve"] < -10 * sv.margin(config)
     rules = simulate(config.with_overrides({"numerics.evidence": "observe"}))
     assert rules.outcome == "stick" and rules.t_end < res.t_end, rules.reason

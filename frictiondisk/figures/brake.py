@@ -4,10 +4,10 @@ Melan shakedown and collapse bounds at each run's orbit radius.
     python -m frictiondisk.figures.brake REST_DIR [COROTATING_DIR] -o fig.png
 
 Each DIR holds a finished find_jump campaign along params.beta_b (results.nc). The bounds
-come from frictiondisk.outcome.admissibility at the radius of the sticking run at mu_hi (`size_hi`,
+come from frictiondisk.verdict.admissibility at the radius of the sticking run at mu_hi (`size_hi`,
 else its first sticking radius `R1_hi`), for the campaign's ring of contacts. The collapse
 bound is never read by the classifier; the shakedown bound decides a braked disk on its
-small orbit (frictiondisk/outcome/shakedown_verdict.py, at the disk's own layout angle), so
+small orbit (frictiondisk/verdict/shakedown_verdict.py, at the disk's own layout angle), so
 there its agreement with mu* is by construction and the watching runs are the check.
 """
 
@@ -24,7 +24,7 @@ import xarray as xr
 from frictiondisk.figures.shared import MU_LABEL
 from frictiondisk.figures.style import styled
 from frictiondisk.model.campaign import campaign_from_text
-from frictiondisk.outcome import admissibility as ad
+from frictiondisk.verdict import admissibility as ad
 
 SERIES_STYLE = {
     "rest": {"color": "#1f4e79", "marker": "o", "label": "\u03bc* from rest (\u03c6\u03070 = 0)"},

@@ -22,7 +22,7 @@ from matplotlib.lines import Line2D
 
 from frictiondisk.figures.style import SLIDE_COLOR, STICK_COLOR, styled  # noqa: F401 (re-exported)
 from frictiondisk.model.headline import scene_headline
-from frictiondisk.outcome.result import SimulationResult
+from frictiondisk.simulation.result import SimulationResult
 from frictiondisk.store.files import atomic_write
 
 STICK_WIDTH = 2.2

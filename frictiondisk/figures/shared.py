@@ -23,8 +23,8 @@ from matplotlib.ticker import FuncFormatter
 from matplotlib.transforms import blended_transform_factory
 
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
-from frictiondisk.outcome.horizon import horizon_key
 from frictiondisk.search.jump_result import NO_JUMP
+from frictiondisk.verdict.horizon import horizon_key
 
 MU_LABEL = "friction coefficient \u03bc [-]"
 MU_STAR_LABEL = "\u03bc* [-]"

@@ -1,2 +1,2 @@
-"""The numbers of one run: equations of motion, RODAS4 steps, events, energy, run loop.
-numba only: never imports orchestration (dask, xarray, click) nor the rest of frictiondisk."""
+"""The numbers of one run: equations of motion, RODAS4 steps, events, energy, the motion's
+facts, in named records. numba only: never imports orchestration nor the rest of frictiondisk."""

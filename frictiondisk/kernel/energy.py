@@ -30,31 +30,23 @@ in (integrate_piece).
 
 import math
 
+import numpy as np
+
 from .jit import kernel_jit
-from .model import (
-    P_BETAB,
-    P_BETAS,
-    P_CI,
-    P_CS,
-    P_JS,
-    P_MS,
-    P_OMEGA,
-    P_XMS,
-    STICK,
-    contact_constants,
-    friction_limit,
-    n_coords,
-)
+from .model import STICK, contact_constants, friction_limit, n_coords
 from .rodas import dense_eval
 
-# Indices into the driver's float outputs out_f
-E_W_IN = 0  # work put in by the master, integral of P_in [J]
-E_W_DISS = 1  # energy dissipated, integral of D [J]
-E_P_IN = 2  # P_in at the current state and modes [W] (start value of the next piece)
-E_D = 3  # D at the current state and modes [W]
-E_SLIP = 4  # net plastic slip of the mean contact, integral of sum_i w_i |w_i'| [m]
-E_S = 5  # its rate at the current state and modes [m/s]
-N_OUT_F = 6
+# The energy record of a run (kernel/records.py RUN_STATE.energy)
+ENERGY = np.dtype(
+    [
+        ("w_in", np.float64),  # work put in by the master, integral of P_in [J]
+        ("w_diss", np.float64),  # energy dissipated, integral of D [J]
+        ("p_in", np.float64),  # P_in at the current state and modes [W] (start of the next piece)
+        ("diss", np.float64),  # D at the current state and modes [W]
+        ("slip", np.float64),  # net plastic slip of the mean contact, int sum_i w_i |w_i'| [m]
+        ("slip_rate", np.float64),  # its rate at the current state and modes [m/s]
+    ]
+)
 
 
 @kernel_jit
@@ -64,16 +56,16 @@ def stored_energy(p, pts, y):
     ncon = pts.shape[0]
     vx = y[nq]
     vy = y[nq + 1]
-    dx = y[0] - p[P_XMS]
+    dx = y[0] - p.x_ms
     dy = y[1]
-    e = 0.5 * p[P_MS] * (vx * vx + vy * vy) + 0.5 * p[P_CS] * (dx * dx + dy * dy)
+    e = 0.5 * p.m_s * (vx * vx + vy * vy) + 0.5 * p.c_s * (dx * dx + dy * dy)
     if nq == 3:
-        e += 0.5 * p[P_JS] * y[nq + 2] * y[nq + 2]
+        e += 0.5 * p.J_s * y[nq + 2] * y[nq + 2]
     acc = 0.0
     for i in range(ncon):
         zi = 2 * nq + 2 * i
         acc += (y[zi] * y[zi] + y[zi + 1] * y[zi + 1]) / pts[i, 2]
-    return e + 0.5 * acc / p[P_CI]
+    return e + 0.5 * acc / p.c_i
 
 
 @kernel_jit
@@ -90,18 +82,18 @@ def power_balance(p, pts, modes, y):
     evaluation (tests/test_energy.py checks eq. * against model.rhs).
     """
     nq = n_coords(p)
-    om = p[P_OMEGA]
+    om = p.omega_m
     x = y[0]
     yy = y[1]
     vx0 = y[nq]
     vy0 = y[nq + 1]
-    diss = p[P_BETAS] * (vx0 * vx0 + vy0 * vy0)
+    diss = p.beta_s * (vx0 * vx0 + vy0 * vy0)
     phid = 0.0
     cph = 1.0
     sph = 0.0
     if nq == 3:
         phid = y[nq + 2]
-        diss += p[P_BETAB] * phid * phid
+        diss += p.beta_b * phid * phid
         cph = math.cos(y[2])
         sph = math.sin(y[2])
     p_in = 0.0
@@ -150,40 +142,40 @@ def power_balance(p, pts, modes, y):
 
 
 @kernel_jit
-def begin(p, pts, modes, y, out_f):
+def begin(p, pts, modes, y, energy):
     """Zero the work integrals and store the powers at the start state."""
-    out_f[E_W_IN] = 0.0
-    out_f[E_W_DISS] = 0.0
-    out_f[E_SLIP] = 0.0
-    refresh(p, pts, modes, y, out_f)
+    energy.w_in = 0.0
+    energy.w_diss = 0.0
+    energy.slip = 0.0
+    refresh(p, pts, modes, y, energy)
 
 
 @kernel_jit
-def refresh(p, pts, modes, y, out_f):
+def refresh(p, pts, modes, y, energy):
     """Store the powers at state y in the (possibly new) modes, after a switch."""
     p_in, diss, slip = power_balance(p, pts, modes, y)
-    out_f[E_P_IN] = p_in
-    out_f[E_D] = diss
-    out_f[E_S] = slip
+    energy.p_in = p_in
+    energy.diss = diss
+    energy.slip_rate = slip
 
 
 @kernel_jit
-def integrate_piece(p, pts, modes, y0, y1, wk, s_end, h, y_end, ymid, out_f):
+def integrate_piece(p, pts, modes, y0, y1, wk, s_end, h, y_end, ymid, energy):
     """Add the integrals of P_in, D and the slip rate over [t, t + s_end h] of the last step.
 
     Simpson's rule: the end values are exact step states (y0, and y_end = y1 or the dense
     output at an event), the midpoint comes from the step's dense output (order 3), so the
     quadrature error per step is of the order of the step's local error and falls with
-    rtol like it. out_f[E_P_IN], out_f[E_D] hold the powers at y0 on entry and at y_end on
-    return. ymid is scratch space.
+    rtol like it. energy.p_in, energy.diss hold the powers at y0 on entry and at y_end on
+    return (energy: the ENERGY record). ymid is scratch space.
     """
     dense_eval(y0, y1, wk, 0.5 * s_end, ymid)
     pm, dm, sm = power_balance(p, pts, modes, ymid)
     pe, de, se = power_balance(p, pts, modes, y_end)
     w = s_end * h / 6.0
-    out_f[E_W_IN] += w * (out_f[E_P_IN] + 4.0 * pm + pe)
-    out_f[E_W_DISS] += w * (out_f[E_D] + 4.0 * dm + de)
-    out_f[E_SLIP] += w * (out_f[E_S] + 4.0 * sm + se)
-    out_f[E_P_IN] = pe
-    out_f[E_D] = de
-    out_f[E_S] = se
+    energy.w_in += w * (energy.p_in + 4.0 * pm + pe)
+    energy.w_diss += w * (energy.diss + 4.0 * dm + de)
+    energy.slip += w * (energy.slip_rate + 4.0 * sm + se)
+    energy.p_in = pe
+    energy.diss = de
+    energy.slip_rate = se

@@ -2,7 +2,7 @@
 
 Each contact has a directed event function w = sigma * s (sigma = +1 in stick, -1 in
 slide); an event is w crossing 0 from below. Within an accepted step [t0, t0 + h] the
-driver knows w and dw/dt at both ends. Two cases are found:
+step loop knows w and dw/dt at both ends. Two cases are found:
 
 * a sign change between the ends: bracketed at once;
 * a graze: both ends negative, but the cubic Hermite model of w has an interior
@@ -14,7 +14,7 @@ The root is then refined by Brent's method on w(y(t)) to a time tolerance.
 
 Event functions come in three kinds. KIND_SWITCH: w = sigma s_i with the switching
 function of the contact's mode (model.switch_value). For a contact inside the hysteresis
-band of its mode (kernel/driver.py) a rate is watched instead: KIND_REENTRY, a sliding
+band of its mode (kernel/switching.py) a rate is watched instead: KIND_REENTRY, a sliding
 contact whose ds/dt under stick dynamics falls through 0 (it may stick again), w = -rate;
 KIND_RISE, a stuck contact above the friction limit whose |k| starts to grow (it must
 slide), w = +rate.
@@ -32,6 +32,9 @@ BRENT_MAXITER = 100
 KIND_SWITCH = 0
 KIND_REENTRY = 1
 KIND_RISE = 2
+SAME_TIME = 1e-12  # [s] events closer than this count as one instant (Zeno guard)
+SIMULTANEOUS = 1e-9  # [s] crossings this close are switched together
+T_TOL_ABS = 1e-11  # [s] time tolerance of the event root finder
 
 
 @kernel_jit

@@ -13,9 +13,10 @@ literal, and compiles the callee once for every literal it meets besides its pla
 docs/benchmarks.md). `kernel_jit` types every argument of a call between kernel functions
 by its plain type (int64, bool, float64), so each compiles once.
 
-numba checks only the timestamp of a function's own file, so a cached driver.run would
+numba checks only the timestamp of a function's own file, so a cached step loop would
 keep calling a stale copy of an edited monitor.py. The cache therefore lives in a folder
-named by a hash of every kernel source: any edit to any of them compiles afresh.
+named by a hash of every numba source (NUMBA_SOURCES: the kernel, the verdict and the
+step loop, frictiondisk/simulation/loop.py): any edit to any of them compiles afresh.
 """
 
 import hashlib
@@ -26,16 +27,30 @@ import numba as nb
 from numba.core import types
 
 KERNEL_SOURCES = pathlib.Path(__file__).resolve().parent
+PACKAGE = KERNEL_SOURCES.parent
+# Every source numba compiles, relative to the package folder: a whole folder ("kernel")
+# or one file ("simulation/loop.py"). tests/test_kernel_cache.py checks that every module
+# using kernel_jit lies in one of them.
+NUMBA_SOURCES = ("kernel", "verdict", "simulation/loop.py")
 
 
-def kernel_cache_dir(sources: pathlib.Path = KERNEL_SOURCES) -> str:
-    """A numba cache folder unique to the kernel sources in `sources` (under
-    NUMBA_CACHE_DIR, or under that folder's __pycache__)."""
+def numba_sources(package: pathlib.Path = PACKAGE) -> list[pathlib.Path]:
+    """The numba source files under `package` (NUMBA_SOURCES), sorted."""
+    files: list[pathlib.Path] = []
+    for entry in NUMBA_SOURCES:
+        path = package / entry
+        files.extend(sorted(path.glob("*.py")) if path.is_dir() else [path])
+    return files
+
+
+def kernel_cache_dir(package: pathlib.Path = PACKAGE) -> str:
+    """A numba cache folder unique to the numba sources under `package` (under
+    NUMBA_CACHE_DIR, or under the kernel's __pycache__)."""
     digest = hashlib.sha256()
-    for source in sorted(sources.glob("*.py")):
-        digest.update(source.name.encode())
+    for source in numba_sources(package):
+        digest.update(source.relative_to(package).as_posix().encode())
         digest.update(source.read_bytes())
-    root = os.environ.get("NUMBA_CACHE_DIR") or str(sources / "__pycache__")
+    root = os.environ.get("NUMBA_CACHE_DIR") or str(package / "kernel" / "__pycache__")
     return os.path.join(root, f"kernel-{digest.hexdigest()[:16]}")
 
 

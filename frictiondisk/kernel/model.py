@@ -2,7 +2,7 @@
 
 Contacts: pts has one row (px, py, w) per contact: body-frame point p_i [m] and relative
 weight w = N w_i (mean 1; 1.0 on a ring, frictiondisk/model/layouts.py). Contact i has stiffness
-c_i = w p[P_CI], damping beta_i = w p[P_BETAI] and normal force F_n,i = w p[P_FNI].
+c_i = w p.c_i, damping beta_i = w p.beta_i and normal force F_n,i = w p.F_n_i.
 
 State layout, nq = 2 (pin) or 3 (disk):
     y[0:nq]        x, y [m] (, phi [rad])
@@ -20,7 +20,7 @@ Switching functions of contact i (docs/model.md section 3):
     slide -> stick when g_i - beta_i eps crosses 0 downwards (the plastic rate
     (|k| - F_St)/beta falls through eps).
 The stick limit is exactly F_St (eps only decides when sliding ends). Between the two
-thresholds lies a band of width beta eps where either mode is possible; kernel/driver.py
+thresholds lies a band of width beta eps where either mode is possible; kernel/switching.py
 handles contacts inside it.
 """
 
@@ -30,24 +30,28 @@ import numpy as np
 
 from .jit import kernel_jit
 
-# Indices into the parameter vector p (built by frictiondisk.simulate.pack_parameters).
-P_MU = 0  # static friction coefficient mu
-P_OMEGA = 1  # master speed omega_m [rad/s]
-P_CS = 2  # support stiffness c_s [N/m]
-P_BETAS = 3  # support damping beta_s [N s/m]
-P_MS = 4  # slave mass m_s [kg]
-P_JS = 5  # slave inertia J_s [kg m^2]
-P_BETAB = 6  # brake damping beta_b [N m s/rad]
-P_XMS = 7  # axes offset x_ms [m]
-P_CI = 8  # mean stiffness per contact c/N [N/m] (times pts[i, 2]: c_i)
-P_BETAI = 9  # mean damping per contact beta/N [N s/m] (times pts[i, 2]: beta_i)
-P_FNI = 10  # mean normal force per contact F_n/N [N] (times pts[i, 2]: F_n,i)
-P_EPS = 11  # slide->stick threshold of the plastic rate eps [m/s]
-P_STR_R = 12  # Stribeck ratio r = mu_kinetic / mu_static
-P_STR_VS = 13  # Stribeck speed v_s [m/s]
-P_STR_DELTA = 14  # Stribeck exponent delta
-P_ROT = 15  # 1.0 for the disk (rotation degree of freedom), 0.0 for the pin
-N_PARAMS = 16
+# The parameter record p (one element of a PARAMETERS array, built by
+# frictiondisk/simulation/pack.py `pack_parameters`): the scene's physics, read by name.
+PARAMETERS = np.dtype(
+    [
+        ("mu", np.float64),  # static friction coefficient mu
+        ("omega_m", np.float64),  # master speed omega_m [rad/s]
+        ("c_s", np.float64),  # support stiffness c_s [N/m]
+        ("beta_s", np.float64),  # support damping beta_s [N s/m]
+        ("m_s", np.float64),  # slave mass m_s [kg]
+        ("J_s", np.float64),  # slave inertia J_s [kg m^2]
+        ("beta_b", np.float64),  # brake damping beta_b [N m s/rad]
+        ("x_ms", np.float64),  # axes offset x_ms [m]
+        ("c_i", np.float64),  # mean stiffness per contact c/N [N/m] (times pts[i, 2]: c_i)
+        ("beta_i", np.float64),  # mean damping per contact beta/N [N s/m] (times pts[i, 2])
+        ("F_n_i", np.float64),  # mean normal force per contact F_n/N [N] (times pts[i, 2])
+        ("eps", np.float64),  # slide->stick threshold of the plastic rate eps [m/s]
+        ("stribeck_r", np.float64),  # Stribeck ratio r = mu_kinetic / mu_static
+        ("stribeck_v_s", np.float64),  # Stribeck speed v_s [m/s]
+        ("stribeck_delta", np.float64),  # Stribeck exponent delta
+        ("disk", np.bool_),  # True for the disk (rotation degree of freedom), False for the pin
+    ]
+)
 
 STICK = 1
 SLIDE = 0
@@ -56,26 +60,26 @@ SLIDE = 0
 @kernel_jit
 def n_coords(p):
     """Number of generalized coordinates: 2 (pin) or 3 (disk)."""
-    return 3 if p[P_ROT] > 0.5 else 2
+    return 3 if p.disk else 2
 
 
 @kernel_jit
 def contact_constants(p, pts, i):
     """Stiffness c_i [N/m], damping beta_i [N s/m] and normal force F_n,i [N] of contact i."""
     w = pts[i, 2]
-    return p[P_CI] * w, p[P_BETAI] * w, p[P_FNI] * w
+    return p.c_i * w, p.beta_i * w, p.F_n_i * w
 
 
 @kernel_jit
 def friction_limit(p, fn, speed):
     """Stribeck limit F_St = F_n,i mu(|v|) [N] of a contact with normal force fn [N], and
     its derivative with respect to |v|."""
-    fn_mu = fn * p[P_MU]
-    r = p[P_STR_R]
+    fn_mu = fn * p.mu
+    r = p.stribeck_r
     if r == 1.0:
         return fn_mu, 0.0
-    vs = p[P_STR_VS]
-    delta = p[P_STR_DELTA]
+    vs = p.stribeck_v_s
+    delta = p.stribeck_delta
     xi = speed / vs
     if xi <= 0.0:
         return fn_mu, 0.0
@@ -88,7 +92,7 @@ def friction_limit(p, fn, speed):
 @kernel_jit
 def body_rotation(p, y):
     """(cos phi, sin phi) of the slave's rotation; (1, 0) for the pin."""
-    if p[P_ROT] < 0.5:
+    if not p.disk:
         return 1.0, 0.0
     return math.cos(y[2]), math.sin(y[2])
 
@@ -108,7 +112,7 @@ def contact_state_rot(p, pts, y, i, c, s):
     """contact_state with (cos phi, sin phi) = (c, s) given: loops over the contacts
     compute them once (body_rotation) instead of once per contact."""
     nq = n_coords(p)
-    om = p[P_OMEGA]
+    om = p.omega_m
     ax = 0.0
     ay = 0.0
     if nq == 3:
@@ -136,7 +140,7 @@ def switch_value(p, pts, y, i, mode):
     _, _, _, _, kx, ky, fst, _ = contact_state(p, pts, y, i)
     g = math.sqrt(kx * kx + ky * ky) - fst
     if mode == SLIDE:
-        g -= p[P_BETAI] * pts[i, 2] * p[P_EPS]
+        g -= p.beta_i * pts[i, 2] * p.eps
     return g
 
 
@@ -145,7 +149,7 @@ def switch_rate(p, pts, y, f, i):
     """Time derivative of the switching function of contact i (either mode: they differ
     by a constant) along the motion with state rate f = dy/dt [N/s]."""
     nq = n_coords(p)
-    om = p[P_OMEGA]
+    om = p.omega_m
     ci, bi, _ = contact_constants(p, pts, i)
     ax, ay, vx, vy, kx, ky, fst, dfst = contact_state(p, pts, y, i)
     xd = y[nq]
@@ -207,10 +211,10 @@ def stick_rate_given(p, pts, modes, y, f, i, fbuf):
         gy = fst * ky / kn
     dx = kx - gx  # change of G_i; the slave feels -G_i
     dy = ky - gy
-    fbuf[nq] = f[nq] - dx / p[P_MS]
-    fbuf[nq + 1] = f[nq + 1] - dy / p[P_MS]
+    fbuf[nq] = f[nq] - dx / p.m_s
+    fbuf[nq + 1] = f[nq + 1] - dy / p.m_s
     if nq == 3:
-        fbuf[nq + 2] = f[nq + 2] - (ax * dy - ay * dx) / p[P_JS]
+        fbuf[nq + 2] = f[nq + 2] - (ax * dy - ay * dx) / p.J_s
     ci, bi, _ = contact_constants(p, pts, i)
     zi = 2 * nq + 2 * i
     fbuf[zi] = ci / bi * (kx - y[zi])
@@ -223,9 +227,9 @@ def rhs(p, pts, modes, y, f):
     """dy/dt of the scene in the given contact modes (paper eqs. 3-10, docs/model.md section 4)."""
     nq = n_coords(p)
     ncon = modes.shape[0]
-    m = p[P_MS]
-    fx = -p[P_CS] * (y[0] - p[P_XMS]) - p[P_BETAS] * y[nq]
-    fy = -p[P_CS] * y[1] - p[P_BETAS] * y[nq + 1]
+    m = p.m_s
+    fx = -p.c_s * (y[0] - p.x_ms) - p.beta_s * y[nq]
+    fy = -p.c_s * y[1] - p.beta_s * y[nq + 1]
     torque = 0.0
     c, s = body_rotation(p, y)
     for i in range(ncon):
@@ -253,7 +257,7 @@ def rhs(p, pts, modes, y, f):
     f[nq] = fx / m
     f[nq + 1] = fy / m
     if nq == 3:
-        f[nq + 2] = (torque - p[P_BETAB] * y[nq + 2]) / p[P_JS]
+        f[nq + 2] = (torque - p.beta_b * y[nq + 2]) / p.J_s
 
 
 @kernel_jit
@@ -266,7 +270,7 @@ def _contact_linearization(p, pts, modes, y, i, c, s, dg, pm):
     rigid-body coordinates (kernel/linalg.py, arrow form).
     """
     nq = n_coords(p)
-    om = p[P_OMEGA]
+    om = p.omega_m
     ci, bi, _ = contact_constants(p, pts, i)
     phid = y[nq + 2] if nq == 3 else 0.0
     ax, ay, vx, vy, kx, ky, fst, dfst = contact_state_rot(p, pts, y, i, c, s)
@@ -334,25 +338,25 @@ def _contact_linearization(p, pts, modes, y, i, c, s, dg, pm):
 def _rigid_jacobian(p, y, jac):
     """The rigid-body part of d(rhs)/dy (rows and columns 0 .. 2 nq - 1) without contacts."""
     nq = n_coords(p)
-    m = p[P_MS]
+    m = p.m_s
     for i in range(2 * nq):
         for j in range(2 * nq):
             jac[i, j] = 0.0
     for j in range(nq):
         jac[j, nq + j] = 1.0
-    jac[nq, 0] = -p[P_CS] / m
-    jac[nq + 1, 1] = -p[P_CS] / m
-    jac[nq, nq] = -p[P_BETAS] / m
-    jac[nq + 1, nq + 1] = -p[P_BETAS] / m
+    jac[nq, 0] = -p.c_s / m
+    jac[nq + 1, 1] = -p.c_s / m
+    jac[nq, nq] = -p.beta_s / m
+    jac[nq + 1, nq + 1] = -p.beta_s / m
     if nq == 3:
-        jac[nq + 2, nq + 2] = -p[P_BETAB] / p[P_JS]
+        jac[nq + 2, nq + 2] = -p.beta_b / p.J_s
 
 
 @kernel_jit
 def jacobian(p, pts, modes, y, jac):
     """Analytic Jacobian d(rhs)/dy in the given contact modes, dense (n, n)."""
     nq = n_coords(p)
-    m = p[P_MS]
+    m = p.m_s
     jac[:, :] = 0.0
     _rigid_jacobian(p, y, jac)
     dg = np.zeros((2, 2 * nq))
@@ -369,16 +373,16 @@ def jacobian(p, pts, modes, y, jac):
             jac[zi, col] += rate * dgx
             jac[zi + 1, col] += rate * dgy
             if nq == 3:
-                jac[nq + 2, col] -= (ax * dgy - ay * dgx) / p[P_JS]
+                jac[nq + 2, col] -= (ax * dgy - ay * dgx) / p.J_s
         for a in range(2):
             for b in range(2):
                 jac[nq + a, zi + b] -= pm[a, b] / m
                 jac[zi + a, zi + b] += rate * (pm[a, b] - (1.0 if a == b else 0.0))
         if nq == 3:
-            jac[nq + 2, zi] -= (ax * pm[1, 0] - ay * pm[0, 0]) / p[P_JS]
-            jac[nq + 2, zi + 1] -= (ax * pm[1, 1] - ay * pm[0, 1]) / p[P_JS]
+            jac[nq + 2, zi] -= (ax * pm[1, 0] - ay * pm[0, 0]) / p.J_s
+            jac[nq + 2, zi + 1] -= (ax * pm[1, 1] - ay * pm[0, 1]) / p.J_s
             # the arm itself turns with phi: d(a x F)/dphi += -(a . F) with F = -G
-            jac[nq + 2, 2] += (ax * gx + ay * gy) / p[P_JS]
+            jac[nq + 2, 2] += (ax * gx + ay * gy) / p.J_s
 
 
 @kernel_jit
@@ -388,8 +392,8 @@ def jacobian_arrow(p, pts, modes, y, jac):
     and memory. Every contact entry is written once, so only the rigid rows are zeroed."""
     nq = n_coords(p)
     r = 2 * nq
-    inv_m = 1.0 / p[P_MS]
-    inv_j = 1.0 / p[P_JS]
+    inv_m = 1.0 / p.m_s
+    inv_j = 1.0 / p.J_s
     _rigid_jacobian(p, y, jac)
     dg = np.zeros((2, r))
     pm = np.empty((2, 2))

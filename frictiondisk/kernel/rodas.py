@@ -1,7 +1,8 @@
 """One RODAS4 step with embedded error estimate and dense output (numba).
 
 The stepper knows nothing of contacts or events: it advances y' = rhs(y) in fixed
-modes. The driver (kernel/driver.py) owns step-size control, events and switching.
+modes. Step-size control is kernel/controller.py; events and switching are
+kernel/switching.py; the step loop (frictiondisk/simulation/loop.py) calls them.
 """
 
 import math
@@ -11,10 +12,12 @@ from .jit import kernel_jit
 from .linalg import is_dense, stage_factor, stage_solve
 from .model import jacobian, jacobian_arrow, rhs
 
-# Rows of the work array wk (shape (N_WORK_ROWS, n)).
+# Rows of the work array wk (shape (N_WORK_ROWS, n)): the stages k1 .. k6 (k6 is the
+# error estimate), scratch for a stage's state, rate and right-hand side, and the
+# dense-output coefficients q1, q2 of the last step.
 W_K1, W_K2, W_K3, W_K4, W_K5, W_K6 = 0, 1, 2, 3, 4, 5
 W_Y, W_F, W_B = 6, 7, 8
-W_Q1, W_Q2 = 9, 10  # dense-output coefficients of the last step
+W_Q1, W_Q2 = 9, 10
 N_WORK_ROWS = 11
 
 
@@ -126,23 +129,3 @@ def dense_eval_contact(y0, y1, wk, s, out, nq, i):
     for k in range(2 * nq + 2):
         j = k if k < 2 * nq else zi + k - 2 * nq
         out[j] = s1 * y0[j] + s * (y1[j] + s1 * (q1[j] + s * q2[j]))
-
-
-@kernel_jit
-def next_step_factor(err, err_old, h, h_old, first):
-    """Step-size factor h_new / h after an accepted step (Gustafsson predictive controller)."""
-    fac = max(co.FAC_MIN, min(co.FAC_MAX, err**co.ERROR_EXPONENT / co.SAFETY))
-    if not first and err_old > 0.0:
-        facpred = (h_old / h) * (err * err / err_old) ** co.ERROR_EXPONENT / co.SAFETY
-        facpred = max(co.FAC_MIN, min(co.FAC_MAX, facpred))
-        fac = max(fac, facpred)
-    return 1.0 / fac
-
-
-@kernel_jit
-def reject_factor(err):
-    """Step-size factor after a rejected step (at most a 5x shrink, also for a non-finite
-    error estimate)."""
-    if not math.isfinite(err):
-        return 1.0 / co.FAC_MAX
-    return 1.0 / max(co.FAC_MIN, min(co.FAC_MAX, err**co.ERROR_EXPONENT / co.SAFETY))

@@ -1,13 +1,10 @@
-"""Status codes returned by the kernel, and what they mean (messages live in simulate.py)."""
+"""Status codes of the step loop's own failures (numba returns them; the label words them).
 
-STICK_HELD = 1  # every contact stuck for the hold time: outcome `stick`
-HORIZON_REACHED = 2  # decision horizon reached: classify by the final window
-CYCLE_CONVERGED = 3  # limit cycle converged (section-point test)
-TMAX_REACHED = 4  # convergence mode reached t_max without convergence
-COROTATING = 5  # co-rotation without net slip (stick_rule corotation): outcome `stick`
-CREEPING = 6  # steady slip per revolution on the small orbit: outcome `creep`
-SHAKEN_DOWN = 7  # slip per cycle or revolution falls to nothing (kernel/sections.py): `stick`
-BOUND_DECIDED = 8  # Melan or Koiter decides on the small orbit (kernel/shakedown_bound.py)
+A run the verdict ends returns the verdict's final state instead (1 ... 8,
+frictiondisk/verdict/records.py); these codes start at 10 so the two never meet.
+"""
+
+RUNNING = 0  # the loop goes on (a step was taken or rejected); never returned
 MAX_STEPS = 10  # work budget: step limit
 MAX_EVENTS = 11  # work budget: event limit
 STEP_TOO_SMALL = 12  # step size underflow

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from frictiondisk.outcome.result import OUTCOMES
+from frictiondisk.verdict.outcomes import OUTCOMES
 
 BLOCK = 1024  # draws per SeedSequence block
 STICK = "stick"

@@ -19,7 +19,7 @@ never guess):
   listed in the result instead of being hidden.
 
 Interpolation (`root_finder="itp"`, the default for split 2): every run also reports its
-friction reserve (frictiondisk/outcome/reserve.py), a signed signal that crosses zero near mu*.
+friction reserve (frictiondisk/verdict/reserve.py), a signed signal that crosses zero near mu*.
 Each round's point is its secant root (regula falsi between the bracket ends, or a unit
 slope from one end; past an end whose reserve has the wrong sign, a geometric step
 beyond it), nudged past the estimate so that it lands beyond it, and then projected into

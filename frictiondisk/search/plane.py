@@ -13,7 +13,7 @@ c = -mu, a key at which the stick side lies below in c = -key. The bisection and
 certification (frictiondisk.search.certify) then run unchanged: the same checks, the same
 widening, the same ladder.
 
-The friction reserve (frictiondisk/outcome/reserve.py) the interpolating root finder aims
+The friction reserve (frictiondisk/verdict/reserve.py) the interpolating root finder aims
 with is positive where the slave sticks and changes about as fast as mu - mu*. On a line it
 is handed on as r / slope, with `slope` the rate at which it changes along the line (1
 along mu; |d mu*/d key| along the key, from the curve's tangent), so that it stays close

@@ -6,7 +6,7 @@ A dense prescan runs every value of its grid. `AdaptiveGrid` runs every `stride`
 * its ends differ in stick / not stick (refined down to neighbouring grid values, so a
   jump gets the same bracket, and so the same bisection and mu*, as in the dense prescan),
 * an end is undetermined after every retry, or
-* an end's friction reserve (frictiondisk/outcome/reserve.py) contradicts its verdict: a run
+* an end's friction reserve (frictiondisk/verdict/reserve.py) contradicts its verdict: a run
   that sticks should have a positive reserve; one that does not, a negative one or none
   (never stuck). A contradiction means the reserve does not describe the verdicts there,
   so it cannot vouch for the interval.

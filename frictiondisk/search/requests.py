@@ -9,8 +9,8 @@ from typing import Any
 
 from frictiondisk.model.scene import MAX_HORIZON_BUDGET
 from frictiondisk.model.search_settings import OFF, Certify
-from frictiondisk.outcome.horizon import horizon_key, horizon_of
 from frictiondisk.search.bisection import RunRequest
+from frictiondisk.verdict.horizon import horizon_key, horizon_of
 
 
 def run_config(point_config, request: RunRequest, horizon_factor: float, certify: Certify = OFF):

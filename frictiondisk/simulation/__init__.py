@@ -1,2 +1,2 @@
-"""One run: a validated scene in, a classified SimulationResult out, by the RODAS4 kernel,
-scipy's Radau (cross-check) or the exact-Coulomb pin, chosen in one registry (simulate.py)."""
+"""One run end to end: a scene in, the step loop (kernel steps + verdict machine), a labelled
+SimulationResult out; the integrator chosen from one registry (simulate.py METHODS)."""

@@ -3,8 +3,8 @@
 numba compiles the kernel on the first run in a process whose on-disk cache is cold (a new
 numba, an edited kernel, a cleaned cache; `make install` compiles it once itself),
 without output, which looks like a hang. The commands print one line to stderr before
-that happens. Every command compiles the same entry points (kernel/driver.py `run` and
-the three small functions simulate.py calls), so one estimate serves them all: on a
+that happens. Every command compiles the same entry points (simulation/loop.py `run` and
+the small functions the rodas4 method calls), so one estimate serves them all: on a
 fresh clone of the 2-core development machine (issue 32), a cold `simulate` took 23-24 s
 of CPU time in four runs, which is its wall time on an idle machine (one core); shared
 with other jobs at a load of 7 it took 44-59 s (docs/benchmarks.md, compile).
@@ -23,13 +23,13 @@ MESSAGE = (
 
 
 def needs_compiling(dispatcher: Any = None) -> bool:
-    """Whether the first call of the kernel's entry point (kernel/driver.py `run`) will
+    """Whether the first call of the kernel's entry point (simulation/loop.py `run`) will
     compile it: not yet compiled or loaded in this process, and no entry in numba's
     on-disk cache index (which numba itself empties for a changed source or numba)."""
     if dispatcher is None:
-        from frictiondisk.kernel import driver
+        from frictiondisk.simulation import loop
 
-        dispatcher = driver.run
+        dispatcher = loop.run
     signatures = getattr(dispatcher, "signatures", None)
     if signatures is None:  # NUMBA_DISABLE_JIT: plain Python, nothing compiles
         return False

@@ -18,6 +18,9 @@ paper notes a single contact needs no regularization). Selected by
   is admissible; otherwise it slides on, its velocity passing through zero.
 * Breakaway direction: slip starts along -F_req (the relative acceleration is
   -(F_req + mu F_n u)/m, parallel to u only for u = -F_req/|F_req|).
+
+What a run is (a permanent stick, a creep onto the rim, the final window) is decided by
+frictiondisk/verdict/coulomb_rules.py; this module only integrates.
 """
 
 from __future__ import annotations
@@ -28,13 +31,13 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from frictiondisk.outcome.classify import revolution
-from frictiondisk.outcome.horizon import horizon_of
-from frictiondisk.outcome.reserve import friction_reserve
-from frictiondisk.outcome.result import SimulationResult
-from frictiondisk.outcome.rim_approach import repeats, rim_limit
+from frictiondisk.simulation.result import SimulationResult
+from frictiondisk.verdict.coulomb_rules import CoulombRules
+from frictiondisk.verdict.horizon import horizon_of, revolution
+from frictiondisk.verdict.params import VerdictParams
+from frictiondisk.verdict.reserve import friction_reserve
 
-RIM_CHECK_EVERY = 8  # stick onsets between two tests of a creep onto the rim
+# The integrator's numerics (no verdict thresholds: those are VerdictParams rim_*)
 V_STICK = 1e-10  # [m/s] sliding speed taken as zero (the stop takes ~1e-9 s from here)
 RTOL, ATOL = 1e-11, 1e-14
 
@@ -50,23 +53,11 @@ class _Pin:
         self.m, self.c_s, self.beta_s = p.m_s, p.c_s, p.beta_s
         self.om, self.limit = p.omega_m, p.mu * p.F_n
         self.r0 = np.array([p.x_ms, 0.0])
-        # [N/m] the force per metre of radius a co-rotating circle asks of the contact
-        self.g = math.hypot(self.c_s - self.m * self.om**2, self.beta_s * self.om)
 
     def stick_force(self, r):
         """F_req [N]: the friction force that keeps the pin on the master at r."""
         mr = (self.c_s - self.m * self.om**2) * r + self.beta_s * self.om * np.array([-r[1], r[0]])
         return mr - self.c_s * self.r0
-
-    def permanent(self, r) -> bool:
-        return self.g * math.hypot(*r) + self.c_s * abs(self.r0[0]) <= self.limit
-
-    def disc_radius(self) -> float:
-        """R* [m]: radius of the sticking disc, g R* + c_s |x_ms| = mu F_n (< 0: none)."""
-        reserve = self.limit - self.c_s * abs(self.r0[0])
-        if self.g == 0.0:
-            return math.inf if reserve >= 0.0 else -math.inf
-        return reserve / self.g
 
     def breakaway(self, r_s) -> float:
         """Time [s] after sticking at r_s when |F_req| first exceeds mu F_n (inf if never)."""
@@ -97,46 +88,62 @@ class _Pin:
         return math.hypot(y[2] + self.om * y[1], y[3] - self.om * y[0])
 
 
-def _not_stuck(frac, lo, t_end, disc, sticks, num) -> tuple[str, str]:
-    """The verdict of a run that reached its horizon unstuck. With numerics.evidence
-    observe only where it is shown: no sticking disc exists (mu F_n < c_s |x_ms|), so no
-    motion can stick, or the stick onsets repeat off the rim (a cycle); otherwise
-    `undetermined` with the onsets' approach to the rim."""
-    if frac > 0.0:
-        outcome = "stick_slip"
-        reason = f"sticking and sliding alternate in the final window [{lo:.6g}, {t_end:.6g}] s"
-    else:
-        outcome = "slide"
-        reason = f"no sticking in the final window [{lo:.6g}, {t_end:.6g}] s"
-    if disc < 0.0:
-        return outcome, reason + "; no sticking disc exists (mu F_n < c_s |x_ms|): it cannot stick"
-    if num.evidence != "observe":
-        return outcome, reason
-    gaps = [s[2] - disc for s in sticks]
-    cycle, shown = repeats(gaps, num.cycle_tol)
-    if cycle:
-        return outcome, f"{reason}; {shown}: a cycle reached"
-    _, evidence = rim_limit(gaps, num.cycle_tol)
-    return "undetermined", (
-        f"horizon reached at t = {t_end:.6g} s without evidence that it will not stick "
-        f"(numerics.evidence observe; {reason}): {evidence}; {shown}"
-    )
-
-
-def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
-    """Run the pin with exact Coulomb friction; outcome rules as in docs/model.md section 6."""
+def simulate_coulomb(
+    config,
+    record: bool = False,
+    dt_out: float = 0.0,
+    *,
+    dense_lu: bool = False,
+    verdict: VerdictParams | None = None,
+) -> SimulationResult:
+    """Run the pin with exact Coulomb friction; outcome rules as in docs/model.md section 6
+    (verdict/coulomb_rules.py). record, dt_out, dense_lu: no trajectory and no stage
+    matrix here (the arguments of every method, simulation/simulate.py)."""
     if config.scene != "pin":
         raise ValueError("numerics.method coulomb is defined for scene pin only")
     wall0 = time.perf_counter()
-    pin = _Pin(config)
+    rules = CoulombRules(config, verdict or VerdictParams())
+    t_end, sticks, n_steps, outcome, reason = _integrate(config, _Pin(config), rules)
+    window = config.numerics.window_revs * revolution(config.params.omega_m)
+    lo = max(0.0, t_end - window)
+    stuck = sum(max(0.0, min(b, t_end) - max(a, lo)) for a, b, _ in sticks)
+    frac = stuck / (t_end - lo) if t_end > lo else 0.0
+    if outcome is None:
+        outcome, reason = rules.not_stuck(frac, lo, t_end, sticks)
+    first = sticks[0] if sticks else (math.nan, math.nan, math.nan)
+    return SimulationResult(
+        outcome=outcome,
+        reason=reason,
+        R1=first[2],
+        t_R1=first[0],
+        size=sticks[-1][2] if outcome == "stick" else math.nan,
+        a=math.nan,
+        # each stick phase begins with a slide->stick switch and, unless it is still
+        # going at the end, ends with a stick->slide switch
+        n_transitions=sum(1 if end >= t_end else 2 for _, end, _ in sticks),
+        stick_fraction=1.0 if outcome == "stick" else frac,
+        t_end=t_end,
+        n_steps=n_steps,
+        n_rejected=0,
+        n_refused=0,
+        cycle_converged=False,
+        wall_s=time.perf_counter() - wall0,
+        method="coulomb",
+        trajectory=None,
+        reserve=friction_reserve(config, first[2]),
+    )
+
+
+def _integrate(config, pin: _Pin, rules: CoulombRules):
+    """Stick and slide from t = 0 to the horizon or a permanent stick: (t_end [s], the
+    stick phases (t_start, t_end, radius), steps, outcome, reason); outcome None where the
+    run reached its horizon unstuck (the final window decides)."""
     num = config.numerics
     horizon = horizon_of(config)
-    window = num.window_revs * revolution(config.params.omega_m)
     p = config.params
     y = np.array([p.x_ms + p.x0, p.y0, p.vx0, p.vy0])
     t = 0.0
     sticks: list[tuple[float, float, float]] = []  # (t_start, t_end, radius)
-    disc = pin.disc_radius()
     n_steps = 0
     outcome, reason = None, ""
 
@@ -156,25 +163,12 @@ def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> Simul
             force = pin.stick_force(r_s)
             if math.hypot(*force) <= pin.limit:  # admissible: stick
                 radius = math.hypot(*r_s)
-                if pin.permanent(r_s):
-                    sticks.append((t, math.inf, radius))
+                permanent = rules.at_onset(t, radius, sticks)
+                if permanent is not None:
+                    reason, circle = permanent
+                    sticks.append((t, math.inf, circle))
                     outcome = "stick"
-                    reason = (
-                        f"the sticking circle R = {radius:.9g} m is admissible: "
-                        f"g R + c_s |x_ms| <= mu F_n (exact Coulomb stick from t = {t:.6g} s)"
-                    )
                     break
-                if disc > 0.0 and len(sticks) % RIM_CHECK_EVERY == 0:
-                    onto, evidence = rim_limit([s[2] - disc for s in sticks], num.cycle_tol)
-                    if onto:
-                        sticks.append((t, math.inf, disc))
-                        outcome = "stick"
-                        reason = (
-                            f"sticks in the limit on the rim of its sticking disc R* = "
-                            f"{disc:.9g} m (exact Coulomb, creeping onto it by t = {t:.6g} s): "
-                            f"{evidence}"
-                        )
-                        break
                 tau = pin.breakaway(r_s)
                 t_break = min(t + tau, horizon)
                 sticks.append((t, t_break, radius))
@@ -203,40 +197,12 @@ def simulate_coulomb(config, record: bool = False, dt_out: float = 0.0) -> Simul
         )
         n_steps += len(sol.t) - 1
         if sol.status == -1:
-            outcome, reason = "undetermined", f"integrator failed: {sol.message}"
+            outcome, reason = "undetermined", rules.failure_reason(sol.message)
             break
         t, y = float(sol.t[-1]), sol.y[:, -1].copy()
         stopped = sol.status == 1
         if n_steps > num.max_steps:
-            outcome = "undetermined"
-            reason = f"work budget exhausted: numerics.max_steps = {num.max_steps} steps"
+            outcome, reason = "undetermined", rules.budget_reason()
             break
 
-    t_end = t
-    lo = max(0.0, t_end - window)
-    stuck = sum(max(0.0, min(b, t_end) - max(a, lo)) for a, b, _ in sticks)
-    frac = stuck / (t_end - lo) if t_end > lo else 0.0
-    if outcome is None:
-        outcome, reason = _not_stuck(frac, lo, t_end, disc, sticks, num)
-    first = sticks[0] if sticks else (math.nan, math.nan, math.nan)
-    return SimulationResult(
-        outcome=outcome,
-        reason=reason,
-        R1=first[2],
-        t_R1=first[0],
-        size=sticks[-1][2] if outcome == "stick" else math.nan,
-        a=math.nan,
-        # each stick phase begins with a slide->stick switch and, unless it is still
-        # going at the end, ends with a stick->slide switch
-        n_transitions=sum(1 if end >= t_end else 2 for _, end, _ in sticks),
-        stick_fraction=1.0 if outcome == "stick" else frac,
-        t_end=t_end,
-        n_steps=n_steps,
-        n_rejected=0,
-        n_refused=0,
-        cycle_converged=False,
-        wall_s=time.perf_counter() - wall0,
-        method="coulomb",
-        trajectory=None,
-        reserve=friction_reserve(config, first[2]),
-    )
+    return t, sticks, n_steps, outcome, reason

@@ -160,7 +160,7 @@ class NumpyModel:
 
     def in_band(self, y, modes):
         """Contacts inside the hysteresis band of their mode: stuck above the limit, or
-        sliding below the end-of-slide threshold (kernel/driver.py)."""
+        sliding below the end-of-slide threshold (kernel/switching.py)."""
         s = self.switch(y, modes)
         return np.where(np.asarray(modes) == STICK, s > 0.0, s <= 0.0)
 

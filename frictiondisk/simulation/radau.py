@@ -4,17 +4,17 @@
 as the numba kernel, but shares with it only what must be shared:
 
 * the inputs: `initial_state` (state layout of kernel/model.py) and the config;
-* the bookkeeping: the kernel's monitor functions (kernel/monitor.py) on the monitor
-  state of a `KernelRun` (kernel/record.py), and `common.build_result`, so both
-  integrators are classified by the same rules.
+* the bookkeeping: the kernel's monitor functions (kernel/monitor.py) on the records of
+  a `RunBuffers` (simulation/buffers.py), the verdict's rules for segments
+  (verdict/segment_rules.py) and `result_builder.build_result`, so both integrators are
+  labelled by the same rules.
 
 Everything that could hide a bug is written again, from docs/model.md sections 2-4:
 the right-hand side, the switching functions (|k_i| - F_St,i in stick, minus beta_i eps in
 slide) and their time derivative (`NumpyModel` in simulation/numpy_model.py, parameters
 read from the config, not from `pack_parameters`), and here event location (scipy's
-`solve_ivp` events: brentq on Radau's dense output), simultaneous switches, refused
-entries and the stopping rules. A bug on either side shows as disagreement between the
-two.
+`solve_ivp` events: brentq on Radau's dense output), simultaneous switches and refused
+entries. A bug on either side shows as disagreement between the two.
 
 Integration is piecewise: between switches the contact modes are fixed and `solve_ivp`
 integrates one smooth ODE, with one terminal event per contact, w_i = sigma_i s_i
@@ -23,13 +23,13 @@ Jacobian (scipy's own, one vectorized call of the numpy right-hand side per Jaco
 and its sparsity (`NumpyModel.jacobian_sparsity`: each contact couples only to the
 rigid-body coordinates), so it factors a sparse matrix: usable with hundreds of contacts.
 
-Contacts in the hysteresis band of their mode (kernel/driver.py) watch their stick rate
+Contacts in the hysteresis band of their mode (kernel/switching.py) watch their stick rate
 ds/dt instead (a stuck one slides when it rises through 0, a sliding one sticks when it
 falls through 0), located as events on both sides. Deliberate differences from the kernel
 (the model is the same; these are numerics):
-* A contact leaves the hysteresis band of its mode (kernel/driver.py) when its switching
-  function changes sign: located here, tested at step ends by the driver (it changes no
-  dynamics, only which event is watched).
+* A contact leaves the hysteresis band of its mode (kernel/switching.py) when its
+  switching function changes sign: located here, tested at step ends by the step loop (it
+  changes no dynamics, only which event is watched).
 * scipy finds an event only where w changes sign between two step ends; a crossing and
   re-crossing inside one step (a graze, which the kernel's `find_graze` looks for) is
   missed. Keep h_max small when comparing runs near a graze.
@@ -45,14 +45,16 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from frictiondisk.kernel import monitor as mon
+from frictiondisk.kernel import monitor
 from frictiondisk.kernel import status as st
-from frictiondisk.kernel.record import KernelRun
-from frictiondisk.outcome.classify import revolution
-from frictiondisk.outcome.horizon import horizon_of
-from frictiondisk.outcome.result import SimulationResult, Trajectory
-from frictiondisk.simulation.common import build_result, initial_state
+from frictiondisk.simulation.buffers import RunBuffers
 from frictiondisk.simulation.numpy_model import SLIDE, STICK, NumpyModel
+from frictiondisk.simulation.pack import fill_rules, initial_state
+from frictiondisk.simulation.result import SimulationResult, Trajectory
+from frictiondisk.simulation.result_builder import build_result
+from frictiondisk.verdict import machine, segment_rules
+from frictiondisk.verdict.params import VerdictParams
+from frictiondisk.verdict.records import RECHECK, STOP
 
 __all__ = ["NumpyModel", "simulate_radau"]
 
@@ -78,7 +80,8 @@ class _Segment:
 
 
 class _RadauRun:
-    """One run: the segment loop, switching rules and stopping rules of kernel/driver.py."""
+    """One run: the segment loop and the switching rules of the step loop
+    (simulation/loop.py, kernel/switching.py); the stop rules are verdict/segment_rules.py."""
 
     def __init__(self, config, model: NumpyModel, record: bool, dt_out: float):
         num = config.numerics
@@ -87,17 +90,15 @@ class _RadauRun:
         self.num = num
         self.record = record
         self.dt_out = dt_out
-        self.hold = revolution(config.params.omega_m)
-        self.horizon = horizon_of(config)
-        self.converge = num.mode == "converge"
         n = model.n_contacts
         self.sparsity = model.jacobian_sparsity()
         self.modes = np.zeros(n, dtype=np.int8)
         self.band = np.zeros(n, dtype=np.int8)
         # contacts whose band was cleared at the last event: their s sits at 0 to round-off
         self.cleared = np.zeros(n, dtype=bool)
-        # the monitor state, counters and outcome, in the kernel's run-record type
-        self.out = KernelRun.allocate(np.zeros(model.n_states), self.modes, revolutions=False)
+        # the motion, verdict and counters, in the step loop's records
+        self.out = RunBuffers.allocate(np.zeros(model.n_states), self.modes, revolutions=False)
+        fill_rules(self.out.rules, config)
         self.n_steps = 0
         self.n_events = 0
         self.n_refused = 0
@@ -227,8 +228,7 @@ class _RadauRun:
     def _account(self, seg: _Segment):
         """Monitor and record the accepted steps of a segment (the last one up to its event)."""
         ts, ys = seg.t, seg.y
-        for k in range(1, len(ts)):
-            mon.monitor_step(self.out.mf, self.out.mi, ys[k - 1], ys[k], ts[k] - ts[k - 1])
+        monitor.steps_through(self.out.motion, np.asarray(ts, dtype=float), ys)
         self.n_steps += len(ts) - 1
         if not self.record:
             return
@@ -314,56 +314,36 @@ class _RadauRun:
     # --- the run -------------------------------------------------------------------------
 
     def run(self, y: np.ndarray, modes: np.ndarray) -> tuple[int, float, np.ndarray]:
-        """Integrate from t = 0 until a stopping rule fires: (status, t_end, y_end)."""
-        mf, mi = self.out.mf, self.out.mi
+        """Integrate from t = 0 until a stop rule fires: (status, t_end, y_end)."""
+        out = self.out
+        rules, motion, verdict = out.rules, out.motion, out.verdict
         num = self.num
-        hold = self.hold
         self.modes[:] = modes
         self.band[:] = self.model.in_band(y, self.modes)
         t = 0.0
-        mon.monitor_begin(
-            *self.out.monitor(),
-            t,
-            y,
-            self.modes,
-            self.model.nq,
-            num.cycle_tol,
-            num.cycle_count,
-        )
+        phases, intervals = out.phases, out.intervals
+        monitor.begin(motion, phases, intervals, t, y, self.modes, self.model.nq, 0.0)
+        segment_rules.begin(rules, verdict)
+        if motion["opened"]:
+            machine.phase_opened(rules, motion, verdict)
         self._rec(t, y)
-        t_stop = self.horizon
-        extended = False
         t_last_event = -1.0
         n_same_time = 0
-        horizon_status = st.TMAX_REACHED if self.converge else st.HORIZON_REACHED
 
         while True:
-            # ---- stopping rules, in the driver's order -------------------------------------
-            if num.stop_on_stick and mi[mon.I_ALL] == 1:
-                # the segment is capped at exactly t_all + hold: compare with that same sum
-                if mon.stuck_for(mf, mi, t) >= hold or t >= mf[mon.F_T_ALL] + hold:
-                    return st.STICK_HELD, t, y
-            if self.converge and mon.cycle_converged(mi):
-                return st.CYCLE_CONVERGED, t, y
-            if t >= t_stop:
-                # Never stop inside a sticking phase that may still decide `stick`.
-                if num.stop_on_stick and mi[mon.I_ALL] == 1 and not extended:
-                    extended = True
-                    t_stop = mf[mon.F_T_ALL] + hold
-                    if t < t_stop:
-                        continue
-                return horizon_status, t, y
-            if extended and mi[mon.I_ALL] == 0:
-                return horizon_status, t, y
+            # ---- the verdict's stop rules ------------------------------------------------
+            action = segment_rules.check(rules, motion, verdict, t)
+            if action == STOP:
+                return int(verdict["state"]), t, y
+            if action == RECHECK:
+                continue
             if self.n_steps >= num.max_steps:
                 return st.MAX_STEPS, t, y
             if self.n_events >= num.max_events:
                 return st.MAX_EVENTS, t, y
 
             # ---- one segment in fixed modes ---------------------------------------------
-            t1 = t_stop
-            if num.stop_on_stick and mi[mon.I_ALL] == 1:
-                t1 = min(t1, mf[mon.F_T_ALL] + hold)
+            t1 = segment_rules.segment_end(rules, motion, verdict)
             if t1 - t <= TINY_SEGMENT * max(1.0, t):
                 t = t1  # closer than the time resolution: the target is reached
                 continue
@@ -387,13 +367,21 @@ class _RadauRun:
                 t_last_event = t
                 n_sw += self._switch(t, y, seg)
             if n_sw > 0:
-                mon.monitor_switch(*self.out.monitor(), t, y, self.modes, n_sw, math.nan, 0)
+                monitor.switch(motion, phases, intervals, t, y, self.modes, n_sw, math.nan, 0)
+                if motion["opened"]:
+                    machine.phase_opened(rules, motion, verdict)
                 self.n_events += n_sw
                 self._rec(t, y)
 
 
 def simulate_radau(
-    config, record: bool = False, dt_out: float = 0.0, objective_rate: bool = True
+    config,
+    record: bool = False,
+    dt_out: float = 0.0,
+    *,
+    dense_lu: bool = False,
+    verdict: VerdictParams | None = None,
+    objective_rate: bool = True,
 ) -> SimulationResult:
     """Run one scene with scipy's Radau (the cross-check and slow baseline of the kernel).
 
@@ -404,7 +392,8 @@ def simulate_radau(
     record: keep the trajectory: every solver step, or dense-output samples every dt_out
     seconds if dt_out > 0; switching instants are recorded twice (old and new modes).
     Numerical failure never raises: it ends the run as `undetermined` with the reason.
-    objective_rate=False integrates the contact state without the rotation term of docs/model.md
+    dense_lu: no stage matrix here (an argument of every method, simulation/simulate.py);
+    verdict: the thresholds of the label. objective_rate=False integrates the contact state without the rotation term of docs/model.md
     section 3 (u_i = v_i): a study variant (benchmarks/study_brake.py), not the model.
     """
     wall0 = time.perf_counter()
@@ -418,4 +407,4 @@ def simulate_radau(
     # so n_rejected is 0 = unknown, not "none rejected".
     run.out.set_counters(steps=run.n_steps, rejected=0, refused=run.n_refused)
     trajectory = run.trajectory() if record else None
-    return build_result(config, run.out, wall, trajectory)
+    return build_result(config, run.out, wall, trajectory, verdict=verdict or VerdictParams())

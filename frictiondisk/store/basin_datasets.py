@@ -1,7 +1,7 @@
 """A basin campaign's results as xarray Datasets: results.nc (fractions) and runs.nc.
 
 results.nc of a sampled basin: over the varied dims and the coordinate `outcome`
-(frictiondisk.outcome.result.OUTCOMES, plus any other outcome a run reported), `fraction`,
+(frictiondisk.verdict.outcomes.OUTCOMES, plus any other outcome a run reported), `fraction`,
 `fraction_se`, `fraction_lo`, `fraction_hi` (95 % Wilson interval); per point `n_samples`,
 the not-stick ("large limit cycle") fraction `not_stick_fraction` with its `_se`, `_lo`,
 `_hi`, `status` and `reason` (why sampling stopped). results.nc of a map: the `outcome` of
@@ -18,7 +18,6 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.model.yamlio import dump_yaml
-from frictiondisk.outcome.result import OUTCOMES
 from frictiondisk.search import basin_stats
 from frictiondisk.search.basin_sampling import STICK, SampleRequest, not_stick_outcomes
 from frictiondisk.store import cf
@@ -30,6 +29,7 @@ from frictiondisk.store.datasets import (
     run_columns,
 )
 from frictiondisk.store.measures import RUN_MEASURES, num
+from frictiondisk.verdict.outcomes import OUTCOMES
 
 NOT_STICK_TEXT = "every determined outcome but stick"
 

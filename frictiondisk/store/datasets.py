@@ -13,7 +13,6 @@ import xarray as xr
 
 from frictiondisk.model.scene import describe_key
 from frictiondisk.model.yamlio import dump_yaml
-from frictiondisk.outcome.horizon import horizon_of
 from frictiondisk.search.bisection import RunRequest
 from frictiondisk.search.certify import CERTIFICATION_FLAGS
 from frictiondisk.search.jumps import RUN_ROLES, run_role
@@ -23,6 +22,7 @@ from frictiondisk.store.journal import kernel_version
 from frictiondisk.store.jump_datasets import all_jumps
 from frictiondisk.store.measures import RUN_MEASURES, num
 from frictiondisk.store.partial import PENDING
+from frictiondisk.verdict.horizon import horizon_of
 from frictiondisk.version import __version__
 
 

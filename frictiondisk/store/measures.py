@@ -28,7 +28,7 @@ RUN_MEASURES = {  # summary field -> (units, long name)
     ),
     "slip_decay": ("1", "mean log ratio of successive slips per revolution"),
     "slip_limit": ("m", "extrapolated limit of the slip per revolution"),
-    # the search's continuous signal (frictiondisk/outcome/reserve.py); NaN if never stuck
+    # the search's continuous signal (frictiondisk/verdict/reserve.py); NaN if never stuck
     "reserve": ("1", "friction reserve mu - demand(R1) / F_n of the first sticking circle"),
 }
 

@@ -17,7 +17,7 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.model.headline import scene_headline
-from frictiondisk.outcome.result import SimulationResult
+from frictiondisk.simulation.result import SimulationResult
 from frictiondisk.store import cf
 from frictiondisk.store.files import atomic_write_netcdf
 from frictiondisk.version import __version__

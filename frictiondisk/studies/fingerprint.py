@@ -136,7 +136,7 @@ def run_one(entry: dict):
 
 
 def run(tier: str, out: Path, names: list[str] | None = None) -> int:
-    import frictiondisk
+    from frictiondisk.simulation import simulate
 
     scenes = load_scenes(tier)
     if names:
@@ -144,7 +144,8 @@ def run(tier: str, out: Path, names: list[str] | None = None) -> int:
     versions = {}
     for lib in ("numba", "numpy", "scipy"):
         versions[lib] = __import__(lib).__version__
-    record = {"tree": str(Path(frictiondisk.__file__).parent), "versions": versions, "runs": {}}
+    tree = str(Path(simulate.__file__).parents[1])
+    record = {"tree": tree, "versions": versions, "runs": {}}
     start = time.perf_counter()
     for k, entry in enumerate(scenes):
         result = run_one(entry)

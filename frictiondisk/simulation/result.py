@@ -8,8 +8,6 @@ from typing import Any
 
 import numpy as np
 
-OUTCOMES = ("stick", "creep", "stick_slip", "slide", "undetermined")
-
 
 @dataclasses.dataclass(frozen=True)
 class Trajectory:
@@ -68,7 +66,7 @@ class Trajectory:
 class SimulationResult:
     """Outcome and measures of one run (docs/model.md section 6). Lengths in m, times in s."""
 
-    outcome: str  # one of OUTCOMES
+    outcome: str  # one of frictiondisk/verdict/outcomes.py OUTCOMES
     reason: str  # why this outcome; for `undetermined`, what went wrong
     R1: float  # first sticking radius |r| [m], NaN if the slave never stuck
     t_R1: float  # time of first sticking [s], NaN if never
@@ -84,16 +82,17 @@ class SimulationResult:
     wall_s: float  # wall time of the run [s]
     method: str  # numerics.method used
     trajectory: Trajectory | None = None
-    # per-revolution measures of the last revolutions (kernel/monitor.py RV_* columns)
+    # per-revolution measures of the last revolutions, oldest first (kernel/records.py
+    # REVOLUTION rows: revolutions["slip"], ...)
     revolutions: np.ndarray | None = None
-    # the last whole-body sticking phases, oldest first (kernel/monitor_slots.py RA_* columns)
+    # the last whole-body sticking phases, oldest first (kernel/records.py PHASE rows)
     sections: np.ndarray | None = None
     # Energy balance E(t_end) - E(0) = energy_in - energy_dissipated (kernel/energy.py);
     # NaN for integrators without the diagnostic (scipy-radau, coulomb).
     energy_in: float = math.nan  # work the driven master put in [J]
     energy_dissipated: float = math.nan  # work of the dampers and friction [J]
     energy_residual: float = math.nan  # (dE - in + dissipated) / largest term [1]
-    # Co-rotation measures (kernel/monitor.py), over the last whole master revolution; NaN
+    # Co-rotation measures (verdict/corotation.py), over the last whole master revolution; NaN
     # before the first one and for integrators without them (scipy-radau, coulomb).
     n_revolutions: int = 0  # whole master revolutions completed
     slip_per_rev: float = (
@@ -104,7 +103,7 @@ class SimulationResult:
     slip_decay: float = math.nan  # mean log ratio of successive revolutions' slips [1]
     slip_limit: float = math.nan  # extrapolated limit of slip_per_rev (Aitken) [m]
     slip_total: float = math.nan  # net plastic slip over the whole run [m]
-    # mu - demand(R1) / F_n: > 0 where the first sticking circle holds (frictiondisk/outcome/reserve.py)
+    # mu - demand(R1) / F_n: > 0 where the first sticking circle holds (verdict/reserve.py)
     reserve: float = math.nan  # [1]
 
     def summary(self) -> dict[str, Any]:

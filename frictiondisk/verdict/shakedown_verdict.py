@@ -2,7 +2,7 @@
 
 A disk that co-rotates on its small orbit (some contact stuck at every instant) carries a
 load that is fixed in its body frame, C = A r and the brake torque T = beta_b omega_m, plus
-the spring preload that turns once a revolution (frictiondisk/outcome/admissibility.py).
+the spring preload that turns once a revolution (frictiondisk/verdict/admissibility.py).
 For that periodic load plasticity theory decides the long-term motion outright:
 
 * Melan: where mu F_n exceeds the shakedown demand c_s |x_ms| + Lambda(C, T), a
@@ -14,15 +14,16 @@ Near that bound the run's own slip per revolution changes ever more slowly on bo
 and the kernel's rule (slip <= eps T a revolution counts as none, docs/model.md section 6)
 moves its answer below the bound by the mu at which the ratchet slows to eps T, several
 tol on the braked disks of the well-posedness study. The bound does not depend on eps.
-So for a braked disk that has kept its small orbit for `ON_ORBIT_REVS` revolutions, the
-sign of the reserve mu - demand / F_n at its own state decides, where the reserve is wider
-than the margin the quasi-static bound neglects, and stays wider: its distance from zero
-does not shrink, or shrinks by steps that fall geometrically (BLOCKS blocks of
-ON_ORBIT_REVS revolutions) and sum to less than the rest. A state drifting steadily towards
-the bound is left to the rules. The kernel writes the reserve at every revolution end
-(kernel/shakedown_bound.py, column RV_RESERVE of the revolution log) and stops a run as
-soon as BLOCKS blocks back the bound's verdict; this module words that verdict, and
-applies it to runs that ended otherwise (on a shorter history).
+So for a braked disk that has kept its small orbit for `on_orbit_revs` revolutions
+(VerdictParams), the sign of the reserve mu - demand / F_n at its own state decides, where
+the reserve is wider than the margin the quasi-static bound neglects, and stays wider: its
+distance from zero does not shrink, or shrinks by steps that fall geometrically
+(`bound_blocks` blocks of `on_orbit_revs` revolutions) and sum to less than the rest. A
+state drifting steadily towards the bound is left to the rules. The machine writes the
+reserve at every revolution end (verdict/shakedown_bound.py, field `reserve` of the
+revolution log) and stops a run as soon as `bound_blocks` blocks back the bound's verdict;
+this module words that verdict for the label, and applies it to runs that ended otherwise
+(on a shorter history).
 
 Not applied with `numerics.evidence: observe` (watching runs count only what they show),
 with stick_rule `contacts`, to pins and unbraked disks (there the shakedown demand equals
@@ -34,13 +35,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from frictiondisk.kernel import monitor as mon
-from frictiondisk.kernel import shakedown_bound as sdb
+from . import shakedown_bound as sdb
+from .params import VerdictParams
 
-__all__ = ["BLOCKS", "ON_ORBIT_REVS", "applies", "decide", "margin"]
-
-ON_ORBIT_REVS = sdb.ON_ORBIT_REVS
-BLOCKS = sdb.BLOCKS
+__all__ = ["applies", "decide", "margin"]
 
 
 def applies(config) -> bool:
@@ -54,11 +52,13 @@ def applies(config) -> bool:
     return bool(np.all(weights == weights[0]))
 
 
-def margin(config) -> float:
+def margin(config, vp: VerdictParams | None = None) -> float:
     """What the quasi-static bound neglects [1, units of mu]: terms of relative order
     (beta omega_m / c)^2 (contact damping of a co-rotating contact), and the solver."""
     par = config.params
-    return float(sdb.margin(par.mu, config.contact_damping, config.contact.stiffness, par.omega_m))
+    record = (vp or VerdictParams()).record()
+    damping, stiffness = config.contact_damping, config.contact.stiffness
+    return float(sdb.margin(record, par.mu, damping, stiffness, par.omega_m))
 
 
 def decide(
@@ -67,21 +67,22 @@ def decide(
     reason: str,
     rows: np.ndarray | None,
     floor: float,
+    vp: VerdictParams,
     stopped: bool = False,
 ):
     """(outcome, reason) after the bound: unchanged unless it applies and decides.
 
     outcome, reason: the rules' verdict (`stick`, `creep` and `undetermined` are
     reconsidered; below the floor also `slide` and `stick_slip` on the small orbit in
-    the last revolution); rows: the revolution log, oldest first (monitor.RV_* columns, with the
-    reserve the kernel wrote); floor: the reserve against the least demand of any circle
-    (kernel/shakedown_bound.floor_reserve) [1]; stopped: the kernel stopped the run for
-    the bound.
+    the last revolution); rows: the revolution log, oldest first (kernel/records.py
+    REVOLUTION rows, with the reserve the machine wrote); floor: the reserve against the
+    least demand of any circle (verdict/shakedown_bound.floor_reserve) [1]; vp: the
+    thresholds; stopped: the machine stopped the run for the bound.
     """
     if not applies(config):
         return outcome, reason
-    width = margin(config)
-    orbiting = rows is not None and rows.shape[0] > 0 and rows[-1, mon.RV_ANY_STUCK] == 1.0
+    width = margin(config, vp)
+    orbiting = rows is not None and rows.shape[0] > 0 and bool(rows[-1]["any_stuck"])
     if floor < -width and (outcome == "stick" or (orbiting and outcome != "undetermined")):
         # no circle holds it: a stick of the rules is a ratchet slower than eps T, and a
         # disk on its small orbit ratchets there (`slide` or `stick_slip` by the rules)
@@ -94,18 +95,19 @@ def decide(
         )
     if outcome not in ("stick", "creep", "undetermined") or rows is None:
         return outcome, reason
-    values = np.empty(BLOCKS + 1)
-    count = int(sdb.history(rows, rows.shape[0] - 1, rows.shape[0], values))
-    says = int(sdb.verdict(values, count, width))
+    record = vp.record()
+    values = np.empty(vp.bound_blocks + 1)
+    count = int(sdb.history(record, rows, rows.shape[0] - 1, rows.shape[0], values))
+    says = int(sdb.bound_verdict(record, values, count, width))
     if says == 0:
         return outcome, reason
     now = values[0]
-    radius = float(np.hypot(rows[-1, mon.RV_X], rows[-1, mon.RV_Y]))
+    radius = float(np.hypot(rows[-1]["x"], rows[-1]["y"]))
     where = (
-        f"on its small orbit at t = {rows[-1, mon.RV_T]:.6g} s, radius {radius:.6g} m: "
+        f"on its small orbit at t = {rows[-1]['t']:.6g} s, radius {radius:.6g} m: "
         f"friction reserve mu - shakedown demand / F_n = {now:+.3g} ("
         + ", ".join(f"{value:+.6g}" for value in values[1:count])
-        + f" every {ON_ORBIT_REVS} revolutions before; the bound's margin {width:.2g})"
+        + f" every {vp.on_orbit_revs} revolutions before; the bound's margin {width:.2g})"
     )
     if says > 0:
         bound_says = "stick"

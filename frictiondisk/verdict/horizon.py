@@ -1,4 +1,4 @@
-"""The horizon rule: how far in simulated time a run may go.
+"""The horizon rule: how far in simulated time a run may go, and its time unit.
 
 A `converge` run follows the orbit until its limit cycle has converged, at most `t_max`; a
 `decide` run only has to tell stick from not stick, at most `t_decide` (docs/model.md,
@@ -7,6 +7,8 @@ without loading the kernel.
 """
 
 from __future__ import annotations
+
+import math
 
 
 def horizon_key(mode: str) -> str:
@@ -18,3 +20,8 @@ def horizon_of(config, mode: str | None = None) -> float:
     """The horizon [s] of a scene (`SceneConfig`) run in `mode` (default: its numerics.mode)."""
     num = config.numerics
     return float(getattr(num, horizon_key(mode or num.mode)))
+
+
+def revolution(omega_m: float) -> float:
+    """One master revolution 2 pi / omega_m [s]; 2 pi s for a master at rest (omega_m = 0)."""
+    return 2.0 * math.pi / omega_m if omega_m > 0.0 else 2.0 * math.pi

@@ -48,7 +48,7 @@ import math
 
 import numpy as np
 
-from frictiondisk.kernel.shakedown_bound import limit_motion
+from frictiondisk.verdict.limit_analysis import limit_motion
 
 __all__ = [
     "Demands",
@@ -177,7 +177,7 @@ def elastic_pattern(force, torque: float, points: np.ndarray) -> np.ndarray:
 
 
 def _irls(force, torque, points):
-    """min sum_i |v + w J a_i| subject to F.v + T w = 1 (IRLS, kernel/shakedown_bound.py,
+    """min sum_i |v + w J a_i| subject to F.v + T w = 1 (IRLS, verdict/limit_analysis.py,
     which the kernel also reads on the run); returns (v, w, value)."""
     pts = np.ascontiguousarray(points, dtype=float)
     vx, vy, w, val = limit_motion(float(force[0]), float(force[1]), float(torque), pts)

@@ -2,7 +2,7 @@
 
 A slave that sticks for good co-rotates with the master on the circle where it first
 stuck as a whole, of radius R1. It keeps sticking if its static friction mu F_n covers
-the demand of that circle (frictiondisk.outcome.admissibility: c_s |x_ms| + g R1 for a pin or a
+the demand of that circle (frictiondisk.verdict.admissibility: c_s |x_ms| + g R1 for a pin or a
 disk without brake torque, Melan's shakedown demand with one). The reserve
 
     reserve = mu - demand(R1) / F_n   [1, units of mu]
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 
-from frictiondisk.outcome import admissibility as ad
+from frictiondisk.verdict import admissibility as ad
 
 
 def demand(config, radius: float) -> float:

@@ -10,29 +10,26 @@ A stick-slip cycle instead has its onsets converge to a gap d_inf > 0.
 
 The test: sqrt(d_n - d_{n+1}) = sqrt(c) (d_n - d_inf) is a line in d_n whose root is the
 limit of the gaps. Fitted over the newest onsets, a root at or below zero says the onsets
-go to the rim. Pure numerics, no orchestration.
+go to the rim. Pure numerics, no orchestration; thresholds: VerdictParams rim_*.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-MIN_ONSETS = 16  # onsets in the fitted window at least
-MIN_FALL = 1.5  # the gap falls by this factor over the window (1/n falls by 2 over its newest half)
-MAX_RESIDUAL = 0.05  # rms residual of the line, relative to the mean of sqrt(d_n - d_{n+1})
-MAX_RATIO_DRIFT = 0.1  # relative change of 1 - ratio over a geometric approach to a cycle
-MAX_LIMIT = 0.1  # the fitted limit may lie above zero by this share of the newest gap
+from .params import VerdictParams
 
 
-def rim_limit(gaps: np.ndarray, cycle_tol: float) -> tuple[bool, str]:
+def rim_limit(gaps: np.ndarray, cycle_tol: float, vp: VerdictParams) -> tuple[bool, str]:
     """(onto the rim, the evidence in words) from the gaps d_n [m] of the stick onsets to
     the sticking disc's rim, oldest first. True only where the newest half of them (at
-    least MIN_ONSETS) falls monotonically by MIN_FALL or more, follows the tangent map
-    within MAX_RESIDUAL with a limit at most MAX_LIMIT of the newest gap above zero, and the
-    newest gap is within cycle_tol [m] of the rim (the section tolerance of a cycle)."""
+    least vp.rim_min_onsets) falls monotonically by vp.rim_min_fall or more, follows the
+    tangent map within vp.rim_max_residual with a limit at most vp.rim_max_limit of the
+    newest gap above zero, and the newest gap is within cycle_tol [m] of the rim (the
+    section tolerance of a cycle)."""
     gaps = np.asarray(gaps, dtype=float)
     window = gaps[len(gaps) // 2 :]
-    if len(window) < MIN_ONSETS:
+    if len(window) < vp.rim_min_onsets:
         return False, f"{len(gaps)} stick onsets, too few to fit their approach to the rim"
     steps = window[:-1] - window[1:]
     if not (np.all(window > 0.0) and np.all(steps > 0.0)):
@@ -50,25 +47,25 @@ def rim_limit(gaps: np.ndarray, cycle_tol: float) -> tuple[bool, str]:
         f"c = {slope**2:.3g} 1/m, d_inf = {limit:.3g} m (residual {residual:.2g})"
     )
     onto = (
-        fall >= MIN_FALL
-        and residual <= MAX_RESIDUAL
-        and limit <= MAX_LIMIT * newest
+        fall >= vp.rim_min_fall
+        and residual <= vp.rim_max_residual
+        and limit <= vp.rim_max_limit * newest
         and newest <= cycle_tol
     )
     return bool(onto), evidence
 
 
-def repeats(gaps: np.ndarray, cycle_tol: float) -> tuple[bool, str]:
+def repeats(gaps: np.ndarray, cycle_tol: float, vp: VerdictParams) -> tuple[bool, str]:
     """(a cycle reached, the evidence in words) from the gaps d_n [m] of the stick onsets to
-    the rim, oldest first. Over the newest half of them (at least MIN_ONSETS) either
+    the rim, oldest first. Over the newest half of them (at least vp.rim_min_onsets) either
     * they do not move monotonically and stay within cycle_tol [m] (a creep onto the rim
       falls monotonically, however little), or
     * they converge geometrically, the ratio of successive steps steady within
-      MAX_RATIO_DRIFT (on a creep onto the rim 1 - ratio shrinks with the gap) and the
-      Aitken remainder within cycle_tol;
+      vp.rim_max_ratio_drift (on a creep onto the rim 1 - ratio shrinks with the gap) and
+      the Aitken remainder within cycle_tol;
     and their limit lies more than cycle_tol off the rim."""
     window = np.asarray(gaps, dtype=float)[len(gaps) // 2 :]
-    if len(window) < MIN_ONSETS:
+    if len(window) < vp.rim_min_onsets:
         return False, f"{len(gaps)} stick onsets, too few to show a cycle"
     steps = np.diff(window)
     if not (np.all(steps > 0.0) or np.all(steps < 0.0)):
@@ -84,7 +81,7 @@ def repeats(gaps: np.ndarray, cycle_tol: float) -> tuple[bool, str]:
     ratio = float(np.mean(ratios[half:]))
     remainder = abs(steps[-1]) * ratio / (1.0 - ratio) if 0.0 < ratio < 1.0 else np.inf
     limit = window[-1] + np.sign(steps[-1]) * remainder
-    reached = drift <= MAX_RATIO_DRIFT and remainder <= cycle_tol and limit > cycle_tol
+    reached = drift <= vp.rim_max_ratio_drift and remainder <= cycle_tol and limit > cycle_tol
     return bool(reached), (
         f"the newest {len(window)} stick onsets converge with ratio {ratio:.4g} per onset "
         f"(drift {drift:.2g}) to {limit:.6g} m off the rim, {remainder:.3g} m from the newest"

@@ -1,10 +1,10 @@
 """The least-squares line through points (x, y), from their running sums (numba): the slope
-and its standard error, as the slip-trend rules of kernel/verdict.py and
-kernel/steady_slip.py read ln(slip) against the step."""
+and its standard error, as the slip-trend rules of verdict/corotation.py and
+verdict/steady_slip.py read ln(slip) against the step."""
 
 import math
 
-from .jit import kernel_jit
+from frictiondisk.kernel.jit import kernel_jit
 
 
 @kernel_jit

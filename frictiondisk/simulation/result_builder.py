@@ -1,0 +1,171 @@
+"""A finished run's `RunBuffers` -> its `SimulationResult` (shared by every integrator with
+the loop's records: rodas4 in simulation/rodas_method.py, scipy-radau in radau.py).
+
+It gathers the facts (verdict/facts.py) from the records and lets the label
+(verdict/label.py) say what the run is; it decides nothing itself.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from frictiondisk.kernel import monitor
+from frictiondisk.kernel.records import REV_RING
+from frictiondisk.simulation.buffers import RunBuffers
+from frictiondisk.simulation.result import SimulationResult, Trajectory
+from frictiondisk.verdict.facts import Evidence, Revolutions, RunFacts
+from frictiondisk.verdict.horizon import revolution
+from frictiondisk.verdict.label import BOUND_RECONSIDERS, label
+from frictiondisk.verdict.params import VerdictParams
+from frictiondisk.verdict.reserve import friction_reserve
+from frictiondisk.verdict.shakedown_bound import floor_reserve
+
+
+def build_result(
+    config,
+    run: RunBuffers,
+    wall: float,
+    trajectory: Trajectory | None,
+    energy: dict[str, float] | None = None,
+    *,
+    verdict: VerdictParams,
+) -> SimulationResult:
+    """Label a finished run from its `RunBuffers` (shared by every integrator): status,
+    t_end [s], final state, the motion and verdict records, counters and, when
+    run.revolutions is not None, the revolution ring and total plastic slip. An integrator
+    without the ring supports stick_rule contacts only. wall: run time [s]. energy: the
+    fields of `energy_balance`; None (an integrator without the diagnostic) leaves them
+    NaN. verdict: the thresholds the run was judged by.
+    """
+    facts = run_facts(config, run, verdict)
+    named = label(facts, config, verdict)
+    motion = run.motion
+    R1 = float(motion["r1"])
+    return SimulationResult(
+        outcome=named.outcome,
+        reason=named.reason,
+        R1=R1,
+        t_R1=float(motion["t_r1"]),
+        size=named.size,
+        a=named.a,
+        n_transitions=int(motion["switches"]),
+        stick_fraction=float(facts.frac_all),
+        t_end=run.t_end,
+        n_steps=run.steps,
+        n_rejected=run.rejected,
+        n_refused=run.refused,
+        cycle_converged=facts.cycle_converged,
+        wall_s=wall,
+        method=config.numerics.method,
+        trajectory=trajectory,
+        revolutions=facts.revolution_log,
+        sections=section_log(run.phases, motion),
+        slip_total=run.slip_total,
+        reserve=friction_reserve(config, R1),
+        **_revolution_measures(facts.revs),
+        **(energy or {}),
+    )
+
+
+def run_facts(config, run: RunBuffers, verdict: VerdictParams) -> RunFacts:
+    """What the label reads of a finished run (verdict/facts.py)."""
+    num = config.numerics
+    rev = revolution(config.params.omega_m)
+    window = num.window_revs * rev
+    t_end = run.t_end
+    motion, vs = run.motion, run.verdict
+    frac_all, frac_any = monitor.window_fractions(motion, run.phases, run.intervals, t_end, window)
+    ring = run.revolutions is not None
+    floor = math.nan
+    if run.status in BOUND_RECONSIDERS:
+        floor = float(floor_reserve(run.p, run.pts)) if run.p is not None else math.nan
+    return RunFacts(
+        status=run.status,
+        t_end=t_end,
+        stuck_for=float(monitor.stuck_for(motion, t_end)),
+        hold=rev,
+        window=(max(0.0, t_end - window), t_end),
+        frac_all=float(frac_all),
+        frac_any=float(frac_any),
+        converge_mode=num.mode == "converge",
+        max_steps=num.max_steps,
+        max_events=num.max_events,
+        stick_rule=num.stick_rule,
+        revs=_revolutions(config, run) if ring else None,
+        evidence=_evidence(vs) if ring else None,
+        steps=run.steps,
+        revolution_log=revolution_log(run.revolutions, motion) if ring else None,
+        floor=floor,
+        radius_end=math.hypot(run.y[0], run.y[1]),
+        cycle_converged=bool(vs["agree"] >= num.cycle_count),
+        cycle_size=float(motion["size"]),
+        cycle_excess=float(motion["a"]),
+    )
+
+
+def _revolutions(config, run: RunBuffers) -> Revolutions:
+    """The label's view of the revolution ring (NaN measures before one revolution)."""
+    motion, vs, revs = run.motion, run.verdict, run.revolutions
+    n = int(motion["n_rev"])
+    last = revs[(n - 1) % REV_RING] if n > 0 else None
+    nan = math.nan
+    return Revolutions(
+        count=n,
+        slip=float(last["slip"]) if n > 0 else nan,
+        drift=float(last["drift_r"]) if n > 0 else nan,
+        spin_drift=float(last["drift_phi"]) if n > 0 and config.scene == "disk" else nan,
+        decay=float(vs["decay"]),
+        decay_se=float(vs["decay_se"]),
+        remaining=float(vs["remaining"]),
+        limit=float(vs["limit"]),
+        limit_spread=float(vs["limit_spread"]),
+        on_orbit=bool(n > 0 and last["any_stuck"]),
+        settling=run.budget_spent,
+        tol=float(vs["slip_tol"]),
+    )
+
+
+def _evidence(vs: np.void) -> Evidence:
+    """The section evidence of the run's last check (verdict/section_evidence.py)."""
+    return Evidence(
+        kind=int(vs["evidence"]),
+        source=int(vs["ev_source"]),
+        distance=float(vs["ev_distance"]),
+        ratio=float(vs["ev_ratio"]),
+        ratio_bound=float(vs["ev_ratio_bound"]),
+        limit=float(vs["ev_limit"]),
+        lag=int(vs["ev_lag"]),
+        points=int(vs["ev_points"]),
+    )
+
+
+def _revolution_measures(revs: Revolutions | None) -> dict[str, float | int]:
+    if revs is None:
+        return {}
+    return {
+        "n_revolutions": revs.count,
+        "slip_per_rev": revs.slip,
+        "drift_per_rev": revs.drift,
+        "spin_drift_per_rev": revs.spin_drift,
+        "slip_decay": revs.decay,
+        "slip_limit": revs.limit,
+    }
+
+
+def revolution_log(revs: np.ndarray, motion: np.void) -> np.ndarray:
+    """The kept rows of the revolution ring (kernel/records.py REVOLUTION), oldest first."""
+    n = int(motion["n_rev"])
+    keep = min(n, REV_RING)
+    order = [(n - keep + j) % REV_RING for j in range(keep)]
+    return revs[order].copy()
+
+
+def section_log(phases: np.ndarray, motion: np.void, keep: int = 256) -> np.ndarray:
+    """The last `keep` completed whole-body sticking phases (kernel/records.py PHASE),
+    oldest first."""
+    n = int(motion["n_phases"])
+    keep = min(n, keep, phases.shape[0])
+    order = [(n - keep + j) % phases.shape[0] for j in range(keep)]
+    return phases[order].copy()

@@ -1,0 +1,190 @@
+"""The label after the run: the machine's final state and the run's facts -> outcome,
+reason and measures (docs/model.md section 6). The one place that decides an outcome: the
+rules' verdict (`_classify`), then Melan and Koiter for a braked disk
+(verdict/shakedown_verdict.py), then the rule that a stick needs steps. Reasons keep their
+wording: runs.nc stores them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from frictiondisk.kernel import status as st
+
+from . import records as rc
+from .facts import Revolutions, RunFacts
+from .params import VerdictParams
+from .shakedown_verdict import decide as bound_decides
+
+ERROR_REASONS = {
+    st.MAX_STEPS: "work budget exhausted: numerics.max_steps = {max_steps} steps at t = {t:.6g} s",
+    st.MAX_EVENTS: "work budget exhausted: numerics.max_events = {max_events} switches at t = {t:.6g} s",
+    st.STEP_TOO_SMALL: "integrator failed: step size underflow at t = {t:.6g} s",
+    st.NONFINITE: "integrator failed: non-finite state at t = {t:.6g} s",
+    st.ZENO: "integrator failed: endless switching at one instant (Zeno) at t = {t:.6g} s",
+}
+# where the run ended by a verdict that Melan and Koiter may reconsider (a braked disk)
+BOUND_RECONSIDERS = (rc.AT_HORIZON, rc.COROTATING, rc.CREEPING, rc.SHAKEN_DOWN, rc.BOUND_DECIDED)
+
+
+@dataclasses.dataclass(frozen=True)
+class Label:
+    """What a run is: its outcome (verdict/outcomes.py OUTCOMES), why, and its measures."""
+
+    outcome: str
+    reason: str
+    size: float  # sticking-circle radius (stick) or a converged cycle's segment radius [m]
+    a: float  # largest excess of a converged cycle's sliding over its segment [m]
+
+
+def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
+    """The outcome, reason and measures of a finished run (module docstring)."""
+    outcome, reason = _classify(facts, vp)
+    if facts.status in BOUND_RECONSIDERS:
+        stopped = facts.status == rc.BOUND_DECIDED
+        outcome, reason = bound_decides(
+            config, outcome, reason, facts.revolution_log, facts.floor, vp, stopped
+        )
+    if outcome == "stick" and facts.steps == 0:
+        # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
+        # itself (a revolution shorter than round-off); never report it (issue 14)
+        outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
+    size = math.nan
+    a = math.nan
+    if outcome == "stick":
+        size = facts.radius_end
+    elif outcome == "stick_slip" and facts.cycle_converged:
+        # only a converged cycle has a size (docs/model.md section 6); before that the
+        # sticking segments still creep outwards, and their radius says nothing about the
+        # final cycle
+        size = facts.cycle_size
+        a = facts.cycle_excess
+    return Label(outcome, reason, size, a)
+
+
+def _rates(r: Revolutions) -> str:
+    spin = "" if math.isnan(r.spin_drift) else f", spin drift {r.spin_drift:.3g} rad"
+    return f"slip {r.slip:.3g} m, centre drift {r.drift:.3g} m{spin} per revolution"
+
+
+def _trend(r: Revolutions) -> str:
+    if math.isnan(r.decay):
+        return "no slip trend (a revolution without slip)"
+    return (
+        f"slip per revolution changes by a factor exp({r.decay:.3g} \u00b1 {r.decay_se:.2g}) "
+        "per revolution"
+    )
+
+
+def _classify(facts: RunFacts, vp: VerdictParams) -> tuple[str, str]:
+    """(outcome, reason) of the rules; never guesses: anything unclear is `undetermined`."""
+    if facts.status in ERROR_REASONS:
+        reason = ERROR_REASONS[facts.status].format(
+            t=facts.t_end, max_steps=facts.max_steps, max_events=facts.max_events
+        )
+        return "undetermined", reason
+    return _by_corotation(facts) or _by_window(facts, vp)
+
+
+def _by_corotation(facts: RunFacts) -> tuple[str, str] | None:
+    """(outcome, reason) where the co-rotation rule or the bound stopped the run, else None."""
+    t = facts.t_end
+    revs = facts.revs
+    if facts.status == rc.COROTATING:
+        how = (
+            "it repeated within the integrator's tolerance, with every contact stuck "
+            f"throughout or no slip above eps T = {revs.tol:.3g} m in the last revolutions"
+            if revs.remaining == 0.0
+            else f"shakedown: {_trend(revs)} towards a limit of "
+            f"{revs.limit:.3g} m (estimates spread {revs.limit_spread:.2g} m) <= "
+            f"eps T = {revs.tol:.3g} m (slip still to come {revs.remaining:.3g} m)"
+        )
+        return "stick", (
+            f"co-rotates with the master without net slip at t = {t:.6g} s: last revolution "
+            f"{_rates(revs)}; {how}"
+        )
+    if facts.status == rc.SHAKEN_DOWN:
+        ev = facts.evidence
+        return "stick", (
+            f"shakes down to co-rotation at t = {t:.6g} s: {ev.describe()} <= "
+            f"eps T = {revs.tol:.3g} m a revolution (last revolution {_rates(revs)})"
+        )
+    if facts.status == rc.CREEPING:
+        limit = (
+            ""
+            if math.isnan(revs.limit)
+            else f", extrapolated limit {revs.limit:.3g} m, its estimates spread "
+            f"{revs.limit_spread:.2g} m"
+        )
+        return "creep", (
+            f"ratchets on its small orbit at t = {t:.6g} s: {_rates(revs)}, not decaying "
+            f"to zero ({_trend(revs)}{limit})"
+        )
+    if facts.status == rc.BOUND_DECIDED:
+        # worded by verdict/shakedown_verdict.py, which reads the same reserves
+        return "undetermined", (
+            f"the run stopped at t = {t:.6g} s for the shakedown bound, which then did not "
+            "decide (a kernel and outcome mismatch)"
+        )
+    return None
+
+
+def _by_window(facts: RunFacts, vp: VerdictParams) -> tuple[str, str]:
+    """(outcome, reason) of the contacts rule, the converge test, the horizon budget and the
+    final window with the section evidence."""
+    t = facts.t_end
+    revs = facts.revs
+    # integrators without revolution measures apply the contacts rule (the pin only)
+    contacts_rule = facts.stick_rule == "contacts" or revs is None
+    if facts.status == rc.STICK_HELD or (contacts_rule and facts.stuck_for >= facts.hold):
+        return "stick", (
+            f"every contact stuck without interruption for one master revolution "
+            f"({facts.hold:.6g} s) from t = {t - facts.stuck_for:.6g} s"
+        )
+    lo, hi = facts.window
+    if facts.status == rc.CYCLE_FOUND:
+        return "stick_slip", f"limit cycle with sticking and sliding converged at t = {t:.6g} s"
+    if revs is not None and revs.settling:
+        if facts.stick_rule == "corotation" and revs.count < vp.verdict_revs:
+            where = (
+                f"after {revs.count} whole revolutions ({vp.verdict_revs} are needed to "
+                "tell stick, creep and stick_slip apart)"
+            )
+        elif revs.on_orbit and facts.stick_rule == "corotation":
+            where = "on its small orbit, co-rotation not yet decided"
+        else:
+            evidence = facts.evidence.describe() if facts.evidence else "no evidence"
+            where = f"without evidence that it will not stick: {evidence}"
+        return "undetermined", (
+            f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}; "
+            f"{_trend(revs)} (raise numerics.horizon_budget or t_decide)"
+        )
+    why = ""
+    if facts.evidence is not None and facts.evidence.kind == rc.EV_SHAKEDOWN:
+        why = (
+            f"; {facts.evidence.describe()}: co-rotation with grazing contacts, which "
+            "stick_rule contacts does not count as stick"
+        )
+    elif facts.evidence is not None and facts.evidence.kind != rc.EV_NONE:
+        why = f"; {facts.evidence.describe()}"
+    if facts.frac_all == 0.0:
+        # outcome, stick_fraction and size all mean whole-body sticking (every contact)
+        partial = (
+            f"; single contacts stuck {facts.frac_any:.3g} of it" if facts.frac_any > 0 else ""
+        )
+        return "slide", (
+            f"the slave never stuck as a whole in the final window [{lo:.6g}, {hi:.6g}] s"
+            f"{partial}{why}"
+        )
+    if facts.status == rc.AT_T_MAX:
+        return "undetermined", (
+            f"limit cycle not converged by numerics.t_max = {t:.6g} s "
+            f"(stick fraction {facts.frac_all:.3g} in the final window)"
+        )
+    if facts.status == rc.AT_HORIZON:
+        return "stick_slip", (
+            f"sticking and sliding alternate in the final window [{lo:.6g}, {hi:.6g}] s "
+            f"(stick fraction {facts.frac_all:.3g}){why}"
+        )
+    return "undetermined", f"unknown kernel status {facts.status} at t = {t:.6g} s"

@@ -1,0 +1,224 @@
+"""Every threshold of the verdict in one documented record: `VerdictParams`.
+
+What a run is (stick, creep, stick_slip, slide, undetermined) rests on a few dozen tuning
+numbers: how many revolutions back a trend, how far a section may move and still repeat,
+how close to zero an extrapolated slip must come. Each is a field here with its unit, its
+default (the value the studies and the campaigns were run with) and a one-line reason;
+the cases that pin each one are rows of tests/test_verdict_cases.py. The record is passed
+in, never read from module globals: `simulate(config, verdict=VerdictParams(q_max=0.95))`
+runs a scene under other thresholds without editing code (the default leaves every result
+and every journal key as it was). The numba state machine reads it as a record
+(`VerdictParams.record()`, dtype PARAMS); the Python label reads the dataclass.
+Modelled on BifurcationKit's ContinuationPar: one record of every tuning parameter.
+
+Scene-level settings (numerics.cycle_tol, cycle_count, window_revs, horizon_budget,
+stick_rule, evidence) stay in the scene: they are part of what a user asks for and of
+its journal key. Buffer capacities (kernel/records.py REV_RING, RING; SEQ_MAX) and the
+integrator's event numerics (kernel/events.py) are no thresholds of the verdict.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import numpy as np
+
+
+def _param(default: float | int, unit: str, reason: str) -> Any:
+    return dataclasses.field(default=default, metadata={"unit": unit, "reason": reason})
+
+
+@dataclasses.dataclass(frozen=True)
+class VerdictParams:
+    """The thresholds of the verdict (module docstring); units in each field's metadata."""
+
+    # --- the co-rotation rule: the slip per revolution on the small orbit -----------------
+    verdict_revs: int = _param(
+        5,
+        "revolutions",
+        "revolutions on the small orbit behind a slip-trend verdict: four decay ratios give "
+        "a standard error; fewer let one grazing contact's lumpy slip look like a trend",
+    )
+    slide_revs: int = _param(
+        8,
+        "revolutions",
+        "revolutions of whole-body sliding behind the sliding evidence: a slip that fell at "
+        "every one of them is an approach to sticking",
+    )
+    verdict_z: float = _param(
+        2.0, "standard errors", "by how much a decay must be established (~97.5 % one-sided)"
+    )
+    limit_min_spacing: int = _param(
+        4,
+        "revolutions",
+        "least spacing of Aitken's limit of the slip per revolution: at 2 the last fast "
+        "transient of a braked disk reads as the limit",
+    )
+    limit_drift: float = _param(
+        0.02,
+        "1",
+        "largest spread of the limit's estimates (made 0 ... m revolutions back), as a share "
+        "of the limit, for a ratchet to count as settled",
+    )
+    creep_share: float = _param(
+        0.5,
+        "1",
+        "share of the last revolution's slip the extrapolated limit must keep for a settled "
+        "ratchet (most of today's slip persists)",
+    )
+    # --- evidence from the motion's own section ---------------------------------------------
+    repeat_count: int = _param(3, "section steps", "distances within tolerance that make a repeat")
+    max_lag: int = _param(
+        3, "sticking phases", "sticking phases per period of a cycle recognised as a repeat"
+    )
+    contract_distances: int = _param(
+        5, "section steps", "distances behind a contraction ratio and its trend"
+    )
+    q_max: float = _param(
+        0.98, "1", "largest extrapolated contraction ratio accepted as convergence to a cycle"
+    )
+    rho_max: float = _param(
+        0.9, "1", "the contraction ratio's own changes must shrink at least this fast ..."
+    )
+    q_steady: float = _param(0.01, "1", "... unless each of them is below this")
+    geometric_keep: float = _param(
+        0.75,
+        "1",
+        "1 - q now must keep this share of 1 - q half the sequence ago: geometric, not "
+        "algebraic (a power law halves it)",
+    )
+    contract_slip_fall: float = _param(
+        0.1,
+        "1",
+        "share of the slip per step that may still fall on the way to a contracting cycle",
+    )
+    contract_slip_fall_stribeck: float = _param(
+        0.01,
+        "1",
+        "the same under a Stribeck law, whose friction rises as the slip slows and feeds its "
+        "own fall: only what a steady slip may lose (steady_fall)",
+    )
+    slip_steady: float = _param(
+        1e-4, "1", "changes of the slip per step below this share of it are no change"
+    )
+    depart_steps: int = _param(
+        4, "section steps", "steps of growing slip and shrinking sticking time behind a departure"
+    )
+    stick_noise: float = _param(
+        1e-9, "s", "sticking times closer than this are equal (event location ~1e-11 s)"
+    )
+    approach_steps: int = _param(
+        8, "section steps", "steps over which a creep onto a sticking circle is recognised ..."
+    )
+    approach_fall: float = _param(
+        1e-3, "1", "... by a fall of the slip per step by more than this share of it"
+    )
+    shakedown_steps: int = _param(
+        8, "section steps", "steps needed before a slip limit is extrapolated (shakedown)"
+    )
+    shakedown_depth: float = _param(
+        1e-2,
+        "1",
+        "a limit is read only once the slip per step has fallen below this share of its "
+        "largest value: a first fall that looks geometric can level off at a cycle",
+    )
+    shakedown_zero: float = _param(
+        1e-2,
+        "1",
+        "the extrapolated limit must be at most this share of the slip still left: a fall "
+        "levelling off at a slip below eps T is a cycle there, not sticking",
+    )
+    section_min_spacing: int = _param(
+        4,
+        "section steps",
+        "least spacing of an Aitken triple of the section's slip: at 2 a last transient looks "
+        "like a limit",
+    )
+    aitken_slowing: float = _param(
+        0.7,
+        "1",
+        "the second fall of an Aitken triple must be at most this share of the first: an "
+        "almost linear fall gives no well-conditioned limit (S ~ n^-p, p >= 1.03)",
+    )
+    log_lookback: float = _param(
+        0.75,
+        "1",
+        "a power law's log-spaced fall ratio is compared with the one at this share of n ...",
+    )
+    log_ratio_drift: float = _param(
+        0.03, "1", "... and may have grown by at most this (a fall levelling off grows it)"
+    )
+    # --- is a small slip per period steady? ------------------------------------------------
+    fall_window: int = _param(
+        128, "section steps", "newest steps over which a slip per period is shown steady"
+    )
+    fall_min: int = _param(8, "periods", "least periods in that window")
+    steady_fall: float = _param(
+        0.01, "1", "a steady slip per period loses at most this share over the window ..."
+    )
+    fall_z: float = _param(2.0, "standard errors", "... at this many standard errors of its trend")
+    # --- Melan's shakedown bound of a braked disk -------------------------------------------
+    on_orbit_revs: int = _param(
+        5, "revolutions", "revolutions on the small orbit before the bound decides (as the rules)"
+    )
+    bound_blocks: int = _param(
+        3,
+        "blocks",
+        "blocks of on_orbit_revs revolutions whose reserves show it approaching zero or not",
+    )
+    bound_solver_rtol: float = _param(
+        1e-8,
+        "1",
+        "relative accuracy of the limit analysis (measured 1e-9), part of the bound's margin",
+    )
+    # --- the exact Coulomb pin creeping onto the rim of its sticking disc -------------------
+    rim_check_every: int = _param(8, "stick onsets", "onsets between two tests of a creep")
+    rim_min_onsets: int = _param(16, "stick onsets", "onsets in the fitted window at least")
+    rim_min_fall: float = _param(
+        1.5,
+        "1",
+        "the gap to the rim falls by this factor over the window (1/n falls by 2 over its "
+        "newest half)",
+    )
+    rim_max_residual: float = _param(
+        0.05, "1", "rms residual of the tangent-map line, relative to its mean"
+    )
+    rim_max_ratio_drift: float = _param(
+        0.1, "1", "relative change of 1 - ratio over a geometric approach to a cycle"
+    )
+    rim_max_limit: float = _param(
+        0.1, "1", "the fitted limit may lie above the rim by this share of the newest gap"
+    )
+
+    def record(self) -> np.void:
+        """The record the numba state machine reads (dtype PARAMS)."""
+        values = tuple(getattr(self, f.name) for f in dataclasses.fields(self))
+        return np.array([values], dtype=PARAMS)[0]
+
+    def changed(self) -> dict[str, float | int]:
+        """The fields that differ from the defaults (empty for the defaults)."""
+        default = VerdictParams()
+        return {
+            f.name: getattr(self, f.name)
+            for f in dataclasses.fields(self)
+            if getattr(self, f.name) != getattr(default, f.name)
+        }
+
+
+PARAMS = np.dtype(
+    [
+        (f.name, np.int64 if f.type in ("int", int) else np.float64)
+        for f in dataclasses.fields(VerdictParams)
+    ]
+)
+
+
+def markdown_table() -> str:
+    """The record as a markdown table (docs/model.md, section 6: its parameters)."""
+    lines = ["| name | unit | default | reason |", "|---|---|---|---|"]
+    for f in dataclasses.fields(VerdictParams):
+        lines.append(
+            f"| `{f.name}` | {f.metadata['unit']} | {f.default!r} | {f.metadata['reason']} |"
+        )
+    return "\n".join(lines)
