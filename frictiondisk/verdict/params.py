@@ -20,6 +20,7 @@ integrator's event numerics (kernel/events.py) are no thresholds of the verdict.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from typing import Any
 
 import numpy as np
@@ -192,9 +193,9 @@ class VerdictParams:
     )
 
     def record(self) -> np.void:
-        """The record the numba state machine reads (dtype PARAMS)."""
-        values = tuple(getattr(self, f.name) for f in dataclasses.fields(self))
-        return np.array([values], dtype=PARAMS)[0]
+        """The record the numba state machine reads (dtype PARAMS; one per distinct set
+        of values, made once: the machine only reads it)."""
+        return _record(self)
 
     def changed(self) -> dict[str, float | int]:
         """The fields that differ from the defaults (empty for the defaults)."""
@@ -212,6 +213,12 @@ PARAMS = np.dtype(
         for f in dataclasses.fields(VerdictParams)
     ]
 )
+
+
+@functools.lru_cache(maxsize=64)
+def _record(params: VerdictParams) -> np.void:
+    values = tuple(getattr(params, f.name) for f in dataclasses.fields(params))
+    return np.array([values], dtype=PARAMS)[0]
 
 
 def markdown_table() -> str:
