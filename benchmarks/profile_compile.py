@@ -8,10 +8,11 @@ more), and prints:
   holding its LLVM lock (LLVM IR building, optimisation and machine code) against the
   rest (numba's own passes in Python: bytecode analysis, type inference, lowering);
 * the entry points compiled from Python and their signatures;
-* every kernel function compiled more than once (its signatures): the needless
+* every numba function compiled more than once (its signatures): the needless
   specialisations kernel/jit.py removes (expected: none);
-* the kernel functions that take the most time of their own (exclusive of the functions
-  they call), and the share of each kernel module.
+* the numba functions that take the most time of their own (exclusive of the functions
+  they call), and the share of each module. The numba code is the kernel, the verdict's
+  machine and evidence, and the step loop (kernel/jit.py NUMBA_SOURCES).
 
     python benchmarks/profile_compile.py
 
@@ -100,7 +101,8 @@ def main() -> int:
     simulate(scene("pin"), record=True, dt_out=0.01)
     later = len(compiles.done) - first
 
-    kernel = [c for c in compiles.done if c[1].startswith("frictiondisk.kernel.")]
+    numba_code = ("frictiondisk.kernel.", "frictiondisk.verdict.", "frictiondisk.simulation.loop.")
+    kernel = [c for c in compiles.done if c[1].startswith(numba_code)]
     print(f"first call: {wall:.1f} s wall, {cpu:.1f} s CPU; LLVM lock held {llvm.total:.1f} s")
     print(f"compilations: {len(compiles.done)} ({len(kernel)} of kernel functions)")
     print(f"compilations by a disk and a recorded run after it: {later} (expected 0)")
