@@ -58,9 +58,9 @@ def scene(layout: str, n: int):
 
 def locate(layout: str, n: int, start: float, tol: float) -> dict:
     """Lowest rising jump mu* of one (layout, N): upward scan, then bisection."""
-    from frictiondisk.engine.tasks import run_bisection
-    from frictiondisk.search.bisection import Bisection
+    from frictiondisk.engine.worker import run_bisection
     from frictiondisk.simulation.simulate import simulate
+    from frictiondisk.tasks.jump_search.bisection import Bisection
 
     t0 = time.perf_counter()
     base = scene(layout, n)

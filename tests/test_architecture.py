@@ -100,10 +100,10 @@ LAYERS = (
     "kernel",
     "outcome",
     "simulation",
-    "search",
     "store",
-    "engine",
     "figures",
+    "tasks",
+    "engine",
     "studies",
     "cli",
 )

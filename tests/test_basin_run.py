@@ -17,11 +17,11 @@ from conftest import wait_until
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.search.bisection import Bisection
 from frictiondisk.simulation.simulate import simulate
 from frictiondisk.store.journal import Journal
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.jump_search.bisection import Bisection
 
 X0_RANGE = (-0.05, 0.05)  # [m]
 PIN = {"scene": "pin", "params": {"x_ms": 0.1, "mu": 0.125}}
@@ -200,12 +200,12 @@ basin:
 def test_a_job_that_keeps_failing_marks_its_point_failed_and_journals_nothing(
     tmp_path, monkeypatch
 ):
-    from frictiondisk.engine import basin_plan
+    from frictiondisk.engine import driver
 
     def broken(*args):
         raise RuntimeError("simulated worker crash")
 
-    monkeypatch.setattr(basin_plan, "run_samples", broken)
+    monkeypatch.setattr(driver, "run_job", broken)
     text = PIN_BASIN.replace("samples: 150", "samples: 20")
     run_campaign(campaign_from_text(text, "<test>"), tmp_path, workers=1, progress=False)
     with xr.open_dataset(tmp_path / "results.nc") as ds:

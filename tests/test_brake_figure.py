@@ -6,7 +6,7 @@ import numpy as np
 import xarray as xr
 from conftest import coulomb_mu_star
 
-from frictiondisk.figures.brake import bounds_for, plot_brake
+from frictiondisk.tasks.find_jump.brake_figure import bounds_for, plot_brake
 
 CAMPAIGN = Path(__file__).resolve().parents[1] / "campaigns" / "fig11_betab_mu.yaml"
 

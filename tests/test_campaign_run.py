@@ -20,9 +20,9 @@ from conftest import coulomb_mu_star, wait_until
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.store.journal import Journal
 from frictiondisk.store.lock import CampaignLock
+from frictiondisk.tasks.campaign import campaign_from_text
 
 # The bracket's low end is no x_ms of the lines below: at mu = c_s x_ms / F_n exactly
 # the pin creeps onto the master axis and sticks there (an isolated sticking value).
@@ -204,13 +204,12 @@ def test_killed_worker_is_retried_and_the_campaign_completes(tmp_path):
 
 
 def test_a_job_that_keeps_failing_fails_its_point_without_inventing_runs(tmp_path, monkeypatch):
-    from frictiondisk.engine import plan
+    from frictiondisk.engine import driver
 
     def broken(*args):
         raise RuntimeError("simulated worker crash")
 
-    monkeypatch.setattr(plan, "run_bisection", broken)  # a chain of runs
-    monkeypatch.setattr(plan, "run_batch", broken)  # a batch of independent runs
+    monkeypatch.setattr(driver, "run_job", broken)  # every job: chains and batches
     run_campaign(pin_line("[0.1]"), tmp_path, workers=1, progress=False)
     with xr.open_dataset(tmp_path / "results.nc") as ds:
         assert ds.status.values[0] == "failed"

@@ -18,8 +18,8 @@ import xarray as xr
 
 import frictiondisk
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.store.journal import Journal
+from frictiondisk.tasks.campaign import campaign_from_text
 
 REPO = Path(frictiondisk.__file__).resolve().parent.parent
 START_TIMEOUT_S = 120.0  # scheduler and workers up (imports, on a busy machine)

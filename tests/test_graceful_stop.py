@@ -146,8 +146,8 @@ def test_a_stop_raised_inside_a_finalizer_still_stops_the_campaign_loop():
         del obj
         gc.collect()
         with pytest.raises(signals.Terminated):
-            signals._raise_if_stop_requested()
-    signals._stop_requested.clear()
+            signals.raise_if_stop_requested()
+    signals.clear_stop_requests()
     assert signal.getsignal(signal.SIGTERM) is before
 
 

@@ -32,11 +32,11 @@ from hypothesis import strategies as st
 from frictiondisk.cli import main
 from frictiondisk.engine import budget
 from frictiondisk.engine import driver as driver_module
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.limits import max_workers
 from frictiondisk.model.scene import ConfigError, scene_from_dict
 from frictiondisk.model.yamlio import load_yaml_text
 from frictiondisk.store import journal as journal_module
+from frictiondisk.tasks.campaign import campaign_from_text
 
 REPO = Path(__file__).resolve().parent.parent
 BOUND_S = 30.0  # the bound on every case
@@ -83,7 +83,7 @@ def no_kernel(monkeypatch):
     monkeypatch.setattr(
         importlib.import_module("frictiondisk.simulation.simulate"), "simulate", tripwire
     )
-    monkeypatch.setattr(driver_module._Driver, "run", tripwire)
+    monkeypatch.setattr(driver_module.Driver, "run", tripwire)
 
 
 def _write(path: Path, text: str) -> Path:

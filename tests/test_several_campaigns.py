@@ -15,7 +15,7 @@ from conftest import HANG_S, points_done, start_campaign_until
 from frictiondisk import run_campaigns
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import _partial_note, run_campaign
-from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.tasks.campaign import campaign_from_text
 
 PIN = """\
 name: {name}

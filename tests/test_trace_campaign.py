@@ -14,14 +14,12 @@ from click.testing import CliRunner
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.engine.trace_plan import TracePlanner
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.scene import ConfigError
-from frictiondisk.search.bisection import STICK, RunRequest
-from frictiondisk.search.requests import run_config
 from frictiondisk.simulation.simulate import simulate
-from frictiondisk.store import trace_datasets
-from frictiondisk.store.partial import with_pending
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.jump_search.bisection import STICK, RunRequest
+from frictiondisk.tasks.jump_search.requests import run_config
+from frictiondisk.tasks.trace.planner import TracePlanner
 
 # docs/model.md section 7: line campaigns at rtol 1e-10 give mu* = 1.2672345 x_ms to 2e-8
 # over x_ms = 0.06 ... 0.14 (issue 31)
@@ -120,7 +118,7 @@ def test_a_trace_does_not_depend_on_workers_and_resumes_from_its_journal(pin, tm
     with xr.open_dataset(out / "results.nc") as ds:
         dask_points = np.c_[ds["x_ms"].values, ds["mu_lo"].values, ds["mu_hi"].values]
     planner = run_here(campaign)
-    here = trace_datasets.results_dataset(campaign, planner)
+    here = planner.snapshot().to_dataset()
     assert np.array_equal(
         dask_points, np.c_[here["x_ms"].values, here["mu_lo"].values, here["mu_hi"].values]
     )
@@ -140,7 +138,7 @@ def test_a_partial_trace_writes_the_curves_found_so_far(pin):
         for i, request in planner.requests()[:1]:
             planner.feed(i, request, simulate(planner.config_for(i, request)).summary())
     assert not planner.done
-    ds = trace_datasets.results_dataset(campaign, with_pending("trace", planner))
+    ds = planner.snapshot().to_dataset()
     assert ds.attrs["status"] == "pending" and ds.sizes["point"] >= 2
 
 

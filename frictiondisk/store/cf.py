@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from frictiondisk.search.certify import CERTIFICATION_FLAGS
+from frictiondisk.model.search_settings import CERTIFICATION_FLAGS
 from frictiondisk.version import NUMERICS_VERSION, __version__
 
 CONVENTIONS = "CF-1.10"
