@@ -42,7 +42,8 @@ from frictiondisk.engine.cluster import task_sizing
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.worker import warm_up
 from frictiondisk.simulation.simulate import simulate
-from frictiondisk.store.journal import Journal, run_key
+from frictiondisk.store.journal import Journal
+from frictiondisk.store.journal_entry import run_key
 from frictiondisk.tasks.campaign import campaign_from_text, load_campaign
 from frictiondisk.tasks.jobs import RunScenes
 from frictiondisk.tasks.jump_search.requests import run_config

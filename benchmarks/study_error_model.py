@@ -180,7 +180,7 @@ class Cache:
     version (an interrupted study goes on where it stopped; a kernel change recomputes)."""
 
     def __init__(self, path: Path | None):
-        from frictiondisk.store.journal import kernel_version
+        from frictiondisk.store.journal_entry import kernel_version
 
         self.path, self.version, self.done = path, kernel_version(), {}
         if path is not None and path.is_file():
@@ -198,7 +198,7 @@ class Cache:
 
 
 def header(argv: list[str]) -> str:
-    from frictiondisk.store.journal import kernel_version
+    from frictiondisk.store.journal_entry import kernel_version
     from frictiondisk.version import __version__
 
     command = " ".join(["python benchmarks/study_error_model.py", *argv])

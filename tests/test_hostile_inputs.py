@@ -35,7 +35,7 @@ from frictiondisk.engine import driver as driver_module
 from frictiondisk.model.limits import max_workers
 from frictiondisk.model.scene import ConfigError, scene_from_dict
 from frictiondisk.model.yamlio import load_yaml_text
-from frictiondisk.store import journal as journal_module
+from frictiondisk.store import journal_entry as journal_module
 from frictiondisk.tasks.campaign import campaign_from_text
 
 REPO = Path(__file__).resolve().parent.parent
@@ -346,7 +346,7 @@ def test_forged_and_corrupt_entries_are_reported_rejected_and_recomputed(campaig
     first, second, third = _entries(campaign_dir)[:3]
     forged = json.loads(first.read_text())
     forged["inputs"] = json.loads(second.read_text())["inputs"]  # another run's inputs
-    forged["sha256"] = journal_module._entry_digest(
+    forged["sha256"] = journal_module.entry_digest(
         forged["key"], forged["inputs"], forged["result"]
     )
     first.write_text(json.dumps(forged))

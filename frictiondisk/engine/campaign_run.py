@@ -17,7 +17,8 @@ from typing import Any
 
 from frictiondisk.engine.directory import write_status
 from frictiondisk.store.files import atomic_write_netcdf
-from frictiondisk.store.journal import Journal, run_key
+from frictiondisk.store.journal import Journal
+from frictiondisk.store.journal_entry import run_key
 from frictiondisk.store.layout import RESULTS_FILE
 from frictiondisk.store.partial import mark_partial
 from frictiondisk.tasks.campaign import Campaign

@@ -13,6 +13,7 @@ from frictiondisk.engine.directory import record_differences
 from frictiondisk.model.scene import ConfigError
 from frictiondisk.store.files import netcdf_is_valid
 from frictiondisk.store.journal import Journal
+from frictiondisk.store.journal_audit import audit
 from frictiondisk.store.layout import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
 from frictiondisk.store.lock import CampaignLock
 from frictiondisk.store.paths import refuse_symlink
@@ -88,7 +89,7 @@ def edit_lines(out_dir: Path) -> list[str]:
 
 def journal_lines(out_dir: Path, shown: int = 10) -> list[str]:
     """Lines on journal entries that fail verification now, and those moved aside before."""
-    failing, moved = Journal.audit(out_dir)
+    failing, moved = audit(out_dir)
     lines = []
     if failing:
         lines.append(

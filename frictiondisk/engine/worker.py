@@ -67,7 +67,8 @@ def run_search(search, scene_of, campaign_dir: str, budget_s: float | None = Non
     driver alone writes); a worker that cannot see campaign_dir simply computes.
     Returns (search, [(request, result summary), ...] of the runs computed here)."""
     from frictiondisk.simulation.simulate import simulate
-    from frictiondisk.store.journal import Journal, run_key
+    from frictiondisk.store.journal import Journal
+    from frictiondisk.store.journal_entry import run_key
 
     made = []
     t0 = time.perf_counter()

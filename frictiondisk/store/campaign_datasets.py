@@ -17,7 +17,7 @@ import xarray as xr
 from frictiondisk.model.scene import describe_key
 from frictiondisk.model.yamlio import dump_yaml
 from frictiondisk.store import cf
-from frictiondisk.store.journal import kernel_version
+from frictiondisk.store.journal_entry import kernel_version
 from frictiondisk.store.measures import RUN_MEASURES, num
 from frictiondisk.version import __version__
 

@@ -108,7 +108,7 @@ def flag_meanings(var: xr.DataArray) -> dict[int, str]:
 
 
 def _source() -> str:
-    from frictiondisk.store.journal import kernel_version
+    from frictiondisk.store.journal_entry import kernel_version
 
     return f"frictiondisk {__version__} simulation ({kernel_version()})"
 

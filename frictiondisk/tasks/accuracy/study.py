@@ -31,7 +31,7 @@ import xarray as xr
 
 from frictiondisk.model.scene import SceneConfig, describe_key
 from frictiondisk.store import cf
-from frictiondisk.store.journal import kernel_version
+from frictiondisk.store.journal_entry import kernel_version
 from frictiondisk.tasks.accuracy.ladder import (
     ATOL_PER_RTOL,
     Knob,
