@@ -44,6 +44,12 @@ from frictiondisk.tasks.jump_search.bisection import UNDETERMINED, Bisection
 from frictiondisk.tasks.jump_search.requests import PointScenes
 from frictiondisk.version import __version__
 
+# CF flags of accuracy.nc (frictiondisk.store.cf.complete)
+FLAGS = {
+    "is_reference": ((0, 1), "not_reference reference"),
+    "in_ladder": ((0, 1), "not_in_ladder in_ladder"),
+    "monotone": ((0, 1), "contradicts_a_single_jump single_jump"),
+}
 VARIABLES = {  # name -> (units or None, long name)
     "knob": (None, "what is varied (accuracy/ladder.py)"),
     "series": (None, "marker series of the work-precision figure"),
@@ -212,6 +218,8 @@ class AccuracyStudy:
             ds,
             title=ds.attrs["title"],
             what=f"frictiondisk accuracy: campaign {self.campaign.name}, point {self.point_index}",
+            flags=FLAGS,
+            dimensionless=("setting",),
         )
 
 

@@ -39,6 +39,7 @@ from frictiondisk.tasks.basin.sampling import (
 )
 
 NOT_STICK_TEXT = "every determined outcome but stick"
+DIMENSIONLESS = ("sample", "n_samples")  # CF: this task's counters (store.cf.complete)
 # a point not finished yet (partial results): no samples
 PENDING_POINT = BasinPointResult(status=PENDING, reason=PENDING_REASON, results=())
 
@@ -85,6 +86,7 @@ def results_dataset(snapshot) -> xr.Dataset:
         build(campaign, _results(snapshot), outcomes),
         title=f"frictiondisk basin campaign {campaign.name}: {what}",
         what=f"frictiondisk run: campaign {campaign.name}, task basin, rebuilt from its journal",
+        dimensionless=DIMENSIONLESS,
     )
 
 
@@ -179,6 +181,7 @@ def runs_dataset(snapshot, key_of) -> xr.Dataset:
         _runs(snapshot, key_of),
         title=f"frictiondisk basin campaign {campaign.name}: every sampled run",
         what=f"frictiondisk run: campaign {campaign.name}, task basin, rebuilt from its journal",
+        dimensionless=DIMENSIONLESS,
     )
 
 

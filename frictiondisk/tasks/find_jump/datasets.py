@@ -27,6 +27,29 @@ from frictiondisk.tasks.jump_search.requests import run_config
 from frictiondisk.tasks.jump_search.runs import RunRequest
 
 CERTIFICATION_PENDING = -1  # a point not finished yet (partial results)
+OUTCOMES = cf.OUTCOMES
+# CF attributes of this task's own variables (frictiondisk.store.cf.complete)
+FLAGS: dict[str, cf.Flag] = {
+    "monotone": ((0, 1), "contradicts_a_single_jump single_jump"),
+    "warm_start": ((0, 1), "bracket_from_campaign bracket_predicted"),
+    "certification": cf.CERTIFICATION,
+    "jump_rising": ((-1, 0, 1), "no_jump falling rising"),
+    "window_narrow": ((-1, 0, 1), "no_window wider_than_persistence narrower_than_persistence"),
+    "jump_certification": (
+        tuple(range(-1, len(CERTIFICATION_FLAGS))),
+        " ".join(("no_jump", *CERTIFICATION_FLAGS)),
+    ),
+}
+TEXTS = {
+    "outcome_lo": ("outcome at mu_lo", f"one of: {OUTCOMES}"),
+    "outcome_hi": ("outcome at mu_hi", f"one of: {OUTCOMES}"),
+    "scan_outcome": (
+        "outcome of the prescan run",
+        f"one of: {OUTCOMES}; empty: a value the adaptive prescan did not need to run",
+    ),
+    "jump_status": ("status of the jump", "converged or failed; empty: no jump"),
+}
+DIMENSIONLESS = ("n_jumps", "n_windows")
 
 # (name, units, long_name, dtype) of the per-point variables, in file order
 POINT_VARIABLES = (
@@ -119,6 +142,9 @@ def results_dataset(snapshot) -> xr.Dataset:
         title=f"frictiondisk find_jump campaign {campaign.name}: the jump mu* per point",
         what=f"frictiondisk run: campaign {campaign.name}, task find_jump, rebuilt from its "
         "journal",
+        flags=FLAGS,
+        texts=TEXTS,
+        dimensionless=DIMENSIONLESS,
     )
 
 

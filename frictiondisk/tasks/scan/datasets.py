@@ -19,6 +19,8 @@ from frictiondisk.store.partial import PENDING_REASON
 from frictiondisk.tasks.jump_search.runs import RunRequest
 
 PENDING_RUN = {"outcome": "", "reason": PENDING_REASON}
+# CF attributes of this task's own variables (frictiondisk.store.cf.complete)
+FLAGS: dict[str, cf.Flag] = {"cycle_converged": ((0, 1), "not_converged converged")}
 
 
 def results_dataset(snapshot) -> xr.Dataset:
@@ -28,6 +30,7 @@ def results_dataset(snapshot) -> xr.Dataset:
         _scan_results(snapshot),
         title=f"frictiondisk scan campaign {campaign.name}: the outcome and measures per point",
         what=f"frictiondisk run: campaign {campaign.name}, task scan, rebuilt from its journal",
+        flags=FLAGS,
     )
 
 

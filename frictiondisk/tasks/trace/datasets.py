@@ -28,6 +28,22 @@ from frictiondisk.tasks.trace.joins import tangent
 from frictiondisk.tasks.trace.steps import norm, sub
 
 RESERVED = {"mu", "point", "curve", "fold", "look", "run", "key", "level", "strict", "role"}
+# CF attributes of this task's own variables (frictiondisk.store.cf.complete)
+FLAGS: dict[str, cf.Flag] = {
+    "certification": cf.CERTIFICATION,
+    "bisected": ((0, 1), "mu key"),
+    "stick_high": ((0, 1), "stick_at_low_end stick_at_high_end"),
+    "rising": ((0, 1), "falling rising"),
+    "curve_closed": ((0, 1), "open closed"),
+    "fold_window": ((0, 1), "gap_closes sticking_window_closes"),
+    "fold_certification": (tuple(range(len(CERTIFICATION_FLAGS))), " ".join(CERTIFICATION_FLAGS)),
+}
+TEXTS = {
+    "purpose": ("what the run served", "first_look, curve or fold (trace)"),
+    "fold_status": ("status of the fold", "located or not located"),
+    "curve_first_end": ("why the curve's first end stopped", "edge, joined, closed, limit, failed"),
+    "curve_last_end": ("why the curve's last end stopped", "edge, joined, closed, limit, failed"),
+}
 
 
 def key_name(key: str) -> str:
@@ -162,6 +178,8 @@ def results_dataset(snapshot) -> xr.Dataset:
         title=f"frictiondisk trace campaign {campaign.name}: the jump curves of the plane "
         f"({task.key}, mu)",
         what=f"frictiondisk run: campaign {campaign.name}, task trace, rebuilt from its journal",
+        flags=FLAGS,
+        texts=TEXTS,
     )
 
 
@@ -344,4 +362,6 @@ def runs_dataset(snapshot, key_of) -> xr.Dataset:
         xr.Dataset(data, attrs=campaign_attrs(campaign)),
         title=f"frictiondisk trace campaign {campaign.name}: every run",
         what=f"frictiondisk run: campaign {campaign.name}, task trace, rebuilt from its journal",
+        flags=FLAGS,
+        texts=TEXTS,
     )
