@@ -1,6 +1,7 @@
-"""A campaign stopped by a real SIGTERM or SIGINT: a documented exit code, the finished
-points in a partial results.nc that `status` prints, and a resume that ends exactly where
-an uninterrupted run does."""
+"""A campaign stopped by a real signal: a documented exit code, the finished points in a
+partial results.nc that `status` prints, and a resume that completes them, the finished
+points as they were (that a resume ends where an uninterrupted run does, for every task:
+tests/test_task_contract.py)."""
 
 import json
 import signal
@@ -19,46 +20,32 @@ from frictiondisk.cli import main
 CAMPAIGN = LONG_CAMPAIGN
 
 
-@pytest.fixture(scope="module")
-def reference(tmp_path_factory):
-    root = tmp_path_factory.mktemp("stop")
-    spec = root / "c.yaml"
-    spec.write_text(CAMPAIGN)
-    result = CliRunner().invoke(main, ["run", str(spec), "-o", str(root / "whole")])
-    assert result.exit_code == 0, result.output
-    return spec, root / "whole"
+@pytest.fixture
+def spec(tmp_path):
+    path = tmp_path / "c.yaml"
+    path.write_text(CAMPAIGN)
+    return path
 
 
-@pytest.mark.parametrize(
-    ("sig", "code", "word"),
-    [
-        (signal.SIGTERM, 143, "terminated"),
-        (signal.SIGINT, 130, "interrupted"),
-        (signal.SIGHUP, 129, "hung up"),
-    ],
-)
-def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
-    reference, tmp_path, sig, code, word
-):
-    spec, whole = reference
+def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(spec, tmp_path):
+    """SIGTERM (a batch scheduler, `kill`); Ctrl-C and SIGHUP take the same path to their
+    own exit codes (signals.describe_stop, and test_a_closed_terminal_... below)."""
     out = tmp_path / "stopped"
     proc = start_campaign_until(spec, out)
-    proc.send_signal(sig)
+    proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=HANG_S)
-    assert proc.returncode == code, err
-    assert word in err and "frictiondisk resume" in err
-    if sig != signal.SIGINT:  # a drain notice, if any, names the signal that was sent
-        assert "Ctrl-C again" not in err, err
+    assert proc.returncode == 143, err
+    assert "terminated" in err and "frictiondisk resume" in err
+    assert "Ctrl-C again" not in err, err  # a drain notice names the signal that was sent
 
-    with xr.open_dataset(out / "results.nc") as part, xr.open_dataset(whole / "results.nc") as ref:
-        assert part.attrs["partial"] == 1
-        done = part["status"].values != "pending"
-        assert part.attrs["points_done"] == done.sum() >= 2
-        assert (~done).any()  # stopped before the end
-        # every finished point is the point an uninterrupted run finds
-        np.testing.assert_array_equal(part["mu_star"].values[done], ref["mu_star"].values[done])
-        assert np.isnan(part["mu_star"].values[~done]).all()
-        assert set(part["certification"].values[~done]) == {-1}  # flag "pending"
+    with xr.open_dataset(out / "results.nc") as part:
+        part = part.load()
+    assert part.attrs["partial"] == 1
+    done = part["status"].values != "pending"
+    assert part.attrs["points_done"] == done.sum() >= 2
+    assert (~done).any()  # stopped before the end
+    assert np.isnan(part["mu_star"].values[~done]).all()
+    assert set(part["certification"].values[~done]) == {-1}  # flag "pending"
 
     status = CliRunner().invoke(main, ["status", str(out)])
     assert status.exit_code == 0, status.output
@@ -67,9 +54,11 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
 
     resumed = CliRunner().invoke(main, ["resume", str(out)])
     assert resumed.exit_code == 0, resumed.output
-    with xr.open_dataset(out / "results.nc") as a, xr.open_dataset(whole / "results.nc") as b:
-        assert "partial" not in a.attrs
-        xr.testing.assert_identical(a.load(), b.load())
+    with xr.open_dataset(out / "results.nc") as whole:
+        assert "partial" not in whole.attrs
+        assert "pending" not in set(whole["status"].values)
+        # every finished point is the point the whole campaign has
+        np.testing.assert_array_equal(part["mu_star"].values[done], whole["mu_star"].values[done])
 
 
 # a disk from rest, prescanned: a point takes a dozen runs of about a second
@@ -123,6 +112,12 @@ def test_the_drain_notice_names_the_action_that_drops_the_runs_in_flight():
     assert drop_hint(KeyboardInterrupt()) == "Ctrl-C again to drop them"
     assert drop_hint(Terminated()) == f"SIGTERM again, kill {os.getpid()}, to drop them"
     assert drop_hint(HungUp()) == f"SIGTERM, kill {os.getpid()}, to drop them"
+    # what a stop says and its exit code (the real signals: the tests above and below)
+    from frictiondisk.engine.signals import describe_stop
+
+    assert describe_stop(KeyboardInterrupt()) == ("interrupted", 130)
+    assert describe_stop(Terminated()) == ("terminated (SIGTERM)", 143)
+    assert describe_stop(HungUp()) == ("hung up (SIGHUP: the terminal closed)", 129)
 
 
 @pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
@@ -210,7 +205,7 @@ def test_a_trajectory_run_stops_at_once_on_sigterm(tmp_path):
     assert not (out / "trajectory.nc").exists()  # nothing half-written
 
 
-def test_a_closed_terminal_stops_the_campaign_gracefully(reference, tmp_path):
+def test_a_closed_terminal_stops_the_campaign_gracefully(spec, tmp_path):
     """The real thing behind SIGHUP: the campaign's terminal goes away, so besides the
     signal every later write to it fails (EIO). Progress and messages are lost; the
     finished points are not."""
@@ -218,7 +213,6 @@ def test_a_closed_terminal_stops_the_campaign_gracefully(reference, tmp_path):
     import pty
     import select
 
-    spec, _ = reference
     out = tmp_path / "hung_up"
     pid, terminal = pty.fork()
     if pid == 0:  # the child: its controlling terminal is the pty
