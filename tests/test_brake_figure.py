@@ -1,4 +1,4 @@
-"""Fig 11's bounds (frictiondisk/figures/brake.py): evaluated at each point's radius."""
+"""Fig 11's bounds (frictiondisk/tasks/find_jump/brake_figure.py): evaluated at each point's radius."""
 
 from pathlib import Path
 

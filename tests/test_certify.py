@@ -1,4 +1,4 @@
-"""Certification of located jumps (frictiondisk.tasks.jump_search.certify): the ladder on synthetic oracles
+"""Certification of located jumps (tasks/jump_search/certify.py): the ladder on synthetic oracles
 whose jump moves with the numerics level, as a short horizon moves it in the kernel."""
 
 from __future__ import annotations
@@ -169,7 +169,7 @@ def reserve_oracle(mu_star, reserve, undetermined=()):
 
 def drive_results(search, answer):
     """Feed `search` until done; answer(mu, strict) gives each run's result. As the engine
-    does (engine/in_order.py), a run the search no longer waits for is dropped."""
+    does (tasks/in_order.py), a run the search no longer waits for is dropped."""
     while not search.done:
         for request in list(search.pending()):
             if not search.done and request in search.pending():

@@ -1,4 +1,4 @@
-"""Every jump of a point: prescan, then bisect each change (frictiondisk/search/jumps.py), and the
+"""Every jump of a point: prescan, then bisect each change (tasks/jump_search/jumps.py), and the
 find_jump `prescan` end to end."""
 
 import math

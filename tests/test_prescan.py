@@ -1,4 +1,4 @@
-"""The adaptive prescan (frictiondisk/search/prescan.py): a coarse grid, refined where verdicts
+"""The adaptive prescan (frictiondisk/tasks/jump_search/prescan.py): a coarse grid, refined where verdicts
 change or the friction reserve does not explain them; the same jumps as a dense prescan."""
 
 import numpy as np

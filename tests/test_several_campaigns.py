@@ -39,7 +39,7 @@ scene: pin
 numerics: {t_decide: 5.0}
 scan: {mu: [0.1, 0.2]}
 """
-# a trace: its progress counts curve points, its files are built by store/trace_datasets
+# a trace: its progress counts curve points, its files are built by tasks/trace/datasets.py
 TRACE = """\
 name: traced
 scene: pin

@@ -1,5 +1,5 @@
 """The headline is the lowest rising jump that persists, certified with the grid below it
-(frictiondisk/search/jumps.py, docs/model.md section 7): sticking sets in mu with a known
+(frictiondisk/tasks/jump_search/jumps.py, docs/model.md section 7): sticking sets in mu with a known
 answer, fed to a JumpSearch as a synthetic oracle."""
 
 from __future__ import annotations

@@ -21,11 +21,11 @@ Varied values are a list of numbers or `{start, stop, num}` (numpy.linspace). An
 scene key may be varied, numerics ones included (`numerics.rtol`, `contact.stiffness`).
 
 The keys, defaults and units are the task specs (frictiondisk/tasks/<task>/spec.py,
-found through frictiondisk.tasks.registry; docs/reference.md). Validation follows `frictiondisk.model.scene`: the base scene is
-validated exactly as a scene file (same paths, same messages); every varied value is
-checked by building the scene it gives; all problems are collected and raised together as
-one `ConfigError`, one line `dotted.path: what is wrong; what is allowed` each, list items
-written `path[i]`.
+found through frictiondisk.tasks.registry; docs/reference.md). Validation follows
+`frictiondisk.model.scene`: the base scene is validated exactly as a scene file (same
+paths, same messages); every varied value is checked by building the scene it gives; all
+problems are collected and raised together as one `ConfigError`, one line `dotted.path:
+what is wrong; what is allowed` each, list items written `path[i]`.
 """
 
 from __future__ import annotations

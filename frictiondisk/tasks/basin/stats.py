@@ -13,7 +13,7 @@ import math
 
 CONFIDENCE = 0.95
 # scipy.stats is imported where it is used: importing it costs about 1 s, which every
-# `frictiondisk run` paid at start-up (plan.py imports this module), basin or not
+# `frictiondisk run` paid at start-up when the planners imported this module, basin or not
 
 
 def fraction(k: int, n: int) -> float:

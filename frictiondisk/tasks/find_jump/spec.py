@@ -44,11 +44,11 @@ DEFAULT_ROOT_FINDER = "itp"  # interpolate on the friction reserve (bisection.Bi
 
 class Prescan(Spec):
     """Values of mu run at every point before bisecting, in numerics.mode `mode`; every
-    change between neighbours is then bisected (frictiondisk.tasks.jump_search.jumps.JumpSearch). `stride`:
-    run every stride-th value first and refine where needed (frictiondisk.tasks.jump_search.prescan); None
-    picks `prescan.stride_of` (1, dense, for converge mode and stick_rule contacts). Every
-    value below the headline is run in the end, and the headline must stick over `persist`
-    tol above its bracket (docs/model.md section 7)."""
+    change between neighbours is then bisected (tasks/jump_search/jumps.py, JumpSearch).
+    `stride`: run every stride-th value first and refine where needed
+    (tasks/jump_search/prescan.py); None picks `prescan.stride_of` (1, dense, for converge
+    mode and stick_rule contacts). Every value below the headline is run in the end, and
+    the headline must stick over `persist` tol above its bracket (docs/model.md section 7)."""
 
     mu: Values = field(..., "1", "values of mu run first, at least 2 (sorted)", VALUES_MUST)
     mode: Literal["decide", "converge"] = field("decide", None, "numerics.mode of these runs")
@@ -91,9 +91,9 @@ class FindJump(TaskSpec):
     retried up to `max_retries` times, each with numerics.t_decide (or t_max) multiplied by
     `horizon_factor`. `lanes`: how many points of a row (the last dim) are in flight at
     once; the row runs coarse to fine and each inner point predicts its bracket from the
-    two that bound it (engine/plan.py). `root_finder`: "itp" aims at the friction
-    reserve's zero, "bisect" halves (frictiondisk.tasks.jump_search.bisection). `along` maps 1 or 2 dotted
-    scene keys, in file order, to their values.
+    two that bound it (tasks/find_jump/planner.py). `root_finder`: "itp" aims at the
+    friction reserve's zero, "bisect" halves (tasks/jump_search/bisection.py). `along`
+    maps 1 or 2 dotted scene keys, in file order, to their values.
     """
 
     kind: ClassVar[str] = "find_jump"

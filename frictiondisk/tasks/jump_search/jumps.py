@@ -5,8 +5,8 @@ pin, docs/model.md section 7), a single bisection reports one jump as if it were
 one. `JumpSearch` runs a prescan over given values of mu, then bisects every pair of
 neighbouring decided values whose outcomes differ in stick / not stick: a *rising* jump
 (not stick below, stick above) or a *falling* one (stick below, not stick above). With
-`stride` > 1 the prescan is adaptive (frictiondisk.tasks.jump_search.prescan): every stride-th value
-first, more only where the verdicts and friction reserves do not explain an interval.
+`stride` > 1 the prescan is adaptive (prescan.py): every stride-th value first, more only
+where the verdicts and friction reserves do not explain an interval.
 
 The headline is the lowest rising jump whose sticking side persists, and it comes with a
 verdict at every prescan value below it:
@@ -24,8 +24,8 @@ verdict at every prescan value below it:
   above the grid), not a failure; its `grid_below` is the whole grid.
 
 With `certify` enabled every jump's bracket is re-checked at stricter numerics
-(frictiondisk.tasks.jump_search.certify), and the point is certified only with the whole grid below
-its headline decided.
+(certify.py), and the point is certified only with the whole grid below its headline
+decided.
 
 Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
 nothing of simulation, I/O or Dask. Its `pending()` lists every run that can go now, so a

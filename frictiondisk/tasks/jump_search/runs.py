@@ -17,7 +17,7 @@ class RunRequest:
     certification level.
 
     The horizon of the run is the base horizon times horizon_factor ** level; a
-    certification level `strict` > 0 tightens the numerics further (frictiondisk.tasks.jump_search.certify)."""
+    certification level `strict` > 0 tightens the numerics further (certify.py)."""
 
     mu: float
     level: int = 0

@@ -10,7 +10,7 @@ The predictor (BifurcationKit's tangent predictor, with a secant for a tangent):
 last points of a curve, parameterized by their arclength s, the next point at s + ds is
 extrapolated linearly from the last two, or quadratically from the last three. The
 difference between the two is the prediction's error estimate (as the warm start of
-engine/plan.py uses it across a line). A step's chord stays within SAGITTA tol of the
+find_jump/planner.py uses it across a line). A step's chord stays within SAGITTA tol of the
 curve (kappa ds^2 / 8 with the curvature kappa from three points): the polyline through a
 curve's points is then as good as its points, for interpolation between them.
 """
@@ -25,7 +25,8 @@ Vec = tuple[float, float]
 GROW = 1.5  # step factor after a correction that held its predicted bracket
 SHRINK = 0.5  # step factor after a correction that failed or had to widen
 MAX_TURN = 0.35  # [rad] largest change of direction per step before the step shrinks
-ERROR_FACTOR = 2.0  # bracket half-width: this x |quadratic - linear| (engine/plan.py's warm start)
+# bracket half-width: this x |quadratic - linear| (find_jump/planner.py's warm start)
+ERROR_FACTOR = 2.0
 SECANT_SLACK = 0.25  # bracket half-width of a secant step, in units of ds (a bend of ~14 deg)
 SAGITTA = 1.0  # a step's chord may deviate this many tol from the curve (kappa ds^2 / 8)
 

@@ -5,14 +5,14 @@ for runs (`PlaneRequest`s) and takes their summaries; it knows nothing of simula
 or Dask, so the same object drives a live campaign and its replay from the journal.
 
 1. **First look.** Every key value of `first_look` is searched in mu like a find_jump
-   point with a prescan (search.jumps.JumpSearch: adaptive prescan, every stick / not-stick
+   point with a prescan (jump_search.jumps.JumpSearch: adaptive prescan, every stick / not-stick
    change bisected and certified). Each jump found is a *seed*: a certified point of a curve.
-2. **Tracing.** From each seed a `Curve` grows at both ends (search.trace_branch.Branch:
+2. **Tracing.** From each seed a `Curve` grows at both ends (branch.Branch:
    predict, correct by a certified bisection across the curve, control the step), until
    it leaves the plane, closes, meets another curve's end (two seeds of one curve: the
    pieces are joined), fails, or reaches max_points.
 3. **Folds.** Where a curve turns back in the key (a smooth bend, or a corner passed by a
-   turn), a `FoldLocator` (search.fold) brackets the tip where the two jumps meet, to tol
+   turn), a `FoldLocator` (fold.py) brackets the tip where the two jumps meet, to tol
    in both coordinates.
 
 It advances in *rounds*: every branch and every fold locator has one step (one search, or
@@ -197,7 +197,7 @@ class Tracer:
 
     def _seed(self) -> None:
         """One curve per jump of the first look, growing at both ends; not the two edges of
-        a window narrower than the persistence width (search.jumps: no tol-wide corridor
+        a window narrower than the persistence width (jump_search/jumps.py: no tol-wide corridor
         between them to follow; the first look reports it)."""
         for key, search in self.look:
             found = search.result()
