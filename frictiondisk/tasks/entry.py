@@ -18,12 +18,6 @@ class TaskEntry:
     summary: ClassVar[str]  # one line: what the task does
     # docs/reference.md: further tables (title, intro, model) of values inside the section
     reference_tables: ClassVar[tuple[tuple[str, str, type], ...]] = ()
-
-    @property
-    def name(self) -> str:
-        """The task's name: its key in a campaign file (`spec.kind`)."""
-        return self.spec.kind
-
     # a journal of its runs (a task without one keeps its files as its record, and is
     # asked `files_current` before it runs)
     journaled: ClassVar[bool] = True
@@ -88,8 +82,10 @@ class TaskEntry:
         section `task`: what engine/budget.py counts before a campaign starts."""
         return 1, self.name
 
+    @property
+    def name(self) -> str:
+        """The task's name: its key in a campaign file (`spec.kind`)."""
+        return self.spec.kind
+
     def __repr__(self) -> str:
         return f"<task {self.name}>"
-
-    def __reduce__(self) -> Any:  # entries are singletons of their class
-        return (type(self), ())
