@@ -1,5 +1,6 @@
-"""The campaign directory DIR: its file names, the campaign record check, the refusal of
-symbolic links, and status.json (see frictiondisk.engine.runner for the layout); and a
+"""The campaign directory DIR (its file names: frictiondisk.store.layout): the campaign
+record check, the refusal of symbolic links, and status.json (see
+frictiondisk.engine.runner for the layout); and a
 folder of several campaigns (`run A.yaml B.yaml -o DIR`): DIR/campaigns.json names its
 campaigns, each in DIR/<name>/."""
 
