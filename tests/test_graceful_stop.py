@@ -1,23 +1,33 @@
 """A campaign stopped by a real signal: a documented exit code, the finished points in a
 partial results.nc that `status` prints, and a resume that completes them, the finished
 points as they were (that a resume ends where an uninterrupted run does, for every task:
-tests/test_task_contract.py)."""
+tests/test_task_contract.py). The campaigns run on the fake simulate (tests/fake_cli.py:
+the real command line, signal handlers, driver and journal; runs of 20 ms instead of the
+kernel's), but for a trajectory's one run, which must sit in the kernel."""
 
 import json
 import signal
 import subprocess
-import sys
 import time
 
 import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import HANG_S, LONG_CAMPAIGN, points_done, start_campaign_until, wait_for_cpu
+from conftest import (
+    HANG_S,
+    LONG_CAMPAIGN,
+    cli_command,
+    points_done,
+    start_campaign_until,
+    wait_for_cpu,
+)
+from fake_simulate import install
 
 from frictiondisk.cli import main
 
 CAMPAIGN = LONG_CAMPAIGN
+FAKE_RUN_S = 0.02  # [s] a fake run: the 48 points take seconds, time enough to stop them
 
 
 @pytest.fixture
@@ -27,11 +37,11 @@ def spec(tmp_path):
     return path
 
 
-def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(spec, tmp_path):
+def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(spec, tmp_path, monkeypatch):
     """SIGTERM (a batch scheduler, `kill`); Ctrl-C and SIGHUP take the same path to their
     own exit codes (signals.describe_stop, and test_a_closed_terminal_... below)."""
     out = tmp_path / "stopped"
-    proc = start_campaign_until(spec, out)
+    proc = start_campaign_until(spec, out, fake_delay=FAKE_RUN_S)
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=HANG_S)
     assert proc.returncode == 143, err
@@ -52,6 +62,7 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(spec, tmp_path
     assert "(partial: " in status.output and "pending" in status.output
     assert "mu* per point" in status.output
 
+    install(monkeypatch)  # the same fake here, without its delay
     resumed = CliRunner().invoke(main, ["resume", str(out)])
     assert resumed.exit_code == 0, resumed.output
     with xr.open_dataset(out / "results.nc") as whole:
@@ -61,7 +72,7 @@ def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(spec, tmp_path
         np.testing.assert_array_equal(part["mu_star"].values[done], whole["mu_star"].values[done])
 
 
-# a disk from rest, prescanned: a point takes a dozen runs of about a second
+# a disk from rest, prescanned: a point takes a dozen runs (of 0.3 s on the fake)
 SLOW_DISK = """\
 name: slow_disk
 scene: disk
@@ -82,7 +93,8 @@ def test_a_stop_before_the_first_point_leaves_every_point_pending(tmp_path):
     spec = tmp_path / "disk.yaml"
     spec.write_text(SLOW_DISK)
     out = tmp_path / "out"
-    proc = start_campaign_until(spec, out, until=lambda: any(out.glob("journal/*/*")))
+    first_run = lambda: any(out.glob("journal/*/*"))  # noqa: E731
+    proc = start_campaign_until(spec, out, until=first_run, fake_delay=0.3)
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=HANG_S)
     assert proc.returncode == 143, err
@@ -216,10 +228,9 @@ def test_a_closed_terminal_stops_the_campaign_gracefully(spec, tmp_path):
     out = tmp_path / "hung_up"
     pid, terminal = pty.fork()
     if pid == 0:  # the child: its controlling terminal is the pty
-        os.execv(
-            sys.executable,
-            [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
-        )
+        os.environ["FAKE_SIMULATE_DELAY_S"] = str(FAKE_RUN_S)
+        command = cli_command(FAKE_RUN_S)
+        os.execv(command[0], [*command, "run", str(spec), "-o", str(out)])
     t0 = time.time()
     while time.time() - t0 < HANG_S and points_done(out) < 2:
         if select.select([terminal], [], [], 0.02)[0]:

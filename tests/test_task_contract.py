@@ -1,6 +1,7 @@
 """The contract every registered task keeps with the engine (frictiondisk.tasks.protocol),
-checked for each one on the real driver, journal and Dask workers, with a fake simulate:
-deterministic verdicts in microseconds, no kernel (no numba compile, no runs).
+checked for each one on the real driver, journal and Dask workers, with a fake simulate
+(tests/fake_simulate.py): deterministic verdicts in microseconds, no kernel (no numba
+compile, no runs).
 
 * stop and resume: a campaign stopped mid-way (the stop a signal handler notes) leaves
   its finished runs in the journal and a partial results.nc; a resume, also over a crash's
@@ -21,23 +22,19 @@ test_campaign_run.py::test_scan_shows_the_jump_in_size).
 from __future__ import annotations
 
 import json
-import math
-import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
+from fake_simulate import install
 
-from frictiondisk.engine import runner, signals
+from frictiondisk.engine import runner
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.signals import CampaignInterrupted
-from frictiondisk.outcome.result import SimulationResult, Trajectory
-from frictiondisk.simulation import simulate as simulate_module
 from frictiondisk.store.journal import Journal
 from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.registry import TASKS
-from frictiondisk.tasks.trajectory import files as trajectory_files
 
 # One small campaign per registered task (and variants that take other paths through a
 # planner: a find_jump with a prescan runs JumpSearch chains and batches).
@@ -101,81 +98,10 @@ JOURNALED = sorted(name for name in CAMPAIGNS if TASKS[name.split("_prescan")[0]
 WARM_UP_RUNS = 2  # engine.worker.warm_up: a pin and a disk
 
 
-def jump_of(params: dict) -> float:
-    """The fake's jump: a pin sticks where mu >= 1.2 x_ms + 0.3 |x0|."""
-    return 1.2 * params["x_ms"] + 0.3 * abs(params.get("x0", 0.0))
-
-
-class FakeSimulate:
-    """simulate(config, record=False, dt_out=0.0) with verdicts from `jump_of`: stick on or
-    above the jump, stick_slip below, the friction reserve mu - mu*; a recorded run gets a
-    three-sample trajectory. After `stop_after` runs a stop is noted (as a signal handler
-    does); a run with `fails(params, record)` raises (its worker crashes)."""
-
-    def __init__(self, stop_after: int | None = None, fails=None):
-        self.stop_after, self.fails = stop_after, fails
-        self.runs = 0
-        self.lock = threading.Lock()
-
-    def __call__(self, config, record: bool = False, dt_out: float = 0.0) -> SimulationResult:
-        params = config.canonical()["params"]
-        with self.lock:
-            self.runs += 1
-            if self.runs == self.stop_after:
-                signals.request_stop(KeyboardInterrupt)
-        if self.fails is not None and self.fails(params, record):
-            raise RuntimeError("fake worker crash")
-        star = jump_of(params)
-        sticks = params["mu"] >= star
-        return SimulationResult(
-            outcome="stick" if sticks else "stick_slip",
-            reason="fake verdict",
-            R1=0.05,
-            t_R1=1.0,
-            size=0.05 if sticks else 0.1 + params["mu"],
-            a=math.nan if sticks else 0.01,
-            n_transitions=2,
-            stick_fraction=1.0 if sticks else 0.4,
-            t_end=10.0,
-            n_steps=100,
-            n_rejected=0,
-            n_refused=0,
-            cycle_converged=not sticks,
-            wall_s=0.001,
-            method="fake",
-            trajectory=_trajectory() if record else None,
-            reserve=params["mu"] - star,
-        )
-
-
-def _trajectory() -> Trajectory:
-    t = np.array([0.0, 0.5, 1.0])
-    zeros = np.zeros(3)
-    return Trajectory(
-        t,
-        zeros + 0.1,
-        zeros,
-        zeros,
-        zeros,
-        None,
-        None,
-        zeros[:, None],
-        zeros[:, None],
-        np.array([[0], [1], [1]], np.int8),
-    )
-
-
 @pytest.fixture
 def fake(monkeypatch):
     """Install a FakeSimulate for this test (workers run in this process: threads)."""
-
-    def install(**kwargs) -> FakeSimulate:
-        simulate = FakeSimulate(**kwargs)
-        monkeypatch.setattr(simulate_module, "simulate", simulate)
-        monkeypatch.setattr(trajectory_files, "simulate", simulate)
-        return simulate
-
-    return install
+    return lambda **kwargs: install(monkeypatch, **kwargs)
 
 
 def campaign(name: str):
@@ -203,8 +129,7 @@ def references(tmp_path_factory):
     """Each journaled campaign run uninterrupted on 1 worker, and its run count."""
     root = tmp_path_factory.mktemp("contract")
     mp = pytest.MonkeyPatch()
-    simulate = FakeSimulate()
-    mp.setattr(simulate_module, "simulate", simulate)
+    simulate = install(mp)
     found = {}
     try:
         for name in JOURNALED:
