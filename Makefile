@@ -61,7 +61,7 @@ $(STAMP): pyproject.toml $(LOCK)
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -r $(LOCK)
 	$(BIN)/python -m pip install --no-deps -e .
-	$(BIN)/python -c "from frictiondisk.engine.tasks import warm_up; warm_up()"
+	$(BIN)/python -c "from frictiondisk.engine.worker import warm_up; warm_up()"
 	touch $@
 
 install: $(STAMP)

@@ -28,9 +28,9 @@ from pathlib import Path
 import xarray as xr
 
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text, load_campaign
-from frictiondisk.search import basin_stats
-from frictiondisk.store.basin_datasets import summary_lines
+from frictiondisk.tasks.basin import stats as basin_stats
+from frictiondisk.tasks.basin.table import summary_lines
+from frictiondisk.tasks.campaign import campaign_from_text, load_campaign
 
 FIGURES = {  # figure name -> (campaign, boundary campaign or None)
     "basin_pin_x0": ("basin_pin_x0", None),
@@ -63,8 +63,8 @@ def make_figure(name: str, campaigns: Path, out: Path, figures: Path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    from frictiondisk.cli.plot import figure_for_dir
     from frictiondisk.figures.plotting import save_figure
+    from frictiondisk.tasks.plot import figure_for_dir
 
     campaign, boundary = FIGURES[name]
     directory = _run(campaigns, out, campaign)

@@ -14,8 +14,8 @@ from pathlib import Path
 import xarray as xr
 
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.engine.tasks import warm_up
-from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.engine.worker import warm_up
+from frictiondisk.tasks.campaign import campaign_from_text
 
 LINES = {
     "pin": """name: bench_pin_line

@@ -39,13 +39,14 @@ from pathlib import Path
 import xarray as xr
 
 from frictiondisk.engine.cluster import task_sizing
-from frictiondisk.engine.plan import planner_for, run_config
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.engine.tasks import run_batch, run_bisection, warm_up
-from frictiondisk.model.campaign import campaign_from_text, load_campaign
-from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.engine.worker import warm_up
 from frictiondisk.simulation.simulate import simulate
-from frictiondisk.store.journal import Journal, run_key
+from frictiondisk.store.journal import Journal
+from frictiondisk.store.journal_entry import run_key
+from frictiondisk.tasks.campaign import campaign_from_text, load_campaign
+from frictiondisk.tasks.jobs import RunScenes
+from frictiondisk.tasks.jump_search.requests import run_config
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -102,7 +103,7 @@ class KernelLoops:
     measured at different times are comparable."""
 
     def __init__(self, loop_s: float):
-        from frictiondisk.search.bisection import RunRequest
+        from frictiondisk.tasks.jump_search.bisection import RunRequest
 
         campaign = load_campaign(ROOT / "campaigns/disk_xms_at_rest.yaml")
         point = campaign.points()[4].config
@@ -133,22 +134,19 @@ def _result_of(journal: Journal, canonical: dict) -> dict:
     return journal.get(run_key(types.SimpleNamespace(canonical=lambda: canonical)))
 
 
-def _emulate(function, args, journal: Journal):
-    """(value, busy seconds) a worker would return for this task, from the journal of a
-    measured run: every run takes the wall time it took there."""
-    if function is run_batch:
-        results = [_result_of(journal, c) for c in args[0]]
-        busy = sum(r["wall_s"] for r in results)
-        return (results, busy), busy
-    assert function is run_bisection
-    bis, point_canonical, horizon_factor, _, budget = args
-    point = scene_from_dict(point_canonical)
+def _emulate(job, journal: Journal):
+    """(value, busy seconds) a worker would return for this job (frictiondisk.tasks.jobs),
+    from the journal of a measured run: every run takes the wall time it took there."""
+    if isinstance(job, RunScenes):
+        results = [_result_of(journal, c) for c in job.scenes]
+        return results, sum(r["wall_s"] for r in results)
+    bis, budget = job.search, job.budget_s
     made, busy = [], 0.0
     while not bis.done:
         if budget is not None and busy >= budget:
             break
         for request in bis.pending():
-            result = _result_of(journal, run_config(point, request, horizon_factor).canonical())
+            result = _result_of(journal, job.scene_of(request).canonical())
             busy += result["wall_s"]
             made.append((request, result))
             bis.feed(request, result)
@@ -171,7 +169,7 @@ def modelled_walls(
     journal = Journal(journal_dir)
     walls = {}
     for n in workers:
-        planner = planner_for(campaign)
+        planner = campaign.entry.planner(campaign)
         queue: collections.deque = collections.deque()
         running: list = []  # heap of (end time, sequence, job, value)
         t = driver_free = run_s = 0.0
@@ -179,10 +177,10 @@ def modelled_walls(
         while not planner.done:
             mean_run = run_s / computed if computed else None
             sizing = task_sizing(overhead_s, mean_run, n, len(queue) + len(running))
-            queue.extend(planner.jobs("/model", sizing))
+            queue.extend(planner.jobs(sizing))
             while len(running) < n and queue:
-                job, function, args = queue.popleft()
-                value, busy = _emulate(function, args, journal)
+                job, work = queue.popleft()
+                value, busy = _emulate(work, journal)
                 heapq.heappush(running, (t + overhead_s + busy, sequence, job, value))
                 sequence += 1
             end, _, job, value = heapq.heappop(running)
@@ -322,7 +320,7 @@ def driver_cpu_per_task(tasks: int = 300) -> float:
     from distributed import Client, LocalCluster, as_completed
 
     from frictiondisk.engine.cluster import _send_without_batching_delay
-    from frictiondisk.engine.tasks import Sealed, noop, run_sealed
+    from frictiondisk.engine.worker import Sealed, noop, run_sealed
 
     with (
         LocalCluster(
@@ -345,14 +343,14 @@ def _tasks_on_one(text: str, journal_dir: Path, overhead_s: float) -> int:
     """How many tasks the driver hands out on 1 worker (the model, counting)."""
     campaign = campaign_from_text(text, "<model>")
     journal = Journal(journal_dir)
-    planner = planner_for(campaign)
+    planner = campaign.entry.planner(campaign)
     tasks = computed = 0
     run_s = 0.0
     while not planner.done:
         mean_run = run_s / computed if computed else None
-        jobs = planner.jobs("/model", task_sizing(overhead_s, mean_run, 1, 0))
-        for job, function, args in jobs:
-            value, _ = _emulate(function, args, journal)
+        jobs = planner.jobs(task_sizing(overhead_s, mean_run, 1, 0))
+        for job, work in jobs:
+            value, _ = _emulate(work, journal)
             tasks += 1
             for _, _, result in planner.complete(job, value):
                 computed += 1

@@ -129,7 +129,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--no-limit", action="store_true", help="skip the 1-worker pairs")
     args = parser.parse_args(argv)
     subprocess.run(  # compile or load the kernel once, outside the timings
-        [sys.executable, "-c", "from frictiondisk.engine.tasks import warm_up; warm_up()"],
+        [sys.executable, "-c", "from frictiondisk.engine.worker import warm_up; warm_up()"],
         check=True,
         cwd=ROOT,
     )

@@ -29,8 +29,8 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.engine.tasks import warm_up
-from frictiondisk.model.campaign import load_campaign
+from frictiondisk.engine.worker import warm_up
+from frictiondisk.tasks.campaign import load_campaign
 
 ROOT = Path(__file__).resolve().parent.parent
 PAIRS = {  # figure -> (line campaign, trace campaign)

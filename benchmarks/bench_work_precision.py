@@ -35,9 +35,9 @@ import xarray as xr
 import yaml
 
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.engine.tasks import warm_up
-from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.engine.worker import warm_up
 from frictiondisk.store.cf import flag_meanings
+from frictiondisk.tasks.campaign import campaign_from_text
 
 TOLS = tuple(10.0**-k for k in range(3, 10))
 REFERENCE_TOL = 1.0e-11

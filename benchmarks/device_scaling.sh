@@ -14,7 +14,7 @@ mkdir -p "$OUT"
 nproc >"$OUT/machine.txt"
 python3 -c "import sys, numba; print(sys.version, numba.__version__)" >>"$OUT/machine.txt"
 s=$(date +%s)
-python3 -c "from frictiondisk.engine.tasks import warm_up; warm_up()"
+python3 -c "from frictiondisk.engine.worker import warm_up; warm_up()"
 echo "cold compile: $(($(date +%s) - s)) s" | tee -a "$OUT/machine.txt"
 scaling="python3 benchmarks/bench_scaling.py"
 timeout "$(left 200)" $scaling --full --only a --workers 1,16 --repeats 1 2>&1 | tee "$OUT/a_threads.txt"

@@ -2,7 +2,7 @@
 atol and the decision horizon, written to frictiondisk/model/numerics_error.csv.
 
 For every kind of frictiondisk.model.auto_numerics (KIND_SCENES below: the default slave
-at five axes offsets x_ms = 0.06 ... 0.14 m, x0 = 0) the jump is bisected (engine/accuracy_study.py
+at five axes offsets x_ms = 0.06 ... 0.14 m, x0 = 0) the jump is bisected (engine/local.py
 bisect_setting: a bracket around it, the default limits and retries, no certification,
 no journal) to a study tol far below any campaign's, under two ladders:
 
@@ -110,7 +110,7 @@ def settings() -> list[tuple[str, float, float, float, bool]]:
 
 
 def campaign_of(kind: str, x_ms: float):
-    from frictiondisk.model.campaign import campaign_from_dict
+    from frictiondisk.tasks.campaign import campaign_from_dict
 
     scene, brackets, _ = KIND_SCENES[kind]
     task = {"bracket": brackets[x_ms], "along": {"params.x_ms": [x_ms]}}
@@ -119,7 +119,7 @@ def campaign_of(kind: str, x_ms: float):
 
 def measure(kind: str, x_ms: float, rtol: float, atol: float, t_decide: float) -> dict:
     """One bisection of `kind` at x_ms with these numerics (in a worker process)."""
-    from frictiondisk.engine.accuracy_study import bisect_setting
+    from frictiondisk.engine.local import bisect_setting
     from frictiondisk.model.auto_numerics import scene_kinds
 
     campaign = campaign_of(kind, x_ms)
@@ -180,7 +180,7 @@ class Cache:
     version (an interrupted study goes on where it stopped; a kernel change recomputes)."""
 
     def __init__(self, path: Path | None):
-        from frictiondisk.store.journal import kernel_version
+        from frictiondisk.store.journal_entry import kernel_version
 
         self.path, self.version, self.done = path, kernel_version(), {}
         if path is not None and path.is_file():
@@ -198,7 +198,7 @@ class Cache:
 
 
 def header(argv: list[str]) -> str:
-    from frictiondisk.store.journal import kernel_version
+    from frictiondisk.store.journal_entry import kernel_version
     from frictiondisk.version import __version__
 
     command = " ".join(["python benchmarks/study_error_model.py", *argv])

@@ -9,7 +9,7 @@ N = 768: stick at 0.46-0.47, stick_slip at 0.475, stick from 0.48), so a bisecti
 bracket may meet a higher jump. Each (layout, N) is therefore scanned upwards in steps of
 SCAN_STEP from a start that does not stick (the previous N's mu* - SCAN_MARGIN, lowered
 until it does not stick) to the first stick, and that bracket is bisected with the
-campaigns' rules (frictiondisk/search/bisection.py, horizon retries included) to `--tol`
+campaigns' rules (frictiondisk/tasks/jump_search/bisection.py, horizon retries included) to `--tol`
 (default 1e-4). A stick island narrower than SCAN_STEP below it could be missed.
 
 Reported per layout: mu*(N) with its bracket, the change from the previous N, the
@@ -58,9 +58,9 @@ def scene(layout: str, n: int):
 
 def locate(layout: str, n: int, start: float, tol: float) -> dict:
     """Lowest rising jump mu* of one (layout, N): upward scan, then bisection."""
-    from frictiondisk.engine.tasks import run_bisection
-    from frictiondisk.search.bisection import Bisection
+    from frictiondisk.engine.worker import run_bisection
     from frictiondisk.simulation.simulate import simulate
+    from frictiondisk.tasks.jump_search.bisection import Bisection
 
     t0 = time.perf_counter()
     base = scene(layout, n)

@@ -58,7 +58,7 @@ from pathlib import Path
 
 import numpy as np
 
-from frictiondisk.search.jump_result import NO_JUMP
+from frictiondisk.tasks.jump_search.jump_result import NO_JUMP
 
 TOL = 1.0e-4
 # the default's prescan step: 0.01 (the issue's own campaign, 58 values over 0.03 ... 0.6,
@@ -181,10 +181,10 @@ def _answer_claims(search) -> tuple[tuple[float, bool], ...]:
 
 def locate(scene: dict, setting: str, observe: bool = False) -> Found:
     """Prescan and bisect every jump of `scene` under `setting` (module docstring)."""
-    from frictiondisk.engine.tasks import run_bisection
+    from frictiondisk.engine.worker import run_bisection
     from frictiondisk.model.search_settings import DEFAULT_MAX_RETRIES, OFF, Certify
-    from frictiondisk.search.jumps import JumpSearch
-    from frictiondisk.search.prescan import default_stride
+    from frictiondisk.tasks.jump_search.jumps import JumpSearch
+    from frictiondisk.tasks.jump_search.prescan import default_stride
 
     config = _config(scene, setting)
     grid = REFERENCE_PRESCAN if setting == "reference" else PRESCAN
@@ -451,7 +451,7 @@ def _from_json(row: dict) -> dict:
 def _warm_up() -> None:
     """Load (or compile) the kernel in a worker before it times any run: a process's first
     row otherwise counts the compile as kernel time of its first setting (the default)."""
-    from frictiondisk.engine.tasks import warm_up
+    from frictiondisk.engine.worker import warm_up
 
     warm_up()
 

@@ -15,8 +15,8 @@ stays cheap)::
     fig = plot_orbit(simulate(scene, record=True, dt_out=0.05), scene)
 
 Everything else lives in the packages below, in data-flow order (docs/architecture.md):
-model, kernel, outcome, simulation, search, store, engine, figures, cli. docs/model.md
-describes the model.
+model, kernel, outcome, simulation, store, figures, tasks (one package per task, found
+through tasks/registry.py), engine, studies, cli. docs/model.md describes the model.
 """
 
 from __future__ import annotations
@@ -31,9 +31,9 @@ if TYPE_CHECKING:
     import xarray as xr
 
     from frictiondisk.engine.campaign_run import RunSummary
-    from frictiondisk.model.campaign import Campaign
     from frictiondisk.model.scene import SceneConfig
     from frictiondisk.simulation.result import SimulationResult
+    from frictiondisk.tasks.campaign import Campaign
 
 __all__ = [
     "__version__",
@@ -76,12 +76,12 @@ def simulate(scene: SceneConfig, record: bool = False, dt_out: float = 0.0) -> S
 
 def load_campaign(source: str | PathLike[str] | dict[str, Any]) -> Campaign:
     """Load and validate a campaign: a YAML file's path, or its parsed content as a dict
-    (find_jump, scan, trajectory or basin task)."""
+    (any task of frictiondisk.tasks.registry)."""
     if isinstance(source, dict):
-        from frictiondisk.model.campaign import campaign_from_dict
+        from frictiondisk.tasks.campaign import campaign_from_dict
 
         return campaign_from_dict(source, source="<dict>")
-    from frictiondisk.model.campaign import load_campaign as _load_campaign
+    from frictiondisk.tasks.campaign import load_campaign as _load_campaign
 
     return _load_campaign(source)
 
@@ -138,7 +138,7 @@ def plot_results(path: str | PathLike[str], runs: bool = False):
     """The matplotlib Figure `frictiondisk plot DIR [--runs]` draws for the campaign in
     directory `path`, from its netCDF files alone, with axis units and a caption. runs:
     overlay every run of a find_jump campaign."""
-    from frictiondisk.cli.plot import figure_for_dir
+    from frictiondisk.tasks.plot import figure_for_dir
 
     return figure_for_dir(Path(path), show_runs=runs)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import signal
+from pathlib import Path
 
 
 def _stop_signals_at_their_defaults() -> None:
@@ -37,10 +38,11 @@ def coulomb_mu_star(
     return (c_s * x_ms + g_factor(c_s=c_s, **kw) * radius) / F_n
 
 
-# 24 points at tol 1e-8: long enough (about 5 s) to be stopped after its second point
-# Long: its numerics are fixed far looser than tol 1e-8 needs (numerics auto would pick
-# tighter ones and take a third of the runs), so every point re-searches at the stricter
-# certification levels, about 30 runs a point: time enough (48 points) to stop it mid-way.
+# 48 points at tol 1e-8, one at a time: time enough to stop it mid-way (the stop tests run
+# it on the fake simulate, tests/fake_simulate.py, each run a few tens of ms). On the kernel
+# its numerics are fixed far looser than tol 1e-8 needs (numerics auto would pick tighter
+# ones and take a third of the runs), so every point re-searches at the stricter
+# certification levels, about 30 runs a point.
 LONG_CAMPAIGN = """\
 name: stop_line
 scene: pin
@@ -100,19 +102,35 @@ def wait_for_cpu(pid: int, seconds: float, timeout: float = 300.0) -> None:
         return
 
 
-def start_campaign_until(spec, out, points: int = 2, until=None):
-    """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
-    returned once `points` points are done (or once `until()`, if given, is true); fails
-    if it ended before. spec: one campaign file, or a list of them (a folder of campaigns)."""
-    import subprocess
+FAKE_CLI = Path(__file__).resolve().parent / "fake_cli.py"
+
+
+def cli_command(fake_delay: float | None = None) -> list[str]:
+    """The command line of `frictiondisk`; with `fake_delay` [s], that of tests/fake_cli.py:
+    the same commands on the fake simulate (tests/fake_simulate.py), each run that long."""
     import sys
 
+    if fake_delay is None:
+        return [sys.executable, "-m", "frictiondisk.cli"]
+    return [sys.executable, str(FAKE_CLI)]
+
+
+def start_campaign_until(spec, out, points: int = 2, until=None, fake_delay=None):
+    """`frictiondisk run spec -o out` as a subprocess (stdout and stderr piped, text),
+    returned once `points` points are done (or once `until()`, if given, is true); fails
+    if it ended before. spec: one campaign file, or a list of them (a folder of campaigns).
+    fake_delay: run on the fake simulate, each run taking that many seconds (cli_command)."""
+    import os
+    import subprocess
+
     specs = [str(path) for path in spec] if isinstance(spec, list | tuple) else [str(spec)]
+    env = dict(os.environ, FAKE_SIMULATE_DELAY_S=str(fake_delay or 0.0))
     proc = subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", "run", *specs, "-o", str(out)],
+        [*cli_command(fake_delay), "run", *specs, "-o", str(out)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        env=env,
     )
     ready = until or (lambda: points_done(out) >= points)
     wait_until(ready, proc, "the state the signal needs")

@@ -9,8 +9,8 @@ from __future__ import annotations
 import pytest
 
 from frictiondisk.model import auto_numerics as auto
-from frictiondisk.model.campaign import campaign_from_dict
 from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.tasks.campaign import campaign_from_dict
 
 HEADER = "kind,knob,rtol,atol,t_decide,is_reference,status,points,error,n_steps,t_simulated\n"
 

@@ -1,27 +1,21 @@
-"""Basin campaigns end to end: the pin's stick fraction against its boundary x0* located by
-bisection, determinism over worker counts, resume after SIGKILL, a map against single runs."""
+"""Basin campaigns end to end (the task's smoke test; its contract with the engine is
+tests/test_task_contract.py): the pin's stick fraction against its boundary x0* located by
+bisection, adaptive sampling on its target, a map against single runs."""
 
 from __future__ import annotations
 
-import random
-import signal
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
-import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import wait_until
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.search.bisection import Bisection
 from frictiondisk.simulation.simulate import simulate
-from frictiondisk.store.journal import Journal
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.jump_search.bisection import Bisection
 
 X0_RANGE = (-0.05, 0.05)  # [m]
 PIN = {"scene": "pin", "params": {"x_ms": 0.1, "mu": 0.125}}
@@ -36,7 +30,7 @@ basin:
   seed: 7
 """
 
-# Adaptive, two points: about 400 runs of ~5 ms, long enough to kill mid-way.
+# Adaptive, two points: a few hundred runs of ~5 ms.
 ADAPTIVE = """\
 name: pin_basin_adaptive
 scene: pin
@@ -103,52 +97,18 @@ def _write(path: Path, text: str) -> Path:
     return path
 
 
-@pytest.fixture(scope="module")
-def adaptive_runs(tmp_path_factory):
-    root = tmp_path_factory.mktemp("adaptive")
-    campaign = campaign_from_text(ADAPTIVE, "<test>")
-    run_campaign(campaign, root / "w1", workers=1, progress=False)
-    run_campaign(campaign, root / "w2", workers=2, progress=False)
-    return root
-
-
-def test_one_and_two_workers_give_identical_fractions(adaptive_runs):
-    _identical(adaptive_runs / "w1", adaptive_runs / "w2")
-    with xr.open_dataset(adaptive_runs / "w1" / "results.nc") as ds:
+def test_adaptive_sampling_stops_on_its_target_in_batches(tmp_path):
+    spec = _write(tmp_path / "b.yaml", ADAPTIVE)
+    result = CliRunner().invoke(main, ["run", str(spec), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "mu = 0.12: stick" in result.output  # the fractions, one line per point
+    with xr.open_dataset(tmp_path / "out" / "results.nc") as ds:
         n = ds.n_samples.values
         assert (n % 40 == 0).all() and (n < 400).all()  # stopped on the target, in batches
         assert (ds.not_stick_se <= 0.036).all()
         # more friction, more sticking (x0* moves right with mu)
         stick = ds.fraction.sel(outcome="stick").values
         assert stick[0] < stick[1]
-
-
-def _cli(*args):
-    return subprocess.Popen(
-        [sys.executable, "-m", "frictiondisk.cli", *map(str, args)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-    )
-
-
-def test_sigkill_and_resume_give_the_uninterrupted_fractions(adaptive_runs, tmp_path):
-    reference = adaptive_runs / "w2"
-    n_runs = len(Journal(reference))
-    campaign_file = _write(tmp_path / "b.yaml", ADAPTIVE)
-    out = tmp_path / "killed"
-    goal = random.Random(5).randint(n_runs // 4, n_runs // 2)  # mid-way, past a batch
-    proc = _cli("run", campaign_file, "-o", out)
-    reached = lambda: (out / "journal").exists() and Journal.count(out) >= goal  # noqa: E731
-    wait_until(reached, proc, f"{goal} journaled runs")
-    assert proc.poll() is None, "the campaign finished before the kill"
-    proc.send_signal(signal.SIGKILL)
-    proc.wait()
-    assert goal <= len(Journal(out)) < n_runs
-    result = CliRunner().invoke(main, ["resume", str(out)])  # in-process: no second start-up
-    assert result.exit_code == 0, result.output
-    assert "mu = 0.12: stick" in result.output
-    _identical(reference, out)
-    assert max(Journal(out).computed_counts().values()) == 1
 
 
 def test_a_map_gives_the_outcome_of_each_initial_state(tmp_path):
@@ -195,21 +155,3 @@ basin:
     )
     result = CliRunner().invoke(main, ["plot", str(fraction_dir), "--boundary", str(jump)])
     assert result.exit_code == 2 and "boundary: applies to a basin map" in result.output
-
-
-def test_a_job_that_keeps_failing_marks_its_point_failed_and_journals_nothing(
-    tmp_path, monkeypatch
-):
-    from frictiondisk.engine import basin_plan
-
-    def broken(*args):
-        raise RuntimeError("simulated worker crash")
-
-    monkeypatch.setattr(basin_plan, "run_samples", broken)
-    text = PIN_BASIN.replace("samples: 150", "samples: 20")
-    run_campaign(campaign_from_text(text, "<test>"), tmp_path, workers=1, progress=False)
-    with xr.open_dataset(tmp_path / "results.nc") as ds:
-        assert ds.status.values == "failed" and "simulated worker crash" in str(ds.reason.values)
-        assert float(ds.fraction.sel(outcome="undetermined")) == 1.0
-        assert float(ds.not_stick_fraction) == 0.0
-    assert len(Journal(tmp_path)) == 0  # a resume runs them again

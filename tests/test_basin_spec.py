@@ -11,13 +11,14 @@ import pytest
 import xarray as xr
 from matplotlib.figure import Figure
 
-from frictiondisk.engine.basin_plan import BasinPlanner
-from frictiondisk.figures.basin import outcome_colors, plot_basin
-from frictiondisk.model.campaign import Basin, campaign_from_dict, campaign_from_text
 from frictiondisk.model.scene import ConfigError
-from frictiondisk.search import basin_stats
-from frictiondisk.search.basin_sampling import BLOCK, SampleRequest
-from frictiondisk.store.basin_datasets import results_dataset, runs_dataset, summary_lines
+from frictiondisk.tasks.basin import stats as basin_stats
+from frictiondisk.tasks.basin.figure import outcome_colors, plot_basin
+from frictiondisk.tasks.basin.planner import BasinPlanner
+from frictiondisk.tasks.basin.sampling import BLOCK, SampleRequest
+from frictiondisk.tasks.basin.spec import Basin
+from frictiondisk.tasks.basin.table import summary_lines
+from frictiondisk.tasks.campaign import campaign_from_dict, campaign_from_text
 from frictiondisk.verdict.outcomes import OUTCOMES
 
 BASIN = """\
@@ -238,7 +239,7 @@ def test_results_follow_the_outcome_list_and_count_new_outcomes_as_not_stick():
         planner,
         lambda x0: "stick" if x0 < -0.02 else ("creep" if x0 < 0.0 else "undetermined"),
     )
-    ds = results_dataset(planner.campaign, planner)
+    ds = planner.snapshot().to_dataset()
     assert list(ds.outcome.values) == [*OUTCOMES, "creep"] or "creep" in OUTCOMES
     np.testing.assert_allclose(ds.fraction.sum("outcome"), 1.0)
     creep = ds.fraction.sel(outcome="creep")
@@ -246,7 +247,7 @@ def test_results_follow_the_outcome_list_and_count_new_outcomes_as_not_stick():
     assert ((ds.fraction_lo <= ds.fraction) & (ds.fraction <= ds.fraction_hi)).all()
     assert ds.n_samples.values.tolist() == [40, 40, 40]
     assert ds.mu.attrs["units"] == "1" and "creep" in ds.attrs["large_cycle"]
-    runs = runs_dataset(planner.campaign, planner, lambda i, r: "k")
+    runs = planner.snapshot().runs_dataset(lambda i, r: "k")
     assert runs.sizes["run"] == 120 and runs.x0.attrs["units"] == "m"
     assert np.all((runs.x0 < -0.02) == (runs.outcome == "stick"))
     lines = summary_lines(ds)
@@ -265,7 +266,7 @@ def test_a_map_has_the_outcome_of_every_cell_and_draws_with_a_boundary():
     campaign = campaign_from_dict({"name": "m", "scene": "pin", "basin": {"grid": grid}})
     planner = BasinPlanner(campaign)
     assert _feed_all(planner, _stick_below(-0.01)) == 12
-    ds = results_dataset(campaign, planner)
+    ds = planner.snapshot().to_dataset()
     assert ds.outcome_map.dims == ("x0", "y0") and ds.x0.attrs["units"] == "m"
     assert (ds.outcome_map.values[:2] == "stick").all() and (ds.outcome_map[2:] != "stick").all()
     assert float(ds.fraction.sel(outcome="stick")) == 0.5 and int(ds.n_samples) == 12
@@ -294,7 +295,7 @@ def test_a_map_has_the_outcome_of_every_cell_and_draws_with_a_boundary():
 def test_basin_campaign_files_load(name):
     from pathlib import Path
 
-    from frictiondisk.model.campaign import load_campaign
+    from frictiondisk.tasks.campaign import load_campaign
 
     path = Path(__file__).resolve().parent.parent / "campaigns" / f"{name}.yaml"
     campaign = load_campaign(path)
@@ -325,7 +326,7 @@ def test_fraction_figures_of_a_point_and_of_a_grid(along, gid):
         spec["basin"]["along"] = along
     planner = BasinPlanner(campaign_from_dict(spec))
     _feed_all(planner, _stick_below(0.0))
-    ds = results_dataset(planner.campaign, planner)
+    ds = planner.snapshot().to_dataset()
     assert ds.fraction.dims == (*([] if along is None else ["mu", "x_ms"]), "outcome")
     fig = plot_basin(ds)
     gids = {child.get_gid() for ax in fig.axes for child in ax.get_children()}

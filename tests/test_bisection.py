@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from frictiondisk.search.bisection import Bisection, RunRequest
+from frictiondisk.tasks.jump_search.bisection import Bisection, RunRequest
 
 
 def drive(bis, oracle):

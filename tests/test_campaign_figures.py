@@ -20,26 +20,23 @@ from matplotlib.text import Text
 
 matplotlib.use("Agg")
 
+
 from frictiondisk import __version__
 from frictiondisk.cli import main  # noqa: E402
 from frictiondisk.engine.runner import run_campaign  # noqa: E402
-from frictiondisk.figures.campaign import (  # noqa: E402
-    MU_LABEL,
-    axis_label,
-    caption_text,
-    figure_kind,
-    plot_campaign,
-    plot_jump_grid,
-    plot_jump_line,
-    plot_scan_family,
-    plot_scan_mu,
-)
+from frictiondisk.figures.shared import MU_LABEL, axis_label, caption_text  # noqa: E402
 from frictiondisk.model.auto_numerics import choose  # noqa: E402
-from frictiondisk.model.campaign import campaign_from_text  # noqa: E402
 from frictiondisk.model.scene import scene_from_dict  # noqa: E402
-from frictiondisk.search.certify import CERTIFICATION_FLAGS  # noqa: E402
+from frictiondisk.model.search_settings import CERTIFICATION_FLAGS  # noqa: E402
 from frictiondisk.store import cf  # noqa: E402
-from frictiondisk.store.table import mu_star_table, uncertain_summary  # noqa: E402
+from frictiondisk.tasks.campaign import campaign_from_text  # noqa: E402
+from frictiondisk.tasks.find_jump.figure_grid import plot_jump_grid  # noqa: E402
+from frictiondisk.tasks.find_jump.figure_kind import figure_kind  # noqa: E402
+from frictiondisk.tasks.find_jump.figure_line import plot_jump_line  # noqa: E402
+from frictiondisk.tasks.find_jump.table import mu_star_table, uncertain_summary  # noqa: E402
+from frictiondisk.tasks.plot import plot_campaign  # noqa: E402
+from frictiondisk.tasks.scan.figure import figure_kind as scan_figure_kind  # noqa: E402
+from frictiondisk.tasks.scan.figure import plot_scan_family, plot_scan_mu, scan_mode  # noqa: E402
 
 NUMERICS_YAML = (
     "atol: 1.0e-09\ncycle_count: 3\ncycle_tol: 1.0e-06\ndt: 0.01\nh_max: 0.1\n"
@@ -467,7 +464,7 @@ def test_scan_mu_size_by_outcome_and_a_with_its_least_squares_line():
     size = np.where(np.array(outcome) == "stick_slip", 3 * mu, np.nan)
     size[-2:] = 0.11
     ds = scan_results(mu, outcome, size, a, name="scanC")
-    assert figure_kind(ds) == "scan_mu"
+    assert scan_figure_kind(ds) == "scan_mu"
     fig = plot_scan_mu(ds)
     ax_size, ax_a = main_axes(fig)
     assert ax_size.get_shared_x_axes().joined(ax_size, ax_a)
@@ -488,7 +485,7 @@ def test_scan_mu_size_by_outcome_and_a_with_its_least_squares_line():
     assert "slope 2 m" in fit.get_label()
     np.testing.assert_allclose(fit.get_ydata(), 2.0 * fit.get_xdata() - 0.2)
     assert "numerics rodas4, rtol 1e-06" in all_text(fig)
-    assert "mode converge" in caption_text(ds)
+    assert "mode converge" in caption_text(ds, scan_mode(ds))
     assert outside_the_figure(fig) == []
 
 
@@ -503,7 +500,7 @@ def test_scan_mu_in_decide_mode_says_why_a_is_missing():
     )
     fig = plot_scan_mu(ds)
     assert "no converged stick_slip cycle" in all_text(fig)
-    assert "mode decide" in caption_text(ds)
+    assert "mode decide" in caption_text(ds, scan_mode(ds))
 
 
 def test_scan_family_one_curve_per_value_with_its_unit():
@@ -518,7 +515,7 @@ def test_scan_family_one_curve_per_value_with_its_unit():
         along={"params.x0": [-0.01, 0.01]},
         name="famD",
     )
-    assert figure_kind(ds) == "scan_family"
+    assert scan_figure_kind(ds) == "scan_family"
     fig = plot_scan_family(ds)
     ax = main_axes(fig)[0]
     assert ax.get_xlabel() == MU_LABEL and ax.get_ylabel().endswith("[m]")
@@ -548,17 +545,19 @@ def test_axis_label_and_caption_from_attributes(line):
 
 
 def test_a_dataset_that_is_not_a_campaign_result_is_refused(line):
-    with pytest.raises(ValueError, match="expected 'find_jump', 'scan', 'trajectory' or 'trace'"):
-        figure_kind(xr.Dataset(attrs={"task": "orbit"}))
+    with pytest.raises(
+        ValueError, match="expected one of find_jump, scan, trajectory, basin, trace"
+    ):
+        plot_campaign(xr.Dataset(attrs={"task": "orbit"}))
     with pytest.raises(ValueError, match="lacks the variable"):
         figure_kind(line.drop_vars("mu_hi"))
-    with pytest.raises(ValueError, match="along one key"):
+    with pytest.raises(ValueError, match="lacks the variable"):  # a scan is no line
         plot_jump_line(scan_results([0.1], ["stick"], [0.1], [np.nan]))
 
 
 def test_figures_module_never_loads_the_kernel():
     code = (
-        "import sys, frictiondisk.figures.campaign, frictiondisk.cli.plot;"
+        "import sys, frictiondisk.tasks.plot, frictiondisk.cli.plot;"
         "bad = [m for m in sys.modules if m.startswith(('frictiondisk.kernel', "
         "'frictiondisk.simulation.simulate', 'numba'))]; assert not bad, bad"
     )

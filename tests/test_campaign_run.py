@@ -1,28 +1,25 @@
-"""Campaigns end to end: located jumps against physics, determinism across worker counts,
-resume after SIGKILL and Ctrl-C, a killed worker, corruption repair, refusals."""
+"""find_jump and scan campaigns end to end (the tasks' smoke tests; their contract with the
+engine, stop and resume, worker counts and failing jobs, is tests/test_task_contract.py):
+located jumps against physics, corruption repair, refusals, a scan's sizes."""
 
 from __future__ import annotations
 
 import os
-import random
-import re
-import signal
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import coulomb_mu_star, wait_until
+from conftest import coulomb_mu_star
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.store.journal import Journal
 from frictiondisk.store.lock import CampaignLock
+from frictiondisk.tasks.campaign import campaign_from_text
 
 # The bracket's low end is no x_ms of the lines below: at mu = c_s x_ms / F_n exactly
 # the pin creeps onto the master axis and sticks there (an isolated sticking value).
@@ -86,18 +83,6 @@ def test_jump_scales_with_the_offset(tmp_path):
     assert max(lo[1], 2 * lo[0]) <= min(hi[1], 2 * hi[0])
 
 
-def test_one_and_two_workers_give_identical_results(tmp_path):
-    campaign = pin_line("{start: 0.04, stop: 0.16, num: 5}")
-    run_campaign(campaign, tmp_path / "w1", workers=1, progress=False)
-    run_campaign(campaign, tmp_path / "w2", workers=2, progress=False)
-    _identical(tmp_path / "w1", tmp_path / "w2")
-    with xr.open_dataset(tmp_path / "w1" / "results.nc") as ds:
-        assert (ds.status.values == "converged").all()
-        # coarse to fine: the ends start cold, every inner point interpolates its bracket
-        assert ds.warm_start.values.tolist() == [0, 1, 1, 1, 0]
-        assert ds.attrs["runs_saved_by_warm_start"] > 0
-
-
 def _cli(*args, env=None):
     return subprocess.Popen(
         [sys.executable, "-m", "frictiondisk.cli", *map(str, args)],
@@ -117,110 +102,6 @@ def _wait_for_entries(journal_dir: Path, count: int, proc, timeout=300.0) -> boo
             return True
         time.sleep(0.02)
     return False
-
-
-@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
-def test_sigkill_and_resume_give_the_uninterrupted_results(tmp_path):
-    campaign_file = tmp_path / "disk.yaml"
-    campaign_file.write_text(DISK_LINE)
-    reference = tmp_path / "reference"
-    run_campaign(campaign_from_text(DISK_LINE, "<test>"), reference, workers=2, progress=False)
-    n_runs = len(Journal(reference))
-
-    out = tmp_path / "killed"
-    rng = random.Random(7)
-    kills = 0
-    for _ in range(3):
-        proc = _cli("run", campaign_file, "-o", out)
-        _wait_for_entries(out / "journal", len(Journal(out)) + rng.randint(2, n_runs // 4), proc)
-        if proc.poll() is None:
-            proc.send_signal(signal.SIGKILL)
-            kills += 1
-        proc.wait()
-    assert kills >= 1
-    proc = _cli("resume", out)
-    _, err = proc.communicate(timeout=300)
-    assert proc.returncode == 0, err.decode()
-    _identical(reference, out)
-    # no journaled run is ever computed again (a kill loses the unjournaled runs of the
-    # points in flight, which are computed once, on resume)
-    assert max(Journal(out).computed_counts().values()) == 1
-
-
-@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
-def test_ctrl_c_stops_cleanly_and_resume_finishes(tmp_path):
-    campaign_file = tmp_path / "disk.yaml"
-    campaign_file.write_text(DISK_LINE)
-    out = tmp_path / "out"
-    proc = _cli("run", campaign_file, "-o", out)
-    if not _wait_for_entries(out / "journal", 5, proc):
-        assert proc.poll() is not None, "no 5 runs journaled in 300 s"
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    if proc.returncode == 0:
-        pytest.skip("the campaign finished before the interrupt arrived")
-    assert proc.returncode == 130, err.decode()
-    assert b"frictiondisk resume" in err
-    before = len(Journal(out))
-    assert before >= 5
-    # every run finished before the exit is journaled, those of the tasks in flight too
-    reported = re.search(rb"interrupted; (\d+) finished runs are in the journal", err)
-    assert reported and int(reported.group(1)) == before, err.decode()
-    result = CliRunner().invoke(main, ["resume", str(out)])
-    assert result.exit_code == 0, result.output
-    assert max(Journal(out).computed_counts().values()) == 1
-
-
-@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
-def test_killed_worker_is_retried_and_the_campaign_completes(tmp_path):
-    from distributed import Client, LocalCluster
-
-    campaign = campaign_from_text(DISK_LINE, "<test>")
-    run_campaign(campaign, tmp_path / "reference", workers=2, progress=False)
-    with (
-        LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-        ) as cluster,
-        Client(cluster) as client,
-    ):
-        pids = list(client.run(os.getpid).values())
-        out = tmp_path / "out"
-        errors = []
-
-        def target():
-            try:
-                run_campaign(campaign, out, scheduler=cluster.scheduler_address, progress=False)
-            except Exception as exc:  # surfaced below
-                errors.append(exc)
-
-        thread = threading.Thread(target=target)
-        thread.start()
-        wait_until(lambda: len(Journal(out)) >= 5 or not thread.is_alive(), what="5 runs")
-        assert thread.is_alive() and len(Journal(out)) < len(Journal(tmp_path / "reference"))
-        os.kill(pids[0], signal.SIGKILL)  # the nanny restarts it; its task is rescheduled
-        thread.join(timeout=300)
-        assert not errors, errors
-    _identical(tmp_path / "reference", out)
-
-
-def test_a_job_that_keeps_failing_fails_its_point_without_inventing_runs(tmp_path, monkeypatch):
-    from frictiondisk.engine import plan
-
-    def broken(*args):
-        raise RuntimeError("simulated worker crash")
-
-    monkeypatch.setattr(plan, "run_bisection", broken)  # a chain of runs
-    monkeypatch.setattr(plan, "run_batch", broken)  # a batch of independent runs
-    run_campaign(pin_line("[0.1]"), tmp_path, workers=1, progress=False)
-    with xr.open_dataset(tmp_path / "results.nc") as ds:
-        assert ds.status.values[0] == "failed"
-        assert "worker failed" in ds.reason.values[0] and "simulated worker crash" in str(
-            ds.reason.values[0]
-        )
-        assert int(ds.n_runs[0]) == 0
-    with xr.open_dataset(tmp_path / "runs.nc") as runs:
-        assert runs.sizes["run"] == 0
-    assert len(Journal(tmp_path)) == 0  # nothing journaled: a resume tries again
 
 
 def test_corrupted_entry_and_truncated_results_are_repaired(tmp_path):

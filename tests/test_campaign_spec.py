@@ -11,16 +11,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from frictiondisk.model.campaign import (
+from frictiondisk.model.scene import ConfigError, SceneConfig, scene_from_dict
+from frictiondisk.tasks.campaign import (
     Campaign,
-    FindJump,
     Point,
-    Scan,
     campaign_from_dict,
     campaign_from_text,
     load_campaign,
 )
-from frictiondisk.model.scene import ConfigError, SceneConfig, scene_from_dict
+from frictiondisk.tasks.find_jump.spec import FindJump
+from frictiondisk.tasks.scan.spec import Scan
 
 CAMPAIGNS = Path(__file__).resolve().parent.parent / "campaigns"
 

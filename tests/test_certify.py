@@ -1,4 +1,4 @@
-"""Certification of located jumps (frictiondisk.search.certify): the ladder on synthetic oracles
+"""Certification of located jumps (tasks/jump_search/certify.py): the ladder on synthetic oracles
 whose jump moves with the numerics level, as a short horizon moves it in the kernel."""
 
 from __future__ import annotations
@@ -6,9 +6,9 @@ from __future__ import annotations
 import pytest
 
 from frictiondisk.model.search_settings import OFF, Certify
-from frictiondisk.search.bisection import RunRequest
-from frictiondisk.search.certify import CertifiedBisection, point_certification
-from frictiondisk.search.jumps import JumpSearch
+from frictiondisk.tasks.jump_search.bisection import RunRequest
+from frictiondisk.tasks.jump_search.certify import CertifiedBisection, point_certification
+from frictiondisk.tasks.jump_search.jumps import JumpSearch
 
 TOL = 1e-4
 
@@ -169,7 +169,7 @@ def reserve_oracle(mu_star, reserve, undetermined=()):
 
 def drive_results(search, answer):
     """Feed `search` until done; answer(mu, strict) gives each run's result. As the engine
-    does (engine/in_order.py), a run the search no longer waits for is dropped."""
+    does (tasks/in_order.py), a run the search no longer waits for is dropped."""
     while not search.done:
         for request in list(search.pending()):
             if not search.done and request in search.pending():
@@ -240,8 +240,8 @@ def test_the_guided_opening_replays_to_the_same_runs():
 
 def test_a_certification_level_tightens_rtol_atol_and_lengthens_the_budget():
     from frictiondisk.model.scene import scene_from_dict
-    from frictiondisk.search.bisection import RunRequest
-    from frictiondisk.search.requests import run_config
+    from frictiondisk.tasks.jump_search.bisection import RunRequest
+    from frictiondisk.tasks.jump_search.requests import run_config
 
     point = scene_from_dict({"scene": "disk", "params": {"beta_b": 0.005}})
     for strict in (1, 2):
@@ -282,7 +282,7 @@ def test_a_re_search_that_stalls_is_uncertain_not_vanished():
 def test_certification_watches_only_when_asked():
     """certify.observe: the stricter levels take numerics.evidence observe."""
     from frictiondisk.model.scene import scene_from_dict
-    from frictiondisk.search.requests import run_config
+    from frictiondisk.tasks.jump_search.requests import run_config
 
     point = scene_from_dict({"scene": "pin"})
     plain = run_config(point, RunRequest(0.2, strict=1), 2.0, Certify())

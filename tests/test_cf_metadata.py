@@ -15,7 +15,7 @@ from conftest import outside_the_figure
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.tasks.campaign import campaign_from_text
 
 ACCURACY_PIN = Path(__file__).resolve().parents[1] / "campaigns" / "accuracy_pin.yaml"
 
@@ -172,7 +172,7 @@ def test_trajectory_measures_are_numbers_never_the_string_none(files):
 
 def test_a_basin_caption_does_not_give_a_sampled_key_its_base_value(files):
     from frictiondisk import plot_results
-    from frictiondisk.figures.campaign import caption_text
+    from frictiondisk.figures.shared import caption_text
 
     with xr.open_dataset(files["basin/results.nc"]) as ds:
         caption = caption_text(ds.load())
@@ -224,7 +224,7 @@ def test_the_measures_table_of_the_model_gives_the_units_of_the_files():
     said 1/rev there and 1 in the file)."""
     import re
 
-    from frictiondisk.store.datasets import RUN_MEASURES
+    from frictiondisk.store.measures import RUN_MEASURES
 
     text = (Path(__file__).resolve().parents[1] / "docs" / "model.md").read_text()
     rows = re.findall(r"^\| `(\w+)` \|.*\| ([^|]+) \|$", text, flags=re.MULTILINE)

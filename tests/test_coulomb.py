@@ -4,10 +4,10 @@ regularized model, and the located jump against the sticking-circle oracle."""
 import pytest
 from conftest import coulomb_mu_star, g_factor
 
-from frictiondisk.engine.tasks import run_bisection
+from frictiondisk.engine.worker import run_bisection
 from frictiondisk.model.scene import ConfigError, scene_from_dict
-from frictiondisk.search.bisection import Bisection
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.tasks.jump_search.bisection import Bisection
 
 G = g_factor()  # default pin [N/m]
 

@@ -78,12 +78,12 @@ def test_show_defaults_is_wired_to_the_console_script():
 
 
 def test_reference_document_is_generated_from_the_schemas():
-    from frictiondisk.model.reference import reference_markdown
+    from frictiondisk.tasks.reference import reference_markdown
 
     text = (ROOT / "docs" / "reference.md").read_text()
     assert text == reference_markdown(), (
         "docs/reference.md is out of date; regenerate it with: python -c "
-        '"from frictiondisk.model.reference import reference_markdown; '
+        '"from frictiondisk.tasks.reference import reference_markdown; '
         "open('docs/reference.md', 'w').write(reference_markdown())\""
     )
     for key in ("`params.mu`", "`numerics.rtol`", "`find_jump.tol`", "`basin.target_se`"):
@@ -99,12 +99,12 @@ def test_show_defaults_comments_every_key_with_unit_and_description():
 
 @pytest.mark.parametrize("task", ["find_jump", "scan", "trajectory", "basin", "trace"])
 def test_show_defaults_prints_a_task_s_keys(task):
-    from frictiondisk.model.campaign_spec import TASKS
+    from frictiondisk.tasks.registry import TASKS
 
     result = CliRunner().invoke(main, ["show-defaults", "--task", task])
     assert result.exit_code == 0, result.output
     assert result.output.startswith(f"{task}:")
-    for name in TASKS[task].model_fields:
+    for name in TASKS[task].spec.model_fields:
         assert f" {name}:" in result.output
     assert "find_jump:" not in CliRunner().invoke(main, ["show-defaults"]).output
 
@@ -122,7 +122,7 @@ def test_show_defaults_prints_a_task_s_keys(task):
 def test_show_defaults_task_block_loads_once_its_commented_keys_are_filled(task, good):
     """The printed block, pasted into a campaign with the keys it leaves commented out (the
     required ones, and those without a default) taken from a known-good campaign, loads."""
-    from frictiondisk.model.campaign import campaign_from_dict
+    from frictiondisk.tasks.campaign import campaign_from_dict
 
     result = CliRunner().invoke(main, ["show-defaults", "--task", task])
     assert result.exit_code == 0, result.output

@@ -10,10 +10,10 @@ import math
 import pytest
 from conftest import coulomb_mu_star, g_factor
 
-from frictiondisk.engine.tasks import run_bisection
+from frictiondisk.engine.worker import run_bisection
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.search.bisection import Bisection
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.tasks.jump_search.bisection import Bisection
 
 G = g_factor()  # default pin [N/m]
 BUDGET = {"max_steps": 2_000_000, "max_events": 200_000}

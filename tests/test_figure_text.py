@@ -14,9 +14,9 @@ from frictiondisk.figures.shared import (  # noqa: E402
     physics_text,
     scene_title,
 )
-from frictiondisk.model.campaign import campaign_from_text  # noqa: E402
 from frictiondisk.model.scene import scene_from_dict  # noqa: E402
 from frictiondisk.store import cf  # noqa: E402
+from frictiondisk.tasks.campaign import campaign_from_text  # noqa: E402
 
 LINE = """\
 name: diff_line
@@ -76,7 +76,8 @@ def test_a_changed_campaign_is_shown_rounded():
 def test_the_mu_star_table_lists_every_point():
     import numpy as np
 
-    from frictiondisk.store.table import mu_star_table
+    from frictiondisk.tasks.find_jump.table import mu_star_table
+    from frictiondisk.tasks.registry import TASKS
 
     ds = xr.Dataset(
         {
@@ -103,4 +104,4 @@ def test_the_mu_star_table_lists_every_point():
     ]
     assert lines[2].split() == ["0.05", "0.063300", "[0.063200,", "0.063400]", "14", "converged"]
     assert lines[3].split() == ["0.1", "-", "-", "3", "failed"]
-    assert mu_star_table(ds.assign_attrs(task="scan")) == []
+    assert TASKS["scan"].run_lines(ds.assign_attrs(task="scan")) == []  # its own table

@@ -1,78 +1,78 @@
-"""A campaign stopped by a real SIGTERM or SIGINT: a documented exit code, the finished
-points in a partial results.nc that `status` prints, and a resume that ends exactly where
-an uninterrupted run does."""
+"""A campaign stopped by a real signal: a documented exit code, the finished points in a
+partial results.nc that `status` prints, and a resume that completes them, the finished
+points as they were (that a resume ends where an uninterrupted run does, for every task:
+tests/test_task_contract.py). The campaigns run on the fake simulate (tests/fake_cli.py:
+the real command line, signal handlers, driver and journal; runs of 20 ms instead of the
+kernel's), but for a trajectory's one run, which must sit in the kernel."""
 
 import json
 import signal
 import subprocess
-import sys
 import time
 
 import numpy as np
 import pytest
 import xarray as xr
 from click.testing import CliRunner
-from conftest import HANG_S, LONG_CAMPAIGN, points_done, start_campaign_until, wait_for_cpu
+from conftest import (
+    HANG_S,
+    LONG_CAMPAIGN,
+    cli_command,
+    points_done,
+    start_campaign_until,
+    wait_for_cpu,
+)
+from fake_simulate import install
 
 from frictiondisk.cli import main
 
 CAMPAIGN = LONG_CAMPAIGN
+FAKE_RUN_S = 0.02  # [s] a fake run: the 48 points take seconds, time enough to stop them
 
 
-@pytest.fixture(scope="module")
-def reference(tmp_path_factory):
-    root = tmp_path_factory.mktemp("stop")
-    spec = root / "c.yaml"
-    spec.write_text(CAMPAIGN)
-    result = CliRunner().invoke(main, ["run", str(spec), "-o", str(root / "whole")])
-    assert result.exit_code == 0, result.output
-    return spec, root / "whole"
+@pytest.fixture
+def spec(tmp_path):
+    path = tmp_path / "c.yaml"
+    path.write_text(CAMPAIGN)
+    return path
 
 
-@pytest.mark.parametrize(
-    ("sig", "code", "word"),
-    [
-        (signal.SIGTERM, 143, "terminated"),
-        (signal.SIGINT, 130, "interrupted"),
-        (signal.SIGHUP, 129, "hung up"),
-    ],
-)
-def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(
-    reference, tmp_path, sig, code, word
-):
-    spec, whole = reference
+def test_a_stopped_campaign_keeps_its_finished_points_and_resumes(spec, tmp_path, monkeypatch):
+    """SIGTERM (a batch scheduler, `kill`); Ctrl-C and SIGHUP take the same path to their
+    own exit codes (signals.describe_stop, and test_a_closed_terminal_... below)."""
     out = tmp_path / "stopped"
-    proc = start_campaign_until(spec, out)
-    proc.send_signal(sig)
+    proc = start_campaign_until(spec, out, fake_delay=FAKE_RUN_S)
+    proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=HANG_S)
-    assert proc.returncode == code, err
-    assert word in err and "frictiondisk resume" in err
-    if sig != signal.SIGINT:  # a drain notice, if any, names the signal that was sent
-        assert "Ctrl-C again" not in err, err
+    assert proc.returncode == 143, err
+    assert "terminated" in err and "frictiondisk resume" in err
+    assert "Ctrl-C again" not in err, err  # a drain notice names the signal that was sent
 
-    with xr.open_dataset(out / "results.nc") as part, xr.open_dataset(whole / "results.nc") as ref:
-        assert part.attrs["partial"] == 1
-        done = part["status"].values != "pending"
-        assert part.attrs["points_done"] == done.sum() >= 2
-        assert (~done).any()  # stopped before the end
-        # every finished point is the point an uninterrupted run finds
-        np.testing.assert_array_equal(part["mu_star"].values[done], ref["mu_star"].values[done])
-        assert np.isnan(part["mu_star"].values[~done]).all()
-        assert set(part["certification"].values[~done]) == {-1}  # flag "pending"
+    with xr.open_dataset(out / "results.nc") as part:
+        part = part.load()
+    assert part.attrs["partial"] == 1
+    done = part["status"].values != "pending"
+    assert part.attrs["points_done"] == done.sum() >= 2
+    assert (~done).any()  # stopped before the end
+    assert np.isnan(part["mu_star"].values[~done]).all()
+    assert set(part["certification"].values[~done]) == {-1}  # flag "pending"
 
     status = CliRunner().invoke(main, ["status", str(out)])
     assert status.exit_code == 0, status.output
     assert "(partial: " in status.output and "pending" in status.output
     assert "mu* per point" in status.output
 
+    install(monkeypatch)  # the same fake here, without its delay
     resumed = CliRunner().invoke(main, ["resume", str(out)])
     assert resumed.exit_code == 0, resumed.output
-    with xr.open_dataset(out / "results.nc") as a, xr.open_dataset(whole / "results.nc") as b:
-        assert "partial" not in a.attrs
-        xr.testing.assert_identical(a.load(), b.load())
+    with xr.open_dataset(out / "results.nc") as whole:
+        assert "partial" not in whole.attrs
+        assert "pending" not in set(whole["status"].values)
+        # every finished point is the point the whole campaign has
+        np.testing.assert_array_equal(part["mu_star"].values[done], whole["mu_star"].values[done])
 
 
-# a disk from rest, prescanned: a point takes a dozen runs of about a second
+# a disk from rest, prescanned: a point takes a dozen runs (of 0.3 s on the fake)
 SLOW_DISK = """\
 name: slow_disk
 scene: disk
@@ -93,7 +93,8 @@ def test_a_stop_before_the_first_point_leaves_every_point_pending(tmp_path):
     spec = tmp_path / "disk.yaml"
     spec.write_text(SLOW_DISK)
     out = tmp_path / "out"
-    proc = start_campaign_until(spec, out, until=lambda: any(out.glob("journal/*/*")))
+    first_run = lambda: any(out.glob("journal/*/*"))  # noqa: E731
+    proc = start_campaign_until(spec, out, until=first_run, fake_delay=0.3)
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=HANG_S)
     assert proc.returncode == 143, err
@@ -123,6 +124,12 @@ def test_the_drain_notice_names_the_action_that_drops_the_runs_in_flight():
     assert drop_hint(KeyboardInterrupt()) == "Ctrl-C again to drop them"
     assert drop_hint(Terminated()) == f"SIGTERM again, kill {os.getpid()}, to drop them"
     assert drop_hint(HungUp()) == f"SIGTERM, kill {os.getpid()}, to drop them"
+    # what a stop says and its exit code (the real signals: the tests above and below)
+    from frictiondisk.engine.signals import describe_stop
+
+    assert describe_stop(KeyboardInterrupt()) == ("interrupted", 130)
+    assert describe_stop(Terminated()) == ("terminated (SIGTERM)", 143)
+    assert describe_stop(HungUp()) == ("hung up (SIGHUP: the terminal closed)", 129)
 
 
 @pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
@@ -146,8 +153,8 @@ def test_a_stop_raised_inside_a_finalizer_still_stops_the_campaign_loop():
         del obj
         gc.collect()
         with pytest.raises(signals.Terminated):
-            signals._raise_if_stop_requested()
-    signals._stop_requested.clear()
+            signals.raise_if_stop_requested()
+    signals.clear_stop_requests()
     assert signal.getsignal(signal.SIGTERM) is before
 
 
@@ -210,7 +217,7 @@ def test_a_trajectory_run_stops_at_once_on_sigterm(tmp_path):
     assert not (out / "trajectory.nc").exists()  # nothing half-written
 
 
-def test_a_closed_terminal_stops_the_campaign_gracefully(reference, tmp_path):
+def test_a_closed_terminal_stops_the_campaign_gracefully(spec, tmp_path):
     """The real thing behind SIGHUP: the campaign's terminal goes away, so besides the
     signal every later write to it fails (EIO). Progress and messages are lost; the
     finished points are not."""
@@ -218,14 +225,12 @@ def test_a_closed_terminal_stops_the_campaign_gracefully(reference, tmp_path):
     import pty
     import select
 
-    spec, _ = reference
     out = tmp_path / "hung_up"
     pid, terminal = pty.fork()
     if pid == 0:  # the child: its controlling terminal is the pty
-        os.execv(
-            sys.executable,
-            [sys.executable, "-m", "frictiondisk.cli", "run", str(spec), "-o", str(out)],
-        )
+        os.environ["FAKE_SIMULATE_DELAY_S"] = str(FAKE_RUN_S)
+        command = cli_command(FAKE_RUN_S)
+        os.execv(command[0], [*command, "run", str(spec), "-o", str(out)])
     t0 = time.time()
     while time.time() - t0 < HANG_S and points_done(out) < 2:
         if select.select([terminal], [], [], 0.02)[0]:

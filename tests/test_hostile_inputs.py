@@ -32,11 +32,11 @@ from hypothesis import strategies as st
 from frictiondisk.cli import main
 from frictiondisk.engine import budget
 from frictiondisk.engine import driver as driver_module
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.limits import max_workers
 from frictiondisk.model.scene import ConfigError, scene_from_dict
 from frictiondisk.model.yamlio import load_yaml_text
-from frictiondisk.store import journal as journal_module
+from frictiondisk.store import journal_entry as journal_module
+from frictiondisk.tasks.campaign import campaign_from_text
 
 REPO = Path(__file__).resolve().parent.parent
 BOUND_S = 30.0  # the bound on every case
@@ -83,7 +83,7 @@ def no_kernel(monkeypatch):
     monkeypatch.setattr(
         importlib.import_module("frictiondisk.simulation.simulate"), "simulate", tripwire
     )
-    monkeypatch.setattr(driver_module._Driver, "run", tripwire)
+    monkeypatch.setattr(driver_module.Driver, "run", tripwire)
 
 
 def _write(path: Path, text: str) -> Path:
@@ -346,7 +346,7 @@ def test_forged_and_corrupt_entries_are_reported_rejected_and_recomputed(campaig
     first, second, third = _entries(campaign_dir)[:3]
     forged = json.loads(first.read_text())
     forged["inputs"] = json.loads(second.read_text())["inputs"]  # another run's inputs
-    forged["sha256"] = journal_module._entry_digest(
+    forged["sha256"] = journal_module.entry_digest(
         forged["key"], forged["inputs"], forged["result"]
     )
     first.write_text(json.dumps(forged))

@@ -18,14 +18,16 @@ import pytest
 import xarray as xr
 
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.store import journal as journal_module
+from frictiondisk.store import journal_entry as journal_module
 from frictiondisk.store.files import (
     atomic_write_bytes,
     atomic_write_netcdf,
     atomic_write_text,
     netcdf_is_valid,
 )
-from frictiondisk.store.journal import Journal, kernel_version, run_key
+from frictiondisk.store.journal import Journal
+from frictiondisk.store.journal_audit import moved_aside
+from frictiondisk.store.journal_entry import kernel_version, run_key
 from frictiondisk.store.lock import CampaignLock, CampaignLocked
 
 RESULT = {"outcome": "stick_slip", "t_stick": None, "x_amplitude": 0.0123456789, "n_events": 42}
@@ -168,7 +170,7 @@ def _inputs_of_another_run(path: Path) -> None:
     """A mix-up: another run's inputs, with the sha256 made consistent again."""
     entry = json.loads(path.read_text())
     entry["inputs"] = _inputs(_key(999))
-    entry["sha256"] = journal_module._entry_digest(entry["key"], entry["inputs"], entry["result"])
+    entry["sha256"] = journal_module.entry_digest(entry["key"], entry["inputs"], entry["result"])
     path.write_text(json.dumps(entry))
 
 
@@ -200,7 +202,7 @@ def test_damaged_entry_is_detected_moved_and_recomputable(tmp_path, damage, reas
     assert not journal.entry_path(key).exists()
     moved = sorted(p.name for p in (tmp_path / "journal" / "corrupt").iterdir())
     assert moved == [f"{key}.1.json", "reasons.log"]
-    assert Journal.moved_aside(tmp_path) == [f"{key}.1.json: {journal.corrupt_reasons[0][66:]}"]
+    assert moved_aside(tmp_path) == [f"{key}.1.json: {journal.corrupt_reasons[0][66:]}"]
     assert journal.keys() == [other] and journal.get(other) == RESULT
 
     assert journal.get(key) is None and journal.n_corrupt == 1  # now missing, not corrupt

@@ -1,4 +1,4 @@
-"""Every jump of a point: prescan, then bisect each change (frictiondisk/search/jumps.py), and the
+"""Every jump of a point: prescan, then bisect each change (tasks/jump_search/jumps.py), and the
 find_jump `prescan` end to end."""
 
 import math
@@ -9,10 +9,10 @@ import xarray as xr
 from conftest import coulomb_mu_star
 
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.search_settings import OFF, Certify
-from frictiondisk.search.bisection import RunRequest
-from frictiondisk.search.jumps import JumpSearch
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.jump_search.bisection import RunRequest
+from frictiondisk.tasks.jump_search.jumps import JumpSearch
 
 
 def drive(search, outcome_of):

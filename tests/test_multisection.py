@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from frictiondisk.search.bisection import Bisection
-from frictiondisk.search.jumps import JumpSearch
+from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.jumps import JumpSearch
 
 
 def drive(search, oracle, order=None):
@@ -103,8 +103,8 @@ def test_split_below_two_is_refused():
 
 @pytest.mark.parametrize("value", [1, 0, 2.5, 65, "three"])
 def test_a_bad_split_is_refused_naming_the_field_and_range(value):
-    from frictiondisk.model.campaign import campaign_from_text
     from frictiondisk.model.scene import ConfigError
+    from frictiondisk.tasks.campaign import campaign_from_text
 
     text = f"""name: c
 scene: pin
@@ -119,7 +119,7 @@ find_jump:
 
 
 def test_split_two_keeps_the_campaign_hash_and_other_splits_change_it():
-    from frictiondisk.model.campaign import campaign_from_text
+    from frictiondisk.tasks.campaign import campaign_from_text
 
     base = "name: c\nscene: pin\nfind_jump:\n  bracket: [0.05, 0.3]\n{}  along: {{params.x_ms: [0.1]}}\n"
     plain = campaign_from_text(base.format(""), "<t>")

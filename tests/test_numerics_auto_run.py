@@ -10,8 +10,8 @@ from click.testing import CliRunner
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.store.cf import flag_meanings
+from frictiondisk.tasks.campaign import campaign_from_text
 
 FIXED = """\
 name: fixed

@@ -1,4 +1,4 @@
-"""Work units below a point (campaign/plan.py): however the runs are cut into tasks
+"""Work units below a point (tasks/find_jump/planner.py): however the runs are cut into tasks
 (batch size, chains, workers) and whatever order the tasks come back in, the planner
 reaches the same results. Synthetic outcomes, no simulation."""
 
@@ -6,10 +6,10 @@ import random
 
 import pytest
 
-from frictiondisk.engine.plan import JumpPlanner, Sizing
-from frictiondisk.engine.tasks import run_batch, run_bisection
-from frictiondisk.model.campaign import campaign_from_text
-from frictiondisk.search.prescan import default_stride
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.find_jump.planner import JumpPlanner
+from frictiondisk.tasks.jobs import RunScenes, Sizing
+from frictiondisk.tasks.jump_search.prescan import default_stride
 
 PRESCAN = """\
 name: units
@@ -42,15 +42,14 @@ def fake(canonical):
     return {"outcome": outcome(params["mu"], params["x_ms"]), "reason": "oracle", "wall_s": 0}
 
 
-def execute(function, args):
+def execute(job):
     """What a worker would return, with outcomes from the oracle."""
-    if function is run_batch:
-        return [fake(c) for c in args[0]], 0.0
-    assert function is run_bisection
-    bis, point, _, _, budget = args
+    if isinstance(job, RunScenes):
+        return [fake(c) for c in job.scenes]
+    bis, point, budget = job.search, job.scene_of.point, job.budget_s
     made = []
     while not bis.done:
-        request = bis.pending()[0]  # the first pending run first, as tasks.run_bisection
+        request = bis.pending()[0]  # the first pending run first, as worker.run_search
         x_ms = point["params"]["x_ms"]
         result = {"outcome": outcome(request.mu, x_ms), "reason": "oracle", "wall_s": 0}
         bis.feed(request, result)
@@ -66,11 +65,10 @@ def run_planner(text: str, sizing: Sizing, rng: random.Random):
     journaled = []
     while not planner.done:
         planner.requests()
-        for job, function, args in planner.jobs("/nonexistent", sizing):
-            in_flight.append((job, function, args))
+        in_flight += planner.jobs(sizing)
         assert in_flight, "stalled"
-        job, function, args = in_flight.pop(rng.randrange(len(in_flight)))
-        journaled += planner.complete(job, execute(function, args))
+        job, work = in_flight.pop(rng.randrange(len(in_flight)))
+        journaled += planner.complete(job, execute(work))
     results = [planner.results[i] for i in range(len(planner.points))]
     return results, sorted((i, r.mu, r.level, r.strict) for i, r, _ in journaled)
 
@@ -94,17 +92,29 @@ def test_results_do_not_depend_on_how_runs_are_cut_or_their_order(template, spli
         assert again == runs
 
 
+def test_a_row_starts_its_ends_cold_and_every_inner_point_warm():
+    """Coarse to fine: the ends start cold, every inner point interpolates its bracket
+    from the two that bound it, which saves search runs (results.nc warm_start)."""
+    planner = JumpPlanner(campaign_from_text(WARM.format(split=2), "<test>"))
+    while not planner.done:
+        for job, work in planner.jobs(Sizing(chain_s=1.0)):
+            planner.complete(job, execute(work))
+    assert [planner.warm[i] for i in range(5)] == [False, True, True, True, False]
+    assert all(r.status == "converged" for r in planner.results.values())
+    assert planner.runs_saved() > 0
+
+
 def test_a_prescan_goes_out_at_once_in_batches_across_workers():
     planner = JumpPlanner(campaign_from_text(PRESCAN.format(split=2), "<test>"))
-    jobs = planner.jobs("/nonexistent", Sizing(batch_runs=3, chain_s=1.0, workers=4))
-    sizes = [len(args[0]) for _, function, args in jobs if function is run_batch]
+    jobs = planner.jobs(Sizing(batch_runs=3, chain_s=1.0, workers=4))
+    sizes = [len(work.scenes) for _, work in jobs if isinstance(work, RunScenes)]
     stride = default_stride(8, "decide", "corotation")  # the adaptive prescan's coarse grid
     coarse = len(set(range(0, 8, stride)) | {7})
     assert stride > 1 and sum(sizes) == 4 * coarse  # every coarse value of every point, once
     assert max(sizes) == 3
     # a window of 2 tasks hands out 2 tasks; the rest follow as tasks come back
     planner = JumpPlanner(campaign_from_text(PRESCAN.format(split=2), "<test>"))
-    assert len(planner.jobs("/nonexistent", Sizing(batch_runs=3, max_jobs=2, workers=4))) == 2
+    assert len(planner.jobs(Sizing(batch_runs=3, max_jobs=2, workers=4))) == 2
 
 
 class NeedlessSecond:

@@ -1,13 +1,18 @@
-"""The adaptive prescan (frictiondisk/search/prescan.py): a coarse grid, refined where verdicts
+"""The adaptive prescan (frictiondisk/tasks/jump_search/prescan.py): a coarse grid, refined where verdicts
 change or the friction reserve does not explain them; the same jumps as a dense prescan."""
 
 import numpy as np
 import pytest
 
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.scene import ConfigError
-from frictiondisk.search.jumps import JumpSearch
-from frictiondisk.search.prescan import AdaptiveGrid, default_stride, needs_a_run_inside, stride_of
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.jump_search.jumps import JumpSearch
+from frictiondisk.tasks.jump_search.prescan import (
+    AdaptiveGrid,
+    default_stride,
+    needs_a_run_inside,
+    stride_of,
+)
 
 GRID = tuple(float(mu) for mu in np.round(np.linspace(0.05, 0.40, 36), 6))
 

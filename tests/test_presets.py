@@ -2,7 +2,6 @@
 
 import pytest
 
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.scene import (
     NUMERICS_PRESETS,
     ConfigError,
@@ -10,7 +9,8 @@ from frictiondisk.model.scene import (
     load_scene,
     scene_from_dict,
 )
-from frictiondisk.store.journal import run_key
+from frictiondisk.store.journal_entry import run_key
+from frictiondisk.tasks.campaign import campaign_from_text
 
 PRESET_KEYS = ("method", "rtol", "atol", "dt", "h_max")
 

@@ -10,10 +10,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from frictiondisk.engine.plan import refinement
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.scene import ConfigError
-from frictiondisk.search.bisection import ITP_SLACK, Bisection
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.find_jump.planner import refinement
+from frictiondisk.tasks.jump_search.bisection import ITP_SLACK, Bisection
 
 BRACKET, LIMITS = (0.05, 0.3), (1e-6, 10.0)
 

@@ -13,9 +13,9 @@ import yaml
 from click.testing import CliRunner
 
 from frictiondisk.cli import main
-from frictiondisk.model.campaign import campaign_from_dict, load_campaign
-from frictiondisk.model.campaign_spec import TASK_KEYS
 from frictiondisk.model.scene import ConfigError, load_scene, scene_from_dict
+from frictiondisk.tasks.campaign import campaign_from_dict, load_campaign
+from frictiondisk.tasks.registry import TASKS
 
 CAMPAIGNS = Path(__file__).resolve().parents[1] / "campaigns"
 
@@ -190,7 +190,7 @@ def test_a_pin_s_canonical_form_round_trips_without_the_disk_keys(tmp_path):
 
 def _is_campaign(path: Path) -> bool:
     data = yaml.safe_load(path.read_text())
-    return any(task in data for task in TASK_KEYS)
+    return any(task in data for task in TASKS)
 
 
 @pytest.mark.parametrize("path", sorted(CAMPAIGNS.glob("*.yaml")), ids=lambda p: p.name)

@@ -1,7 +1,8 @@
 """Several campaigns in one process (`run A.yaml B.yaml -o DIR`, run_campaigns): each into
 DIR/<name>/ with the files it gets on its own, runs scheduled together on one client, a
 SIGTERM that stops them all gracefully, and a resume that ends where an uninterrupted run
-does; `status` and `resume` of the folder; the refusals."""
+does; `status` and `resume` of the folder; the refusals. The engine's promises, on the
+fake simulate (tests/fake_simulate.py)."""
 
 from __future__ import annotations
 
@@ -11,11 +12,12 @@ import pytest
 import xarray as xr
 from click.testing import CliRunner
 from conftest import HANG_S, points_done, start_campaign_until
+from fake_simulate import install
 
 from frictiondisk import run_campaigns
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import _partial_note, run_campaign
-from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.tasks.campaign import campaign_from_text
 
 PIN = """\
 name: {name}
@@ -39,7 +41,7 @@ scene: pin
 numerics: {t_decide: 5.0}
 scan: {mu: [0.1, 0.2]}
 """
-# a trace: its progress counts curve points, its files are built by store/trace_datasets
+# a trace: its progress counts curve points, its files are built by tasks/trace/datasets.py
 TRACE = """\
 name: traced
 scene: pin
@@ -52,7 +54,8 @@ trace:
   resolution: 0.5
   first_look: {keys: 2, mu: 6}
 """
-# 12 points at tol 1e-8, one in flight at a time: seconds each, long enough to stop both
+# 12 points at tol 1e-8, one in flight at a time: long enough to stop both (runs of 20 ms on
+# the fake simulate)
 LONG = """\
 name: {name}
 scene: pin
@@ -88,7 +91,10 @@ def _untimed(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
-def test_campaigns_run_together_write_what_each_writes_on_its_own(tmp_path):
+def test_campaigns_run_together_write_what_each_writes_on_its_own(tmp_path, monkeypatch):
+    """Every task among them (on the fake simulate: this is the engine's promise, the
+    kernel's runs are the tasks' smoke tests)."""
+    install(monkeypatch)
     campaigns = _campaigns()
     summaries = run_campaigns(campaigns, tmp_path / "together")
     assert [s.results.parent.name for s in summaries] == [c.name for c in campaigns]
@@ -147,16 +153,22 @@ def long_pair(tmp_path_factory):
         spec.write_text(LONG.format(name=name, start=start, stop=stop))
         specs.append(spec)
     whole = root / "whole"
-    result = CliRunner().invoke(main, ["run", *map(str, specs), "-o", str(whole)])
+    with pytest.MonkeyPatch.context() as mp:
+        install(mp)  # on the fake simulate, as the stopped run below
+        result = CliRunner().invoke(main, ["run", *map(str, specs), "-o", str(whole)])
     assert result.exit_code == 0, result.output
     return specs, whole
 
 
-def test_sigterm_stops_every_campaign_and_resume_finishes_them_identically(long_pair, tmp_path):
+def test_sigterm_stops_every_campaign_and_resume_finishes_them_identically(
+    long_pair, tmp_path, monkeypatch
+):
+    """On the fake simulate (tests/fake_cli.py: the real command line, driver and journal)."""
     specs, whole = long_pair
     names = ["left", "right"]
     out = tmp_path / "stopped"
-    proc = start_campaign_until(specs, out, until=lambda: min(_folder_points(out, names)) >= 1)
+    started = lambda: min(_folder_points(out, names)) >= 1  # noqa: E731
+    proc = start_campaign_until(specs, out, until=started, fake_delay=0.02)
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=HANG_S)
     assert proc.returncode == 143, err
@@ -171,6 +183,7 @@ def test_sigterm_stops_every_campaign_and_resume_finishes_them_identically(long_
     assert status.exit_code == 0, status.output
     assert status.output.count("state:     interrupted") == 2
 
+    install(monkeypatch)
     resumed = CliRunner().invoke(main, ["resume", str(out)])
     assert resumed.exit_code == 0, resumed.output
     assert "all 2 campaigns done" in resumed.output

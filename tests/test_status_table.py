@@ -10,7 +10,9 @@ import xarray as xr
 from click.testing import CliRunner
 
 from frictiondisk.cli import main
-from frictiondisk.store.table import mu_star_table, scan_table
+from frictiondisk.tasks.find_jump.table import mu_star_table
+from frictiondisk.tasks.registry import TASKS
+from frictiondisk.tasks.scan.table import scan_table
 
 REASON = "prescan undetermined at mu = 0.065 after every retry"
 
@@ -98,7 +100,7 @@ def test_a_scan_table_shows_outcome_and_size_per_point():
     assert rows[2] == ["0.13", "0", "undetermined", "-", "-"]
     assert "  mu = 0.13, x0 = 0.01" not in lines  # a stick needs no reason
     assert "  mu = 0.13, x0 = 0: still settling at the horizon" in lines, lines
-    assert scan_table(ds.assign_attrs(task="find_jump")) == []
+    assert TASKS["find_jump"].run_lines(ds.assign_attrs(task="find_jump")) == []  # its own
 
 
 FAILING = """\

@@ -1,5 +1,5 @@
 """The trace's state machines on synthetic planes whose jump curves are known exactly
-(frictiondisk.search.trace, trace_branch, trace_joins, fold, plane): no simulation.
+(frictiondisk.tasks.trace.tracer, trace_branch, trace_joins, fold, plane): no simulation.
 
 Each plane says stick / not stick at (key, mu) from a formula; the oracles are the
 formula's curves and tips, with tolerances in units of the requested tol."""
@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 from frictiondisk.model.search_settings import Certify
-from frictiondisk.search.plane import PlaneRequest, found_bracket, line_bisection
-from frictiondisk.search.trace import Tracer, TraceSettings, key_turns
-from frictiondisk.search.trace_steps import Plane
+from frictiondisk.tasks.trace.plane import PlaneRequest, found_bracket, line_bisection
+from frictiondisk.tasks.trace.steps import Plane
+from frictiondisk.tasks.trace.tracer import Tracer, TraceSettings, key_turns
 
 TOL = 1e-3
 

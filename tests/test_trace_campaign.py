@@ -1,11 +1,9 @@
-"""The trace task end to end on the pin (cheap runs): the jump line mu* = 1.26723 x_ms
-traced within 2 tol, brackets that simulate true, results independent of how the runs
-were scheduled, a resume from the journal, the files, status and figure; and a Stribeck
-pin whose gap between two jumps closes in a fold, located and checked by simulation."""
+"""The trace task end to end on the pin (cheap runs; its contract with the engine is
+tests/test_task_contract.py): the jump line mu* = 1.26723 x_ms traced within 2 tol,
+brackets that simulate true, the files, status and figure; and a Stribeck pin whose gap
+between two jumps closes in a fold, located and checked by simulation."""
 
 from __future__ import annotations
-
-import shutil
 
 import numpy as np
 import pytest
@@ -14,14 +12,12 @@ from click.testing import CliRunner
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.engine.trace_plan import TracePlanner
-from frictiondisk.model.campaign import campaign_from_text
 from frictiondisk.model.scene import ConfigError
-from frictiondisk.search.bisection import STICK, RunRequest
-from frictiondisk.search.requests import run_config
 from frictiondisk.simulation.simulate import simulate
-from frictiondisk.store import trace_datasets
-from frictiondisk.store.partial import with_pending
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.jump_search.bisection import STICK, RunRequest
+from frictiondisk.tasks.jump_search.requests import run_config
+from frictiondisk.tasks.trace.planner import TracePlanner
 
 # docs/model.md section 7: line campaigns at rtol 1e-10 give mu* = 1.2672345 x_ms to 2e-8
 # over x_ms = 0.06 ... 0.14 (issue 31)
@@ -113,26 +109,6 @@ def test_traced_brackets_are_true_brackets(pin):
         assert sticks_at(campaign, key, hi, strict)
 
 
-def test_a_trace_does_not_depend_on_workers_and_resumes_from_its_journal(pin, tmp_path):
-    """The campaign run on 2 Dask workers, driven here one run at a time, and rebuilt from
-    its journal with nothing computed: the same curve, point by point."""
-    campaign, out, summary = pin
-    with xr.open_dataset(out / "results.nc") as ds:
-        dask_points = np.c_[ds["x_ms"].values, ds["mu_lo"].values, ds["mu_hi"].values]
-    planner = run_here(campaign)
-    here = trace_datasets.results_dataset(campaign, planner)
-    assert np.array_equal(
-        dask_points, np.c_[here["x_ms"].values, here["mu_lo"].values, here["mu_hi"].values]
-    )
-    copy = tmp_path / "copy"
-    shutil.copytree(out, copy)
-    (copy / "results.nc").unlink()
-    resumed = run_campaign(None, copy, 1, None, False, progress=False)
-    assert resumed.runs_computed == 0 and resumed.runs_total == summary.runs_total
-    with xr.open_dataset(out / "results.nc") as a, xr.open_dataset(copy / "results.nc") as b:
-        xr.testing.assert_identical(a.drop_attrs(), b.drop_attrs())
-
-
 def test_a_partial_trace_writes_the_curves_found_so_far(pin):
     campaign, _, _ = pin
     planner = TracePlanner(campaign)
@@ -140,7 +116,7 @@ def test_a_partial_trace_writes_the_curves_found_so_far(pin):
         for i, request in planner.requests()[:1]:
             planner.feed(i, request, simulate(planner.config_for(i, request)).summary())
     assert not planner.done
-    ds = trace_datasets.results_dataset(campaign, with_pending("trace", planner))
+    ds = planner.snapshot().to_dataset()
     assert ds.attrs["status"] == "pending" and ds.sizes["point"] >= 2
 
 

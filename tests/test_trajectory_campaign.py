@@ -8,8 +8,8 @@ from click.testing import CliRunner
 
 from frictiondisk.cli import main
 from frictiondisk.engine.runner import run_campaign
-from frictiondisk.figures.orbit import cycle_window
-from frictiondisk.model.campaign import campaign_from_text
+from frictiondisk.tasks.campaign import campaign_from_text
+from frictiondisk.tasks.trajectory.figure import cycle_window
 
 CYCLE = """\
 name: cycle

@@ -1,5 +1,5 @@
 """The headline is the lowest rising jump that persists, certified with the grid below it
-(frictiondisk/search/jumps.py, docs/model.md section 7): sticking sets in mu with a known
+(frictiondisk/tasks/jump_search/jumps.py, docs/model.md section 7): sticking sets in mu with a known
 answer, fed to a JumpSearch as a synthetic oracle."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from frictiondisk.model.search_settings import OFF, Certify
-from frictiondisk.search.jumps import JumpSearch
+from frictiondisk.tasks.jump_search.jumps import JumpSearch
 
 TOL = 1e-4
 
@@ -132,7 +132,7 @@ def test_the_disk_s_isolated_sticking_value_is_a_window_and_the_jump_near_0_072_
     # creeps onto the master axis), not at 0.0653, and for good from about 0.072 on
     from frictiondisk import open_results
     from frictiondisk.engine.runner import run_campaign
-    from frictiondisk.model.campaign import campaign_from_text
+    from frictiondisk.tasks.campaign import campaign_from_text
 
     run_campaign(campaign_from_text(ISOLATED, "<test>"), tmp_path, workers=2, progress=False)
     res = open_results(tmp_path)

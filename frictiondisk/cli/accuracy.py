@@ -1,4 +1,5 @@
-"""`frictiondisk accuracy`: the accuracy study of a find_jump campaign (thin; see study.py).
+"""`frictiondisk accuracy`: the accuracy study of a find_jump campaign (thin; the study is
+frictiondisk/tasks/accuracy/, run here by frictiondisk.engine.local).
 
 Exit codes: 0 done (failed bisections are rows with their reason), 2 bad command line or
 campaign file (the message names the field), 1 any other failure.
@@ -6,7 +7,6 @@ campaign file (the message names the field), 1 any other failure.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import click
@@ -82,9 +82,11 @@ def accuracy(
     its cost. Writes DIR/accuracy.nc and the work-precision figure DIR/work_precision.png
     (and .pdf). Progress goes to stderr.
     """
-    from frictiondisk.model.campaign import load_campaign
     from frictiondisk.model.scene import ConfigError
-    from frictiondisk.search.accuracy_ladder import check_knobs
+    from frictiondisk.tasks.campaign import load_campaign
+    from frictiondisk.tasks.registry import STUDIES
+
+    study = STUDIES["accuracy"]
 
     source = str(campaign_file)
     if not campaign_file.is_file():
@@ -95,61 +97,22 @@ def accuracy(
         fail(source, list(exc.problems))
     except OSError as exc:
         fail(source, [f"cannot read the campaign file: {exc.strerror or exc}"])
-    if campaign.kind != "find_jump":
-        fail(
-            source,
-            [
-                f"{campaign.kind}: the accuracy study needs a find_jump task (it bisects mu*); "
-                f"this campaign has a {campaign.kind} task"
-            ],
-        )
-    problems = []
-    n_points = math.prod(campaign.shape)
-    if not 0 <= point < n_points:
-        problems.append(
-            f"--point: {point} is out of range: the campaign has {n_points} points "
-            f"(0 ... {n_points - 1})"
-        )
-    width = campaign.task.bracket[1] - campaign.task.bracket[0]
-    if not (math.isfinite(tol) and 0.0 < tol < width):
-        problems.append(
-            f"--tol: {tol!r} is out of range: must be > 0 and < {width:g} "
-            "(the width of find_jump.bracket)"
-        )
-    problems += check_knobs(knobs, campaign.base.scene)
+    problems = study.applies_to(campaign) or study.option_problems(campaign, point, tol, knobs)
     if problems:
         fail(source, problems)
 
     import matplotlib
 
     matplotlib.use("Agg")
-    from frictiondisk.engine.accuracy_study import run_study
-    from frictiondisk.figures.accuracy import work_precision_figure
+    from frictiondisk.engine.local import run_study
     from frictiondisk.figures.plotting import save_figure
     from frictiondisk.store.files import atomic_write_netcdf
 
-    ds = run_study(campaign, point, knobs, tol, quick, workers)
+    ds = run_study(study.study(campaign, point, knobs, tol, quick), workers)
     nc = atomic_write_netcdf(ds, out_dir / "accuracy.nc")
-    fig = work_precision_figure(ds)
+    fig = study.figure(ds)
     png = save_figure(fig, out_dir / "work_precision.png")
     pdf = save_figure(fig, out_dir / "work_precision.pdf")
-    click.echo(summary_table(ds))
+    click.echo(study.table(ds))
     click.echo(f"dataset: {nc}")
     click.echo(f"figure:  {png} (and {pdf.name})")
-
-
-def summary_table(ds) -> str:
-    """One line per row: knob, setting, mu*, error, steps, wall time, status."""
-    head = f"{'knob':10s} {'setting':42s} {'mu*':>14s} {'error':>9s} {'steps':>9s} {'wall_s':>8s}"
-    lines = [head]
-    for i in range(ds.sizes["setting"]):
-        row = {name: ds[name].values[i] for name in ds.data_vars}
-        mark = " (ref)" if row["is_reference"] else ""
-        error = f"{row['error']:9.2e}" if math.isfinite(row["error"]) else f"{'-':>9s}"
-        mu = f"{row['mu_star']:14.10f}" if math.isfinite(row["mu_star"]) else f"{'-':>14s}"
-        status = "" if row["status"] == "converged" else f"  {row['status']}: {row['reason']}"
-        lines.append(
-            f"{str(row['knob']):10s} {(str(row['label']) + mark)[:42]:42s} {mu} {error} "
-            f"{int(row['n_steps']):9d} {row['wall_s']:8.3f}{status}"
-        )
-    return "\n".join(lines)

@@ -1,4 +1,5 @@
-"""Campaign commands: `run`, `resume`, `status` (thin; the work is in frictiondisk/engine/),
+"""Campaign commands: `run`, `resume`, `status` (thin; the work is in frictiondisk/engine/:
+the runner, and what `status` reports, engine/status.py),
 for one campaign in DIR or several in DIR/<name>/ (`run A.yaml B.yaml -o DIR`).
 
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
@@ -14,9 +15,7 @@ with the finished points, marked partial; resume continues.
 from __future__ import annotations
 
 import contextlib
-import json
 import signal
-import time
 from pathlib import Path
 
 import click
@@ -186,23 +185,13 @@ def _echo_numerics(campaign, label: str = "") -> None:
 
 
 def _echo_closing(results_path: Path, indent: str = "") -> None:
-    """The closing lines of a finished campaign, read from results.nc once: the answer (a
-    find_jump's mu* table, a scan's outcome per point), and for a find_jump with uncertain
-    points their names (not an error, exit 0: the best bracket of each is kept, flagged
-    `uncertain`); a basin campaign prints its fractions with their 95 % intervals, one
-    line per point."""
-    import xarray as xr
+    """The answer of a finished campaign, in its task's words (engine/status.py): a
+    find_jump's mu* table (uncertain points named: not an error, exit 0, the best bracket
+    of each kept and flagged), a scan's outcome per point, a basin's fractions with their
+    95 % intervals."""
+    from frictiondisk.engine.status import answer_lines
 
-    from frictiondisk.store.basin_datasets import summary_lines
-    from frictiondisk.store.table import closing_lines, results_table
-
-    if results_path.name != "results.nc" or not results_path.is_file():
-        return
-    with xr.open_dataset(results_path) as results:
-        lines = results_table(results) + closing_lines(results)
-        if results.attrs.get("task") == "basin":
-            lines += summary_lines(results.load())
-    for line in lines:
+    for line in answer_lines(results_path):
         click.echo(indent + line)
 
 
@@ -295,8 +284,8 @@ def run(
     in this one process on one set of workers: their runs are scheduled together, so one
     campaign's last points overlap the next one's first. Each keeps its own journal, lock
     and files; `resume DIR` and `status DIR` take the folder."""
-    from frictiondisk.model.campaign import load_campaign
     from frictiondisk.model.scene import ConfigError
+    from frictiondisk.tasks.campaign import load_campaign
 
     campaigns = []
     for campaign_file in campaign_files:
@@ -373,116 +362,13 @@ def status(out_dir: Path) -> None:
 
 def _report_status(out_dir: Path) -> None:
     """Print the progress of the campaign in DIR (exit 2 if DIR holds none)."""
-    from frictiondisk.engine.directory import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
-    from frictiondisk.store.files import netcdf_is_valid
-    from frictiondisk.store.journal import Journal
-    from frictiondisk.store.lock import CampaignLock
-    from frictiondisk.store.paths import describe_os_error, refuse_symlink
+    from frictiondisk.engine.status import NotACampaign, status_lines
+    from frictiondisk.store.paths import describe_os_error
 
-    if not (out_dir / CAMPAIGN_FILE).is_file():
-        fail(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})", [])
-    info = {}
-    status_file = out_dir / STATUS_FILE
     try:
-        refuse_symlink(status_file)
-        if status_file.is_file():
-            info = json.loads(status_file.read_text())
-        holder = CampaignLock.holder(out_dir)
-    except ValueError:
-        info, holder = {}, CampaignLock.holder(out_dir)
+        lines = status_lines(out_dir)
+    except NotACampaign as exc:
+        fail(str(exc), [])
     except OSError as exc:
         fail(describe_os_error(exc), [])
-    # a trajectory campaign keeps no journal: its one run is counted in status.json
-    runs_done = Journal.count(out_dir) or int(info.get("runs_done", 0))
-    state = info.get("state", "not started")
-    if holder is not None:
-        state = f"running (pid {holder})"
-    elif state == "running":
-        state = "interrupted"
-    results_ok = netcdf_is_valid(out_dir / RESULTS_FILE)
-    if state == "complete" and not results_ok:
-        state = "damaged"
-    total = info.get("points_total", "?")
-    lines = [
-        f"campaign:  {info.get('campaign', '?')} in {out_dir}",
-        f"state:     {state}",
-        f"points:    {info.get('points_done', 0)} of {total} done, "
-        f"{info.get('points_failed', 0)} failed",
-        f"runs:      {runs_done} done; "
-        f"{info.get('jobs_in_flight', 0) if holder else 0} tasks in flight",
-    ]
-    eta = info.get("eta_s")
-    if holder is not None and eta is not None:
-        age = time.time() - info.get("updated", time.time())
-        lines.append(f"time left: about {max(0.0, eta - age):.0f} s")
-    if results_ok:  # a complete state always has them (else it is "damaged")
-        lines += _results_lines(out_dir / RESULTS_FILE, complete=state == "complete")
-    if state == "damaged":
-        lines.append(f"results.nc is missing or damaged; rebuild it: frictiondisk resume {out_dir}")
-    elif state in ("interrupted", "not started"):
-        lines.append(f"continue with: frictiondisk resume {out_dir}")
-    lines += _journal_report(out_dir)
-    lines += _edit_report(out_dir)
     click.echo("\n".join(lines))
-
-
-def _edit_report(out_dir: Path) -> list[str]:
-    """Lines saying that DIR/campaign.yaml was edited by hand (resume refuses it)."""
-    from frictiondisk.engine.directory import CAMPAIGN_FILE, record_differences
-    from frictiondisk.model.campaign import load_campaign
-    from frictiondisk.model.scene import ConfigError
-
-    try:
-        differences = record_differences(out_dir, load_campaign(out_dir / CAMPAIGN_FILE))
-    except ConfigError as exc:
-        differences = [f"{out_dir / CAMPAIGN_FILE} no longer validates:", *exc.problems]
-    if not differences:
-        return []
-    return [f"campaign:  resume will refuse: {differences[0]}"] + [
-        f"  {line}" for line in differences[1:]
-    ]
-
-
-def _journal_report(out_dir: Path, shown: int = 10) -> list[str]:
-    """Lines on journal entries that fail verification now, and those moved aside before."""
-    from frictiondisk.store.journal import Journal
-
-    failing, moved = Journal.audit(out_dir)
-    lines = []
-    if failing:
-        lines.append(
-            f"journal:   {len(failing)} entries fail verification and will not be used "
-            "(resume moves each one it needs to journal/corrupt/ and recomputes it):"
-        )
-        lines += [f"  {line}" for line in failing[:shown]]
-        lines += [f"  ... and {len(failing) - shown} more"] if len(failing) > shown else []
-    if moved:
-        lines.append(f"journal:   {len(moved)} entries were moved aside to journal/corrupt/:")
-        lines += [f"  {line}" for line in moved[-shown:]]
-    return lines
-
-
-def _results_lines(results_file: Path, complete: bool) -> list[str]:
-    """What results.nc says: the mu* table of a complete find_jump campaign (a scan's
-    outcome per point, a trace's curves and folds), or what a stopped or running campaign
-    has found so far (its partial results.nc; [] if none)."""
-    import xarray as xr
-
-    from frictiondisk.store.basin_datasets import summary_lines
-    from frictiondisk.store.table import closing_lines, results_table
-    from frictiondisk.store.trace_table import trace_lines
-
-    with xr.open_dataset(results_file) as results:
-        if complete:
-            head = f"results:   {results_file}"
-        elif results.attrs.get("partial"):
-            head = (
-                f"results:   {results_file} (partial: {results.attrs.get('points_done')} of "
-                f"{results.attrs.get('points_total')} points finished)"
-            )
-        else:
-            return []
-        if not complete and results.attrs.get("task") == "basin":
-            return [head, *summary_lines(results.load())]
-        tables = [*results_table(results), *trace_lines(results)]
-        return [head, *tables, *closing_lines(results)]

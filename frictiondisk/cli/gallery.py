@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 
 from frictiondisk.engine.runner import run_campaigns
-from frictiondisk.model.campaign import load_campaign
+from frictiondisk.tasks.campaign import load_campaign
 
 TRACED = ("trace_fig11_betab_mu.yaml",)  # traced planes shown beside the figures (docs/trace.md)
 
@@ -31,8 +31,8 @@ def draw_figure(campaign, out_dir: Path, figure_root: Path) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    from frictiondisk.cli.plot import figure_for_dir
     from frictiondisk.figures.plotting import save_figure
+    from frictiondisk.tasks.plot import figure_for_dir
 
     # the bisection runs belong to size-versus-mu figures (a converge prescan, Figs 7-8);
     # on a dense jump line they would hide it
@@ -56,10 +56,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     total = time.perf_counter()
     campaigns = [load_campaign(path) for path in files]
-    # the traces first: the run offers free workers in this order, and a trace has few runs
-    # in flight for long (one correction per curve end), so the lines fill round it
-    # instead of leaving it alone at the end (docs/benchmarks.md, make figures)
-    first = sorted(campaigns, key=lambda campaign: campaign.kind != "trace")
+    # the traces first (TaskEntry.starts_first): the run offers free workers in this order,
+    # and a trace has few runs in flight for long (one correction per curve end), so the
+    # lines fill round it instead of leaving it alone at the end (docs/benchmarks.md)
+    first = sorted(campaigns, key=lambda campaign: not campaign.entry.starts_first)
     ran_first = run_campaigns(first, args.out, workers=2, progress=False)
     summaries = dict(zip((campaign.name for campaign in first), ran_first, strict=True))
     ran = time.perf_counter() - total
@@ -71,7 +71,7 @@ def main(argv: list[str] | None = None) -> int:
     rest, corotating = args.out / "fig11_betab_mu", args.out / "fig11_betab_mu_corotating"
     if (rest / "results.nc").is_file() and (corotating / "results.nc").is_file():
         # Fig 11 with both starts and the Melan shakedown and collapse bounds
-        from frictiondisk.figures.brake import main as brake_figure
+        from frictiondisk.tasks.find_jump.brake_figure import main as brake_figure
 
         for suffix in (".png", ".pdf"):
             brake_figure(

@@ -17,7 +17,7 @@ from typing import Any
 
 import click
 
-from frictiondisk.cli.options import check_figure_suffix, fail
+from frictiondisk.cli.options import TaskName, check_figure_suffix, fail
 from frictiondisk.version import __version__
 
 
@@ -121,30 +121,10 @@ def simulate(
     reported with the first sticking radius R1, the cycle size and a, the number of
     stick/slide transitions and the stick fraction of the final window.
     """
-    # Imported here so that `--help` and `--version` stay fast (the kernel compiles with numba).
-    from frictiondisk.model.limits import recording_problem
-    from frictiondisk.model.scene import ConfigError, load_scene
-    from frictiondisk.store.paths import check_output_file, describe_os_error
-
-    if not scene.is_file():
-        fail(str(scene), [f"scene file not found: {scene}"])
-    try:
-        config = load_scene(scene, list(overrides))
-    except ConfigError as exc:
-        fail(str(scene), list(exc.problems))
-    except OSError as exc:
-        fail(str(scene), [f"cannot read the scene file: {exc.strerror or exc}"])
     record = output is not None or plot_path is not None
-    problems = [recording_problem(config, dt_out, "--dt-out")] if record else []
-    for path in (output, plot_path):
-        try:
-            if path is not None:
-                check_output_file(path)
-        except OSError as exc:
-            problems.append(describe_os_error(exc))
-    if any(problems):
-        fail(str(scene), [problem for problem in problems if problem])
+    config = _checked_scene(scene, overrides, (output, plot_path), dt_out if record else None)
 
+    # Imported here so that `--help` and `--version` stay fast (the kernel compiles with numba).
     from frictiondisk.simulation.compile_notice import announce_compile
     from frictiondisk.simulation.simulate import simulate as run_simulation
 
@@ -162,20 +142,7 @@ def simulate(
                 f"t = {result.trajectory.t[-1]:.6g} s were not recorded (raise --dt-out)",
                 err=True,
             )
-
-        outputs: dict[str, str | None] = {"trajectory": None, "plot": None}
-        if output is not None:
-            from frictiondisk.store.trajectory import write_trajectory
-
-            outputs["trajectory"] = str(write_trajectory(output, result, config).resolve())
-        if plot_path is not None:
-            import matplotlib
-
-            matplotlib.use("Agg")
-            from frictiondisk.figures.plotting import plot_orbit, save_figure
-
-            fig = plot_orbit(result, config)
-            outputs["plot"] = str(save_figure(fig, plot_path).resolve())
+        outputs = _write_outputs(result, config, output, plot_path)
 
     from frictiondisk.model.headline import scene_headline
 
@@ -191,7 +158,57 @@ def simulate(
         )
         click.echo(json.dumps(payload, default=_json_default, allow_nan=False))
         return
+    click.echo("\n".join(_report_lines(scene, head, summary, outputs)))
 
+
+def _checked_scene(scene: Path, overrides: tuple[str, ...], paths, dt_out: float | None):
+    """The scene file with its overrides, validated, and the output `paths` checked
+    writable (a recording every `dt_out` [s] checked too); else exit 2 naming every
+    problem."""
+    from frictiondisk.model.limits import recording_problem
+    from frictiondisk.model.scene import ConfigError, load_scene
+    from frictiondisk.store.paths import check_output_file, describe_os_error
+
+    if not scene.is_file():
+        fail(str(scene), [f"scene file not found: {scene}"])
+    try:
+        config = load_scene(scene, list(overrides))
+    except ConfigError as exc:
+        fail(str(scene), list(exc.problems))
+    except OSError as exc:
+        fail(str(scene), [f"cannot read the scene file: {exc.strerror or exc}"])
+    problems = [recording_problem(config, dt_out, "--dt-out")] if dt_out is not None else []
+    for path in paths:
+        try:
+            if path is not None:
+                check_output_file(path)
+        except OSError as exc:
+            problems.append(describe_os_error(exc))
+    if any(problems):
+        fail(str(scene), [problem for problem in problems if problem])
+    return config
+
+
+def _write_outputs(result, config, output: Path | None, plot_path: Path | None) -> dict:
+    """Write the trajectory and the orbit figure asked for; their resolved paths."""
+    outputs: dict[str, str | None] = {"trajectory": None, "plot": None}
+    if output is not None:
+        from frictiondisk.store.trajectory import write_trajectory
+
+        outputs["trajectory"] = str(write_trajectory(output, result, config).resolve())
+    if plot_path is not None:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        from frictiondisk.figures.plotting import plot_orbit, save_figure
+
+        fig = plot_orbit(result, config)
+        outputs["plot"] = str(save_figure(fig, plot_path).resolve())
+    return outputs
+
+
+def _report_lines(scene: Path, head: dict, summary: dict, outputs: dict) -> list[str]:
+    """The report of one run, a line per measure."""
     lines = [
         f"scene:        {scene} ({head['scene']}, mu = {head['mu']:g}, x_ms = {head['x_ms']:g} m)",
         f"outcome:      {summary['outcome']} ({summary['reason']})",
@@ -215,7 +232,7 @@ def simulate(
         lines.append(f"trajectory:   {outputs['trajectory']}")
     if outputs["plot"]:
         lines.append(f"plot:         {outputs['plot']}")
-    click.echo("\n".join(lines))
+    return lines
 
 
 @contextlib.contextmanager
@@ -257,7 +274,7 @@ def _interruptible(function, *args, **kwargs):
 )
 @click.option(
     "--task",
-    type=click.Choice(["find_jump", "scan", "trajectory", "basin", "trace"]),
+    type=TaskName(),
     default=None,
     help="Print the keys of this campaign task instead of the scene.",
 )
@@ -268,7 +285,8 @@ def show_defaults(scene: str, task: str | None) -> None:
     The output is a valid scene file: save it, edit a value, and `simulate` it. With
     --task, print a campaign task's keys and defaults instead.
     """
-    from frictiondisk.model.reference import annotated_scene, annotated_task
+    from frictiondisk.model.reference import annotated_scene
+    from frictiondisk.tasks.reference import annotated_task
 
     click.echo(annotated_task(task) if task else annotated_scene(scene))
 

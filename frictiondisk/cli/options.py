@@ -23,6 +23,24 @@ def fail(header: str, lines: list[str], code: int = EXIT_USAGE) -> NoReturn:
     raise SystemExit(code)
 
 
+class TaskName(click.Choice):
+    """The name of a registered task (frictiondisk.tasks.registry), read from the registry
+    when click first needs the list: `frictiondisk --help` stays free of the task specs."""
+
+    def __init__(self) -> None:
+        super().__init__(())
+
+    @property
+    def choices(self) -> tuple[str, ...]:
+        from frictiondisk.tasks.registry import TASKS
+
+        return tuple(TASKS)
+
+    @choices.setter
+    def choices(self, value) -> None:  # Choice.__init__ sets it; the registry decides
+        pass
+
+
 def check_figure_suffix(
     ctx: click.Context, param: click.Parameter, value: Path | None
 ) -> Path | None:

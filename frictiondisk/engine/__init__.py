@@ -1,2 +1,2 @@
-"""Running a campaign: planners, worker tasks, the Dask driver, budgets, progress.
-The only package that knows Dask."""
+"""Running campaigns: the Dask driver over the tasks' planners, the workers, budgets,
+signals, progress and status. The only package that knows Dask."""

@@ -11,8 +11,7 @@ import math
 import os
 from dataclasses import dataclass
 
-from frictiondisk.engine.plan import cold_run_count
-from frictiondisk.model.campaign import Basin, Campaign, FindJump, Scan, Trace
+from frictiondisk.tasks.campaign import Campaign
 
 __all__ = ["MAX_POINTS", "MAX_RUNS", "Estimate", "check", "estimate", "memory_limit"]
 
@@ -43,32 +42,8 @@ class Estimate:
 
 def estimate(campaign: Campaign) -> Estimate:
     """Size of `campaign` from its axes alone (no point is built)."""
-    task = campaign.task
     points = math.prod(campaign.shape) if campaign.shape else 1
-    fields = ", ".join(f"{campaign.kind}.along.{dim}" for dim in task.along)
-    if isinstance(task, FindJump):
-        per_point = cold_run_count(task.bracket, task.tol)
-        if task.prescan is not None:
-            per_point += len(task.prescan.mu)
-            fields += ", find_jump.prescan.mu"
-        fields += ", find_jump.tol"
-    elif isinstance(task, Scan):
-        per_point = 1
-        fields = ", ".join(("scan.mu", *filter(None, [fields])))
-    elif isinstance(task, Basin):
-        # every grid cell of a map is a point; a sampled point takes up to sample_limit runs
-        per_point = task.sample_limit
-        keys = [f"basin.grid.{dim}" for dim in task.grid] or [
-            f"basin.along.{dim}" for dim in task.along
-        ]
-        fields = ", ".join(keys + ([] if task.is_map else ["basin.samples / max_samples"]))
-    elif isinstance(task, Trace):
-        # the first look alone; the curves' runs depend on what it finds
-        per_point = task.first_look.keys * task.first_look.mu
-        fields = "trace.first_look.keys, trace.first_look.mu"
-    else:
-        per_point = 1
-        fields = "trajectory"
+    per_point, fields = campaign.entry.size(campaign.task)
     runs = points * per_point
     return Estimate(points, runs, points * BYTES_PER_POINT + runs * BYTES_PER_RUN, fields)
 

@@ -1,6 +1,8 @@
 """One campaign inside the driver loop (engine/driver.py): its planner and journal, the
 runs it answers from the journal, its status.json, its partial results.nc and, once its
-last point is done, its results.nc and runs.nc (trajectory.nc for a trajectory task).
+last point is done, its files (results.nc and runs.nc; a task without a journal writes its
+own: a trajectory's trajectory.nc). The task is reached through its entry
+(frictiondisk.tasks.registry) and its planner's snapshot, never by its name.
 
 The loop may drive several of these on one Dask client (`run A.yaml B.yaml`); each keeps
 its own directory, journal and files, and finishes the moment its own planner is done.
@@ -13,13 +15,13 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from frictiondisk.engine.directory import RESULTS_FILE, RUNS_FILE, write_status
-from frictiondisk.engine.plan import planner_for
-from frictiondisk.model.campaign import Campaign
-from frictiondisk.store import basin_datasets, datasets, trace_datasets
+from frictiondisk.engine.directory import write_status
 from frictiondisk.store.files import atomic_write_netcdf
-from frictiondisk.store.journal import Journal, run_key
-from frictiondisk.store.partial import with_pending
+from frictiondisk.store.journal import Journal
+from frictiondisk.store.journal_entry import run_key
+from frictiondisk.store.layout import RESULTS_FILE
+from frictiondisk.store.partial import mark_partial
+from frictiondisk.tasks.campaign import Campaign
 
 
 @dataclasses.dataclass
@@ -43,9 +45,10 @@ class CampaignRun:
         self.campaign = campaign
         self.out_dir = out_dir
         self.dir_text = str(out_dir.resolve())  # what worker chains read the journal from
-        self.planner = planner_for(campaign)
-        # a trajectory keeps no journal: its files are its record (engine/orbit.py)
-        self.journal = Journal(out_dir) if campaign.kind != "trajectory" else None
+        entry = campaign.entry
+        self.planner = entry.planner(campaign)
+        # a task without a journal (a trajectory) keeps its files as its record
+        self.journal = Journal(out_dir) if entry.journaled else None
         self.keys: dict[tuple[int, Any], str] = {}  # (point, request) -> run key
         self.inputs: dict[str, dict] = {}
         self.computed = 0
@@ -54,12 +57,9 @@ class CampaignRun:
         # each new run's entry cost the driver about 1 ms)
         self._present: set[str] = set(self.journal.keys()) if self.journal else set()
         self.runs_at_start = len(self._present)
-        if self.journal is None:
-            from frictiondisk.engine.orbit import outputs_valid
-
-            if outputs_valid(out_dir, RESULTS_FILE):
-                self.planner.already_written()
-                self.runs_at_start = 1
+        if self.journal is None and entry.files_current(out_dir):
+            self.planner.already_written()
+            self.runs_at_start = 1
         # keys looked up and absent; the journal only grows by our own put (which clears one)
         self._checked: set[str] = set()
         self.run_s_sum = 0.0  # kernel wall time of the runs computed so far [s]
@@ -89,6 +89,9 @@ class CampaignRun:
         """A job came back: the planner takes it, every run it made is journaled."""
         self.changed = True
         for point, request, result in self.planner.complete(job, value):
+            if self.journal is None:  # its files are its record (written by finish)
+                self.computed += 1
+                continue
             key = self.key(point, request)
             self.journal.put(key, self.inputs[key], result)
             self._present.add(key)
@@ -108,9 +111,7 @@ class CampaignRun:
             cached = run_key(_Canonical(canonical))  # canonical() once: it costs ~0.4 ms
             self.keys[(point, request)] = cached
             self.inputs[cached] = canonical
-            remember = getattr(self.planner, "remember_canonical", None)
-            if remember is not None:
-                remember(point, request, canonical)
+            self.planner.remember_canonical(point, request, canonical)
         return cached
 
     def mean_run_s(self) -> float | None:
@@ -123,14 +124,10 @@ class CampaignRun:
     def progress(self) -> tuple[int, int]:
         """(done, total) in the planner's unit: points, or what its `progress()` counts
         (a trace: curve points placed; its total grows as curves are found)."""
-        progress = getattr(self.planner, "progress", None)
-        if progress is not None:
-            return progress()
-        return len(self.planner.results), len(self.planner.points)
+        return self.planner.progress()
 
     def points_failed(self) -> int:
-        results = self.planner.results.values()
-        return sum(1 for r in results if getattr(r, "status", "converged") == "failed")
+        return self.planner.points_failed()
 
     def write_status(self, state: str, elapsed: float, jobs_in_flight: int) -> None:
         done, total = self.progress()
@@ -149,25 +146,21 @@ class CampaignRun:
             eta_s=(total - done) / rate if rate > 0 else None,
         )
 
-    def _datasets(self):
-        """The module that builds this campaign's results.nc and runs.nc."""
-        builders = {"basin": basin_datasets, "trace": trace_datasets}
-        return builders.get(self.campaign.kind, datasets)
-
     def write_partial(self) -> int | None:
         """Write results.nc from the finished points, the rest pending, marked `partial`
         (frictiondisk.store.partial), also before the first point is finished; returns the
-        finished points it holds (None: nothing written, as for a trajectory or a finished
-        campaign). Never raises: a failure is reported on stderr, the journal keeps every
-        run, and the final write of results.nc raises as usual."""
+        finished points it holds (None: nothing written, as for a finished campaign or a
+        task whose snapshot has no results.nc yet, a trajectory). Never raises: a failure
+        is reported on stderr, the journal keeps every run, and the final write of
+        results.nc raises as usual."""
         done, total = self.progress()
-        if self.planner.done or self.campaign.kind == "trajectory":
+        if self.planner.done:
             return None
         try:
-            pending = with_pending(self.campaign.kind, self.planner)
-            ds = self._datasets().results_dataset(self.campaign, pending)
-            ds.attrs.update(partial=1, points_done=done, points_total=total)
-            atomic_write_netcdf(ds, self.out_dir / RESULTS_FILE)
+            ds = self.planner.snapshot().to_dataset()
+            if ds is None:
+                return None
+            atomic_write_netcdf(mark_partial(ds, done, total), self.out_dir / RESULTS_FILE)
         except Exception as exc:  # noqa: BLE001  a side file: never stop the campaign for it
             on_stderr(print, f"warning: partial results not written: {exc!r}", file=sys.stderr)
             return None
@@ -176,29 +169,14 @@ class CampaignRun:
     # ---- the end -------------------------------------------------------------------------
     def finish(self, elapsed: float, task_overhead_s: float | None) -> RunSummary:
         """Write the campaign's final files and status; its summary (also kept)."""
-        if self.campaign.kind == "trajectory":
-            from frictiondisk.engine.orbit import TRAJECTORY_FILE, write_outputs
-
-            result = self.planner.result
-            if result is not None:
-                write_outputs(self.campaign, self.out_dir, result, RESULTS_FILE)
-            runs_total, results = 1, self.out_dir / RESULTS_FILE
-            runs = self.out_dir / TRAJECTORY_FILE
-            self.computed = int(result is not None)
-        else:
-            build = self._datasets()
-            results_ds = build.results_dataset(self.campaign, self.planner)
-            runs_ds = build.runs_dataset(self.campaign, self.planner, self.key)
-            results = atomic_write_netcdf(results_ds, self.out_dir / RESULTS_FILE)
-            runs = atomic_write_netcdf(runs_ds, self.out_dir / RUNS_FILE)
-            runs_total = int(runs_ds.sizes["run"])
+        results, runs, runs_total = self.planner.snapshot().write(self.out_dir, self.key)
         self.write_status("complete", elapsed, 0)
         self.summary = RunSummary(
             points=self.progress()[1],
             points_failed=self.points_failed(),
             runs_total=runs_total,
             runs_computed=self.computed,
-            runs_saved_by_warm_start=getattr(self.planner, "runs_saved", lambda: 0)(),
+            runs_saved_by_warm_start=self.planner.runs_saved(),
             wall_s=elapsed,
             results=Path(results),
             runs=Path(runs),

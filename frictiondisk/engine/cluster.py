@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import time
 
-from frictiondisk.engine.plan import Sizing
-from frictiondisk.engine.tasks import noop
+from frictiondisk.engine.worker import noop
+from frictiondisk.tasks.jobs import Sizing
 
 SCHEDULER_TIMEOUT = 10.0  # [s] for the client to connect to --scheduler
 WORKER_WAIT = 60.0  # [s] default wait for a live worker (--worker-wait)

@@ -1,5 +1,6 @@
-"""The campaign directory DIR: its file names, the campaign record check, the refusal of
-symbolic links, and status.json (see frictiondisk.engine.runner for the layout); and a
+"""The campaign directory DIR (its file names: frictiondisk.store.layout): the campaign
+record check, the refusal of symbolic links, and status.json (see
+frictiondisk.engine.runner for the layout); and a
 folder of several campaigns (`run A.yaml B.yaml -o DIR`): DIR/campaigns.json names its
 campaigns, each in DIR/<name>/."""
 
@@ -12,32 +13,19 @@ import re
 import time
 from pathlib import Path
 
-from frictiondisk.model.campaign import Campaign, campaign_from_dict, load_campaign
 from frictiondisk.model.scene import ConfigError
 from frictiondisk.store.files import atomic_write_bytes, atomic_write_text
-from frictiondisk.store.paths import refuse_symlink
-
-CAMPAIGN_FILE = "campaign.yaml"
-RECORD_FILE = "campaign.record.json"  # sha256 and canonical form of campaign.yaml
-STATUS_FILE = "status.json"
-RESULTS_FILE = "results.nc"
-RUNS_FILE = "runs.nc"
-MANIFEST_FILE = "campaigns.json"  # a folder of several campaigns: their names, in order
-_NAME = re.compile(r"[A-Za-z0-9_-]+")  # a campaign's name (model/campaign_spec.py)
-# Every name the driver reads or writes in DIR: none may be a symbolic link.
-_DIR_NAMES = (
-    "lock",
-    MANIFEST_FILE,
+from frictiondisk.store.layout import (
     CAMPAIGN_FILE,
+    DIR_NAMES,
+    MANIFEST_FILE,
     RECORD_FILE,
     STATUS_FILE,
-    RESULTS_FILE,
-    RUNS_FILE,
-    "trajectory.nc",
-    "journal",
-    "journal/computed.log",
-    "journal/corrupt",
 )
+from frictiondisk.store.paths import refuse_symlink
+from frictiondisk.tasks.campaign import Campaign, campaign_from_dict, load_campaign
+
+_NAME = re.compile(r"[A-Za-z0-9_-]+")  # a campaign's name (tasks/campaign_file.py)
 
 
 class CampaignChanged(Exception):
@@ -122,7 +110,7 @@ def record_differences(out_dir: Path, stored: Campaign) -> list[str]:
 def refuse_links(out_dir: Path) -> None:
     """SymlinkRefused (an OSError naming the path) if any name the driver uses in DIR, or
     any journal shard folder, is a symbolic link."""
-    for name in _DIR_NAMES:
+    for name in DIR_NAMES:
         refuse_symlink(out_dir / name)
     journal = out_dir / "journal"
     if journal.is_dir():

@@ -1,4 +1,4 @@
-"""The campaign loop (_Driver): replay the journals, submit the missing runs of one or more
+"""The campaign loop (Driver): replay the journals, submit the missing runs of one or more
 campaigns to one Dask client, journal each finished run, rewrite status.json and the
 partial results.nc, drain the tasks in flight on a stop, and write each campaign's
 results.nc and runs.nc as soon as its last point is done.
@@ -6,7 +6,7 @@ results.nc and runs.nc as soon as its last point is done.
 Several campaigns share the workers (`run A.yaml B.yaml`): each round offers the free
 task slots to the campaigns in the order given, so a campaign's tail, when its few last
 points cannot keep every worker busy, overlaps the next campaign's start. Which runs a
-campaign makes never depends on this: its planner alone decides (engine/plan.py)."""
+campaign makes never depends on this: its planner alone decides (tasks/protocol.py)."""
 
 from __future__ import annotations
 
@@ -24,8 +24,8 @@ from frictiondisk.engine.cluster import (
     start_client,
     task_sizing,
 )
-from frictiondisk.engine.signals import _raise_if_stop_requested, drop_hint
-from frictiondisk.engine.tasks import Sealed, run_sealed, warm_up
+from frictiondisk.engine.signals import drop_hint, raise_if_stop_requested
+from frictiondisk.engine.worker import Sealed, run_job, run_sealed, warm_up
 
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
 PARTIAL_EVERY = 30.0  # [s] between partial results.nc rewrites of a running campaign
@@ -35,7 +35,7 @@ POLL = 5.0  # [s] between checks for live workers while waiting on --scheduler
 DRAIN_TIMEOUT_S = 30.0  # [s] Ctrl-C waits this long for the tasks in flight, then drops them
 
 
-class _Driver:
+class Driver:
     """One run or resume of one or more campaigns on one Dask client (holds no lock)."""
 
     def __init__(self, runs: list[CampaignRun], progress: bool):
@@ -43,8 +43,8 @@ class _Driver:
         self.progress = progress
         self._task_prefix = uuid.uuid4().hex[:12]  # Dask keys: unique on a shared scheduler
         self._submitted = 0
-        # future key -> (campaign, job, function, args, future)
-        self.in_flight: dict[str, tuple[CampaignRun, Any, Any, tuple, Any]] = {}
+        # future key -> (campaign, job id, job, future)
+        self.in_flight: dict[str, tuple[CampaignRun, Any, Any, Any]] = {}
         self.failures: dict[tuple[int, Any], int] = {}  # (campaign index, job) -> failures
         self.t0 = time.perf_counter()
         self._last_status = 0.0
@@ -113,8 +113,8 @@ class _Driver:
                 if run.changed:
                     run.replay()
                 if not run.planner.done:
-                    for job, function, args in run.planner.jobs(run.dir_text, self._sizing(run)):
-                        self._submit(client, run, job, function, args)
+                    for job_id, job in run.planner.jobs(self._sizing(run)):
+                        self._submit(client, run, job_id, job)
                 if run.planner.done:
                     self._finish(run)
             if all(run.summary is not None for run in self.runs):
@@ -126,7 +126,7 @@ class _Driver:
             for future, value in self._done_queue.next_batch(block=True):
                 self._collect(client, future, value)
             self._tick()
-            _raise_if_stop_requested()
+            raise_if_stop_requested()
 
     def _wait_with_workers(self, client) -> None:
         """Wait for a job to finish on --scheduler, checking every POLL seconds that some
@@ -172,12 +172,13 @@ class _Driver:
             )
         return alone_since
 
-    def _submit(self, client, run: CampaignRun, job, function, args: tuple) -> None:
+    def _submit(self, client, run: CampaignRun, job_id, job) -> None:
+        """Hand one job of `run`'s planner to Dask (engine/worker.py executes it)."""
         # our own unique key: Dask would draw a random one (pure=False) from os.urandom
         self._submitted += 1
-        key = f"{function.__name__}-{self._task_prefix}-{self._submitted}"
-        future = client.submit(run_sealed, Sealed(function, args), key=key)
-        self.in_flight[future.key] = (run, job, function, args, future)
+        key = f"{type(job).__name__}-{self._task_prefix}-{self._submitted}"
+        future = client.submit(run_sealed, Sealed(run_job, (job, run.dir_text)), key=key)
+        self.in_flight[future.key] = (run, job_id, job, future)
         self._done_queue.add(future)
 
     def _sizing(self, run: CampaignRun):
@@ -212,21 +213,21 @@ class _Driver:
             pass
 
     def _collect(self, client, future, value) -> None:
-        run, job, function, args, _ = self.in_flight.pop(future.key)
+        run, job_id, job, _ = self.in_flight.pop(future.key)
         if future.status != "finished" and self._draining:
             return  # not journaled: a resume computes it
-        failure = (self.runs.index(run), job)
+        failure = (self.runs.index(run), job_id)
         if future.status != "finished":  # a worker died or the job raised: bounded retries
             self.failures[failure] = self.failures.get(failure, 0) + 1
             if self.failures[failure] <= MAX_WORKER_FAILURES:
-                self._submit(client, run, job, function, args)
+                self._submit(client, run, job_id, job)
                 return
             error = value[1] if isinstance(value, tuple) and len(value) == 3 else value
             # nothing journaled for it: a resume tries the point again
-            run.fail(job, f"worker failed {self.failures[failure]} times: {error!r}")
+            run.fail(job_id, f"worker failed {self.failures[failure]} times: {error!r}")
             return
         self.failures.pop(failure, None)
-        run.complete(job, value)
+        run.complete(job_id, value)
 
     def _finish(self, run: CampaignRun) -> None:
         run.finish(time.perf_counter() - self.t0, self.task_overhead_s)

@@ -29,8 +29,6 @@ from pathlib import Path
 from frictiondisk.engine.campaign_run import CampaignRun, RunSummary
 from frictiondisk.engine.cluster import WORKER_WAIT, SchedulerFailed
 from frictiondisk.engine.directory import (
-    CAMPAIGN_FILE,
-    RESULTS_FILE,
     is_campaign_folder,
     prepare_directory,
     read_manifest,
@@ -38,17 +36,18 @@ from frictiondisk.engine.directory import (
     write_manifest,
     write_status,
 )
-from frictiondisk.engine.driver import _Driver
+from frictiondisk.engine.driver import Driver
 from frictiondisk.engine.signals import (
     CampaignInterrupted,
-    _stop_requested,
+    clear_stop_requests,
     describe_stop,
     wait_interruptibly,
 )
-from frictiondisk.model.campaign import Campaign
 from frictiondisk.store.journal import Journal
+from frictiondisk.store.layout import CAMPAIGN_FILE, RESULTS_FILE
 from frictiondisk.store.lock import CampaignLock
 from frictiondisk.store.paths import refuse_symlink
+from frictiondisk.tasks.campaign import Campaign
 
 
 class CampaignsClash(ValueError):
@@ -87,13 +86,13 @@ def run_campaign(
         )
     out_dir.mkdir(parents=True, exist_ok=True)
     refuse_links(out_dir)
-    _stop_requested.clear()
+    clear_stop_requests()
     with CampaignLock(out_dir):
         campaign = prepare_directory(out_dir, campaign)
-        if campaign.kind == "trajectory":
-            return _run_trajectory(campaign, out_dir)
+        if campaign.entry.runs_alone:
+            return _run_alone(campaign, out_dir)
         run = _open(campaign, out_dir)
-        driver = _Driver([run], progress)
+        driver = Driver([run], progress)
         return _drive(driver, out_dir, workers, scheduler, processes, worker_wait, dashboard)[0]
 
 
@@ -119,7 +118,7 @@ def run_campaigns(
     _refuse_clashes(campaigns, out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     refuse_links(out_dir)
-    _stop_requested.clear()
+    clear_stop_requests()
     with CampaignLock(out_dir), contextlib.ExitStack() as locks:
         if campaigns is None:
             named = [(name, None) for name in read_manifest(out_dir)]
@@ -137,7 +136,7 @@ def run_campaigns(
             prepared[k] = prepare_directory(folders[k], named[k][1])
         write_manifest(out_dir, [name for name, _ in named])
         runs = [_open(prepared[k], folders[k]) for k in range(len(named))]
-        driver = _Driver(runs, progress)
+        driver = Driver(runs, progress)
         return _drive(driver, out_dir, workers, scheduler, processes, worker_wait, dashboard)
 
 
@@ -163,13 +162,13 @@ def _refuse_clashes(campaigns: list[Campaign] | None, out_dir: Path) -> None:
 
 
 def _open(campaign: Campaign, out_dir: Path) -> CampaignRun:
-    if campaign.kind != "trajectory":
+    if campaign.entry.journaled:
         Journal(out_dir).clean_temp_files()  # left by a put that was killed mid-write
     return CampaignRun(campaign, out_dir)
 
 
 def _drive(
-    driver: _Driver,
+    driver: Driver,
     out_dir: Path,
     workers: int,
     scheduler: str | None,
@@ -188,7 +187,7 @@ def _drive(
             driver.interrupted()
         raise
     except KeyboardInterrupt as stop:
-        _stop_requested.clear()
+        clear_stop_requests()
         driver.interrupted()
         what, code = describe_stop(stop)
         written = driver.write_partial()
@@ -222,12 +221,11 @@ def _partial_note(written: dict[str, int], campaigns: int) -> str:
     return f", the finished points in {where} (partial: {each})"
 
 
-def _run_trajectory(campaign: Campaign, out_dir: Path) -> RunSummary:
-    """A trajectory campaign: one recorded run in this process (no Dask, no journal)."""
-    from frictiondisk.engine.orbit import run_trajectory
-
+def _run_alone(campaign: Campaign, out_dir: Path) -> RunSummary:
+    """A campaign whose task runs alone in this process (a trajectory: one recorded run; no
+    Dask, no journal): its entry runs it and writes its files."""
     t0 = time.perf_counter()
-    done = wait_interruptibly(run_trajectory, campaign, out_dir, RESULTS_FILE)
+    computed, runs = wait_interruptibly(campaign.entry.run_alone, campaign, out_dir)
     wall = time.perf_counter() - t0
     write_status(
         out_dir,
@@ -238,7 +236,7 @@ def _run_trajectory(campaign: Campaign, out_dir: Path) -> RunSummary:
         points_failed=0,
         runs_done=1,
         jobs_in_flight=0,
-        runs_computed_now=done["computed"],
+        runs_computed_now=computed,
         elapsed_s=wall,
         eta_s=None,
     )
@@ -246,9 +244,9 @@ def _run_trajectory(campaign: Campaign, out_dir: Path) -> RunSummary:
         points=1,
         points_failed=0,
         runs_total=1,
-        runs_computed=done["computed"],
+        runs_computed=computed,
         runs_saved_by_warm_start=0,
         wall_s=wall,
-        results=Path(done["results"]),
-        runs=Path(done["trajectory"]),
+        results=out_dir / RESULTS_FILE,
+        runs=Path(runs),
     )

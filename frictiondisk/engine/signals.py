@@ -63,9 +63,15 @@ def request_stop(stop: type[KeyboardInterrupt]) -> None:
     _stop_requested.append(stop)
 
 
-def _raise_if_stop_requested() -> None:
+def raise_if_stop_requested() -> None:
+    """Raise the last stop noted by request_stop (the loop checks this between rounds)."""
     if _stop_requested:
         raise _stop_requested[-1]()
+
+
+def clear_stop_requests() -> None:
+    """Forget every noted stop (a new run starts, or a stop was handled)."""
+    _stop_requested.clear()
 
 
 def wait_interruptibly(function: Callable[..., T], *args: Any, **kwargs: Any) -> T:

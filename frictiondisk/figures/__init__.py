@@ -1,2 +1,2 @@
-"""Figures from stored results: one style module, one module per figure family.
-Nothing here simulates."""
+"""Figures from stored results: one style module and the layers every figure shares (each
+task draws its own figure from them). Nothing here simulates."""

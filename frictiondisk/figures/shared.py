@@ -1,15 +1,13 @@
-"""What every campaign figure shares: axis labels, outcome styles, the caption line, the
-figure frame (plot, note, caption), the rug strip for points without a value, and the
-list of failed points of a find_jump figure. The figure modules (jump_line.py,
-jump_grid.py, scan.py, size.py, orbit.py, basin.py) import from here; nothing here imports
-them, nor the kernel.
+"""What every campaign figure shares, its common layers: axis labels, outcome styles, the
+caption line, the figure frame (plot, note, caption), the note box, the rug strip for
+points without a value, every run as a dot. Each task draws its own figure
+(frictiondisk/tasks/<task>/figure*.py) from these; nothing here imports a task, nor the
+kernel.
 """
 
 from __future__ import annotations
 
-import math
 import re
-import textwrap
 from typing import Any
 
 import numpy as np
@@ -20,10 +18,8 @@ from matplotlib.figure import Figure, SubFigure
 from matplotlib.legend import Legend
 from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter
-from matplotlib.transforms import blended_transform_factory
 
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
-from frictiondisk.search.jump_result import NO_JUMP
 from frictiondisk.verdict.horizon import horizon_key
 
 MU_LABEL = "friction coefficient \u03bc [-]"
@@ -84,7 +80,7 @@ def axis_label(coord: xr.DataArray) -> str:
     return f"{text} [{unit}]" if unit else text
 
 
-def _value_text(coord: xr.DataArray, value: float) -> str:
+def value_text(coord: xr.DataArray, value: float) -> str:
     """ "x_ms = 0.1 m": a point's value of a varied key, with its unit."""
     name = str(coord.attrs.get("scene_key", coord.name)).split(".")[-1]
     unit = _unit_text(coord.attrs.get("units"))
@@ -97,7 +93,7 @@ def _fmt(value: Any) -> str:
     return str(value)
 
 
-def _caption_parts(ds: xr.Dataset) -> list[str]:
+def _caption_parts(ds: xr.Dataset, mode: str | None = None) -> list[str]:
     attrs = ds.attrs
     parts = [f"campaign {attrs.get('campaign_name', '?')}", f"task {attrs.get('task', '?')}"]
     if "tol" in attrs:
@@ -108,13 +104,7 @@ def _caption_parts(ds: xr.Dataset) -> list[str]:
         numerics = {}
     if not isinstance(numerics, dict):
         numerics = {}
-    mode = numerics.get("mode")
-    if attrs.get("task") == "scan":  # the scan's own mode overrides numerics.mode
-        try:
-            spec = yaml.safe_load(str(attrs.get("campaign_yaml", ""))) or {}
-            mode = (spec.get("scan") or {}).get("mode", "converge")
-        except (yaml.YAMLError, AttributeError):
-            pass
+    mode = mode or numerics.get("mode")
     horizon = horizon_key(mode)
     numerics_text = ", ".join(
         f"{label}{_fmt(numerics[key])}{unit}"
@@ -192,11 +182,12 @@ def sample_spec(ds: xr.Dataset) -> dict[str, Any]:
     return sample if isinstance(sample, dict) else {}
 
 
-def caption_text(ds: xr.Dataset) -> str:
+def caption_text(ds: xr.Dataset, mode: str | None = None) -> str:
     """One line on how the results were made: campaign name, task, tolerance, numerics
-    (method, rtol, atol, horizon, mode; from the numerics_yaml attribute), the physical
-    parameters that are not varied, and the package and numerics versions."""
-    return CAPTION_SEP.join(_caption_parts(ds))
+    (method, rtol, atol, horizon, mode; from the numerics_yaml attribute, or `mode`: the
+    one the task ran every point in), the physical parameters that are not varied, and the
+    package and numerics versions."""
+    return CAPTION_SEP.join(_caption_parts(ds, mode))
 
 
 def _wrap_parts(parts: list[str], width: int) -> list[str]:
@@ -211,16 +202,17 @@ def _wrap_parts(parts: list[str], width: int) -> list[str]:
 
 
 def new_figure(
-    results: xr.Dataset, width: float, height: float, note_lines: int
+    results: xr.Dataset, width: float, height: float, note_lines: int, mode: str | None = None
 ) -> tuple[Figure, SubFigure, SubFigure | None]:
     """A Figure of three stacked subfigures: the plot (height [in]), a note of `note_lines`
-    monospace lines (none if 0) and the caption (wrapped to the figure width).
+    monospace lines (none if 0) and the caption (wrapped to the figure width; `mode` as in
+    caption_text).
 
     Returns the figure, the plot's subfigure and the note's (or None). Separate subfigures
     keep the note and caption out of the plot's constrained layout.
     """
     chars = int(width * 72 / (0.56 * CAPTION_FONT_PT))
-    caption = _wrap_parts(_caption_parts(results), chars)
+    caption = _wrap_parts(_caption_parts(results, mode), chars)
     caption_h = 0.1 + 0.14 * len(caption)
     note_h = 0.125 * note_lines + 0.2 if note_lines else 0.0
     ratios = [height, *([note_h] if note_lines else []), caption_h]
@@ -256,7 +248,8 @@ def fitted_legend(ax: Axes, ncols: int, **kwargs: Any) -> Legend:
 
 
 # ---- the note under the plot ------------------------------------------------------------
-def _add_note(note: SubFigure, lines: list[str], title: str) -> None:
+def add_note(note: SubFigure, lines: list[str], title: str) -> None:
+    """`title` and `lines` in a monospace box in the note subfigure (new_figure)."""
     note.text(
         0.015,
         0.96,
@@ -271,7 +264,7 @@ def _add_note(note: SubFigure, lines: list[str], title: str) -> None:
 
 
 # ---- axes -------------------------------------------------------------------------------
-def _make_rug_room(ax: Axes, frac: float) -> None:
+def make_rug_room(ax: Axes, frac: float) -> None:
     """Extend the y axis downwards so that the data keep the upper 1 - `frac` of it; the strip
     below (for marks of points without a value) is set off by a dotted line and has no tick
     labels, so that nobody reads a value off a mark there."""
@@ -286,68 +279,76 @@ def _make_rug_room(ax: Axes, frac: float) -> None:
     ax.yaxis.set_major_formatter(FuncFormatter(label))
 
 
-def _padded(lo: float, hi: float, frac: float) -> tuple[float, float]:
+def padded(lo: float, hi: float, frac: float) -> tuple[float, float]:
     """(lo, hi) widened by `frac` of the span on each side (by 0.5 if lo == hi)."""
     span = hi - lo
     pad = frac * span if span > 0 else 0.5 * (abs(lo) or 1.0)
     return lo - pad, hi + pad
 
 
-# ---- the failed points of a find_jump figure --------------------------------------------
-def _failure_lines(results: xr.Dataset, labels: list[str], failed: np.ndarray) -> list[str]:
-    """ "[k] x_ms = 0.1 m: reason" for each failed point (wrapped), at most MAX_LISTED."""
-    reasons = np.asarray(results["reason"].values).reshape(-1)
-    lines: list[str] = []
-    indices = np.flatnonzero(failed.reshape(-1))
-    for k, i in enumerate(indices[:MAX_LISTED], start=1):
-        lines += textwrap.wrap(
-            f"[{k}] {labels[i]}: {str(reasons[i]) or '(no reason given)'}",
-            width=LIST_WIDTH,
-            subsequent_indent="      ",
-            max_lines=3,
-            placeholder=" ...",
+def cell_edges(values: np.ndarray) -> np.ndarray:
+    """Cell edges around sorted centres: midpoints, half a step beyond the ends (a single
+    centre: a cell half its magnitude wide on each side)."""
+    v = np.asarray(values, dtype=float)
+    if v.size == 1:
+        half = 0.5 * (abs(v[0]) or 1.0)
+        return np.array([v[0] - half, v[0] + half])
+    mid = 0.5 * (v[1:] + v[:-1])
+    return np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])
+
+
+# ---- inputs -----------------------------------------------------------------------------
+def check_vars(ds: xr.Dataset, names: tuple[str, ...], what: str) -> None:
+    """ValueError naming the variables of `names` that `ds` lacks."""
+    missing = [name for name in names if name not in ds.variables]
+    if missing:
+        raise ValueError(
+            f"{what} lacks the variable(s) {', '.join(missing)}: "
+            "not written by this version of frictiondisk?"
         )
-    if len(indices) > MAX_LISTED:
-        lines.append(
-            f"... and {len(indices) - MAX_LISTED} more failed points (variable 'reason' in results.nc)"
-        )
-    return lines
 
 
-# ---- points without a jump on their grid (status no_jump) ---------------------------------
-def failed_and_without(results: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
-    """Boolean masks, in the Dataset's order, of the failed points and of the points without
-    a jump on their grid: NO_JUMP is an answer (no value of the grid sticks), not a failure."""
-    status = np.asarray(results["status"].values).astype(str)
-    without = status == NO_JUMP
-    return (status != "converged") & ~without, without
-
-
-def no_jump_label(results: xr.Dataset) -> str:
-    """Legend text for points on whose whole prescan grid nothing sticks."""
-    top = float(results["scan_mu"].max()) if "scan_mu" in results.coords else math.nan
-    grid = f"up to \u03bc = {top:.3g}" if math.isfinite(top) else "of the grid"
-    return f"no jump: no value {grid} sticks (\u03bc* above)"
-
-
-def mark_no_jump(ax: Axes, x: np.ndarray, label: str) -> Line2D:
-    """Such points as open triangles at the top edge of a line's axes (mu* lies above the
-    view); returns the legend entry."""
-    style = {"linestyle": "none", "marker": "^", "markersize": 8, "color": STICK_COLOR}
-    style |= {"markerfacecolor": "white"}  # open: no mu* to mark, only where it is not
-    top = blended_transform_factory(ax.transData, ax.transAxes)
-    ax.plot(
-        x, np.full(x.size, 0.955), transform=top, clip_on=False, zorder=6, gid="no_jump", **style
+# ---- runs -------------------------------------------------------------------------------
+def run_dots(ax: Axes, x: np.ndarray, mu: np.ndarray, outcome: np.ndarray) -> list[Line2D]:
+    """Every run as a small dot at (x, mu): stick dark, not stick light, undetermined red;
+    returns the legend entries."""
+    handles = []
+    groups = (
+        (outcome == "stick", "o", STICK_COLOR, "run: stick"),
+        (
+            (outcome == "stick_slip") | (outcome == "slide") | (outcome == "creep"),
+            "o",
+            SLIDE_COLOR,
+            "run: not stick",
+        ),
+        (outcome == "undetermined", "x", FAIL_COLOR, "run: undetermined"),
     )
-    return Line2D([], [], label=label, **style)
-
-
-def _point_labels(results: xr.Dataset) -> list[str]:
-    """ "x_ms = 0.1 m, x0 = 0 m" for every point, in the Dataset's (C) order."""
-    dims = list(results["mu_star"].dims)
-    grids = np.meshgrid(*[results[d].values for d in dims], indexing="ij")
-    flat = [g.reshape(-1) for g in grids]
-    return [
-        ", ".join(_value_text(results[d], float(f[i])) for d, f in zip(dims, flat, strict=True))
-        for i in range(flat[0].size)
-    ]
+    for mask, marker, color, label in groups:
+        if not mask.any():
+            continue
+        ax.plot(
+            x[mask],
+            mu[mask],
+            linestyle="none",
+            marker=marker,
+            markersize=3.0,
+            color=color,
+            markeredgecolor=STICK_COLOR if marker == "o" else color,
+            markeredgewidth=0.4,
+            alpha=0.9,
+            zorder=2,
+        )
+        handles.append(
+            Line2D(
+                [],
+                [],
+                linestyle="none",
+                marker=marker,
+                markersize=4,
+                color=color,
+                markeredgecolor=STICK_COLOR if marker == "o" else color,
+                markeredgewidth=0.4,
+                label=label,
+            )
+        )
+    return handles

@@ -17,7 +17,7 @@ _repr = reprlib.Repr()
 _repr.maxstring = _repr.maxother = 40
 _short = _repr.repr
 
-_DOTTED_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*")
+DOTTED_KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*")
 
 
 def parse_override(text: str, source: str) -> tuple[str, Any]:
@@ -30,7 +30,7 @@ def parse_override(text: str, source: str) -> tuple[str, Any]:
             f"allowed at most {MAX_KEY_PARTS} (scene keys have 2 or 3, e.g. params.mu)",
             source,
         )
-    if not sep or not _DOTTED_KEY.fullmatch(key):
+    if not sep or not DOTTED_KEY.fullmatch(key):
         raise ConfigError(
             f"--set {text!r}: malformed override: expected KEY=VALUE with a dotted KEY, "
             "e.g. params.mu=0.13",
@@ -48,7 +48,7 @@ def apply_overrides(data: Any, pairs: Iterable[tuple[str, Any]], source: str) ->
                 f"{_short(key)}: override key has more than {MAX_KEY_PARTS} dotted parts",
                 source,
             )
-        if not isinstance(key, str) or not _DOTTED_KEY.fullmatch(key):
+        if not isinstance(key, str) or not DOTTED_KEY.fullmatch(key):
             raise ConfigError(
                 f"{key!r}: malformed override key: expected a dotted key, e.g. params.mu", source
             )

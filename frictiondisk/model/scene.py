@@ -281,7 +281,7 @@ class Numerics(BaseModel):
     @classmethod
     def _resolve_preset(cls, data: Any) -> Any:
         """Drop the keys given as `auto` (their defaults here; a find_jump campaign
-        chooses them, model/campaign.py), then fill the preset's keys that `data` does
+        chooses them, tasks/campaign.py), then fill the preset's keys that `data` does
         not give (explicit keys win)."""
         if isinstance(data, Mapping):
             data = {k: v for k, v in data.items() if not (k in AUTO_KEYS and v == AUTO)}

@@ -170,11 +170,11 @@ def error_lines(
         path = dotted(parts if kind == "extra_forbidden" else parent, brackets)
         under = f"under {dotted(parent, brackets)}" if parent else "at top level"
         what = "unknown key" if kind == "extra_forbidden" else f"key {show(value)} is not text"
-        names = list(model.model_fields) if _is_model(model) else []
+        names = list(model.model_fields) if is_model(model) else []
         text = f"{what}; allowed keys {under}: {', '.join(names)}"
         close = difflib.get_close_matches(str(loc[-1]), names, n=1)
         text += f" (did you mean {close[0]!r}?)" if close else ""
-    elif kind in ("model_type", "model_attributes_type", "dict_type") and _is_model(here):
+    elif kind in ("model_type", "model_attributes_type", "dict_type") and is_model(here):
         path = dotted(parts, brackets)
         got = kind_of(value) if value is None else f"{kind_of(value)} {show(value)}"
         text = f"expected a mapping with keys {', '.join(here.model_fields)}; got {got}"
@@ -225,7 +225,7 @@ def requirement(info: FieldInfo) -> str:
     elif get_origin(base) is Literal:
         choices = [repr(choice) for choice in get_args(base)]
         text = " or ".join(choices) if len(choices) <= 2 else "one of " + ", ".join(choices)
-    elif _is_model(base):
+    elif is_model(base):
         text = f"a mapping with keys {', '.join(base.model_fields)}"
     else:
         noun = {bool: "true or false", int: "an integer", float: "a finite number"}
@@ -261,10 +261,10 @@ def _walk(root: Any, loc: Sequence[int | str]) -> tuple[list[Any], FieldInfo | N
     info: FieldInfo | None = None
     here = root
     for part in loc:
-        here = _strip(here)
+        here = plain_annotation(here)
         if part == "[key]":
             continue
-        if _is_model(here) and part in here.model_fields:
+        if is_model(here) and part in here.model_fields:
             info = here.model_fields[part]
             here = info.annotation
         elif get_origin(here) in (Union, types.UnionType):
@@ -283,17 +283,17 @@ def _walk(root: Any, loc: Sequence[int | str]) -> tuple[list[Any], FieldInfo | N
         else:
             here, info = None, None
         parts.append(part)
-    return parts, info, _strip(here)
+    return parts, info, plain_annotation(here)
 
 
-def _strip(annotation: Any) -> Any:
+def plain_annotation(annotation: Any) -> Any:
     """`annotation` without Annotated and without None in a union of one other type."""
     while get_origin(annotation) is Annotated:
         annotation = get_args(annotation)[0]
     args = get_args(annotation) if get_origin(annotation) in (Union, types.UnionType) else ()
     others = [a for a in args if a is not type(None)]
     if len(args) == 2 and len(others) == 1:
-        return _strip(others[0])
+        return plain_annotation(others[0])
     return annotation
 
 
@@ -312,7 +312,7 @@ def field_at(root: type[BaseModel], loc: Sequence[int | str]) -> FieldInfo | Non
     return info if len(parts) == len(loc) and info is not None else None
 
 
-def _is_model(annotation: Any) -> bool:
+def is_model(annotation: Any) -> bool:
     return isinstance(annotation, type) and issubclass(annotation, BaseModel)
 
 

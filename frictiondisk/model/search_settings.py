@@ -1,5 +1,6 @@
-"""What a campaign sets for its search: the root finders it may pick, and how strictly a
-located jump is certified. Value objects only; the search itself lives in search/."""
+"""What a campaign sets for its search: the root finders it may pick, how strictly a
+located jump is certified, and the flags a certification ends with. Value objects only;
+the search itself lives in frictiondisk/tasks/jump_search/."""
 
 from __future__ import annotations
 
@@ -13,6 +14,9 @@ ROOT_FINDERS = ("itp", "bisect")
 # retries of an undetermined run, each with a longer horizon (find_jump and trace); a third
 # rescued braked disks' failures but some wrongly (docs/wellposed.md, Run H)
 DEFAULT_MAX_RETRIES = 2
+# Flag values of the `certification` variables (CF flag_values / flag_meanings), in the order
+# of their codes (frictiondisk.tasks.jump_search.certify)
+CERTIFICATION_FLAGS = ("off", "certified", "recertified", "uncertain", "vanished", "failed")
 
 
 class Certify(BaseModel):

@@ -10,10 +10,10 @@ from typing import Any, Union, get_args, get_origin
 
 from pydantic.fields import FieldInfo
 
-from frictiondisk.model.overrides import _DOTTED_KEY
+from frictiondisk.model.overrides import DOTTED_KEY
 from frictiondisk.model.scene import MAX_HORIZON, ConfigError, SceneConfig
 from frictiondisk.model.scene_keys import unused_key_problem
-from frictiondisk.model.schema import _is_model, requirement
+from frictiondisk.model.schema import is_model, requirement
 from frictiondisk.model.schema import show as _show
 
 # Initial-state keys a basin samples or maps (params.phidot0: disk only, scene_keys.py).
@@ -23,13 +23,13 @@ INITIAL_STATE_KEYS = ("params.x0", "params.y0", "params.vx0", "params.vy0", "par
 def key_problem(key: str, base: SceneConfig | None = None) -> str | None:
     """What is wrong with varying dotted scene `key` (None: a numeric scene key that the
     scene `base` uses, if given)."""
-    if not _DOTTED_KEY.fullmatch(key):
+    if not DOTTED_KEY.fullmatch(key):
         return "not a dotted scene key, e.g. params.x_ms"
     model: Any = SceneConfig
     parts = key.split(".")
     for depth, part in enumerate(parts):
         section = ".".join(parts[:depth])
-        if not _is_model(model):
+        if not is_model(model):
             return f"unknown scene key; {section} is a value, not a section"
         fields = model.model_fields
         if part not in fields:
@@ -38,7 +38,7 @@ def key_problem(key: str, base: SceneConfig | None = None) -> str | None:
             close = difflib.get_close_matches(part, list(fields), n=1)
             return text + (f" (did you mean {close[0]!r}?)" if close else "")
         model = fields[part].annotation
-    if _is_model(model):
+    if is_model(model):
         keys = ", ".join(model.model_fields)
         return f"a section, not a number: vary one of its keys: {keys}"
     info = _scene_field(key)

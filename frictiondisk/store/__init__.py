@@ -1,2 +1,2 @@
-"""What is kept: the append-only journal, results.nc/runs.nc Datasets with CF metadata,
-atomic files, checked paths."""
+"""What is kept, whatever the task: the append-only journal, atomic files, checked paths,
+the DIR layout, CF metadata and the columns every campaign's files share."""

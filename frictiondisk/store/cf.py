@@ -4,8 +4,10 @@ results.nc (of every task, a trace's included), runs.nc, trajectory.nc and accur
 `complete(ds, title)` adds the global attributes (`Conventions`, `title`, `institution`,
 `source`, `history`, `references`) and, per variable, what the builder left out: the flag
 attributes of the 0/1 (and -1/0/1) indicator variables, `units` of the integer counters and
-a `long_name` and `comment` for the text variables. A numeric variable without units that is
-not listed here raises, so a new variable cannot slip through undocumented. Text variables
+a `long_name` and `comment` for the text variables. The tables here hold what every file
+shares; a task's builder passes its own (`flags`, `texts`, `dimensionless`: its package's
+datasets.py). A numeric variable without units that is listed nowhere raises, so a new
+variable cannot slip through undocumented. Text variables
 carry no `units` (CF gives strings none); flags carry `flag_values` and `flag_meanings`
 (and units "1": they are dimensionless).
 
@@ -15,13 +17,13 @@ run or resume, and the same campaign must give identical files whatever the work
 
 from __future__ import annotations
 
-from collections.abc import Collection
+from collections.abc import Collection, Mapping
 from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from frictiondisk.search.certify import CERTIFICATION_FLAGS
+from frictiondisk.model.search_settings import CERTIFICATION_FLAGS
 from frictiondisk.version import NUMERICS_VERSION, __version__
 
 CONVENTIONS = "CF-1.10"
@@ -31,70 +33,34 @@ REFERENCES = (
 )
 OUTCOMES = "stick creep stick_slip slide undetermined"
 
+Flag = tuple[tuple[int, ...], str]  # (flag_values, flag_meanings)
+
+# the certification of a point: pending (-1, partial results) or a CERTIFICATION_FLAGS code
+CERTIFICATION: Flag = (
+    tuple(range(-1, len(CERTIFICATION_FLAGS))),
+    " ".join(("pending", *CERTIFICATION_FLAGS)),
+)
+
 # variable -> (flag_values, flag_meanings)
-FLAGS: dict[str, tuple[tuple[int, ...], str]] = {
-    "monotone": ((0, 1), "contradicts_a_single_jump single_jump"),
-    "warm_start": ((0, 1), "bracket_from_campaign bracket_predicted"),
-    "cycle_converged": ((0, 1), "not_converged converged"),
-    "jump_rising": ((-1, 0, 1), "no_jump falling rising"),
-    "window_narrow": ((-1, 0, 1), "no_window wider_than_persistence narrower_than_persistence"),
-    "is_reference": ((0, 1), "not_reference reference"),
-    "in_ladder": ((0, 1), "not_in_ladder in_ladder"),
+FLAGS: dict[str, Flag] = {
     "mode": ((0, 1), "slide stick"),  # trajectory.nc: contact mode
-    "certification": (
-        tuple(range(-1, len(CERTIFICATION_FLAGS))),
-        " ".join(("pending", *CERTIFICATION_FLAGS)),
-    ),
-    "jump_certification": (
-        tuple(range(-1, len(CERTIFICATION_FLAGS))),
-        " ".join(("no_jump", *CERTIFICATION_FLAGS)),
-    ),
-    # trace results.nc
-    "bisected": ((0, 1), "mu key"),
-    "stick_high": ((0, 1), "stick_at_low_end stick_at_high_end"),
-    "rising": ((0, 1), "falling rising"),
-    "curve_closed": ((0, 1), "open closed"),
-    "fold_window": ((0, 1), "gap_closes sticking_window_closes"),
-    "fold_certification": (tuple(range(len(CERTIFICATION_FLAGS))), " ".join(CERTIFICATION_FLAGS)),
 }
 
 # text variable -> (long_name if the builder gave none, comment)
 TEXT: dict[str, tuple[str, str]] = {
     "outcome": ("outcome of the run", f"one of: {OUTCOMES} (docs/model.md section 6)"),
-    "outcome_lo": ("outcome at mu_lo", f"one of: {OUTCOMES}"),
-    "outcome_hi": ("outcome at mu_hi", f"one of: {OUTCOMES}"),
-    "scan_outcome": (
-        "outcome of the prescan run",
-        f"one of: {OUTCOMES}; empty: a value the adaptive prescan did not need to run",
-    ),
     "reason": ("why this outcome", "free text; for undetermined: what went wrong"),
     "status": (
         "status of the point",
         "converged (mu* found), no_jump (no value of the prescan grid sticks, each decided) "
         "or failed; pending: not finished (partial)",
     ),
-    "jump_status": ("status of the jump", "converged or failed; empty: no jump"),
     "mode": ("numerics.mode of the run", "decide or converge"),
     "key": ("journal key", "sha256 of the canonical scene and the numerics version"),
-    "purpose": ("what the run served", "first_look, curve or fold (trace)"),
-    "fold_status": ("status of the fold", "located or not located"),
-    "curve_first_end": ("why the curve's first end stopped", "edge, joined, closed, limit, failed"),
-    "curve_last_end": ("why the curve's last end stopped", "edge, joined, closed, limit, failed"),
 }
 
 # integer counters and indices that the builders leave without units
-DIMENSIONLESS = {
-    "point",
-    "level",
-    "strict",
-    "n_runs",
-    "setting",
-    "contact",
-    "n_jumps",
-    "n_windows",
-    "sample",
-    "n_samples",
-}
+DIMENSIONLESS = {"point", "level", "strict", "n_runs", "contact"}
 # numeric variables whose unit differs from row to row, named by a text variable beside them
 MIXED_UNITS = {"value": "value_units"}
 
@@ -108,22 +74,22 @@ def flag_meanings(var: xr.DataArray) -> dict[int, str]:
 
 
 def _source() -> str:
-    from frictiondisk.store.journal import kernel_version
+    from frictiondisk.store.journal_entry import kernel_version
 
     return f"frictiondisk {__version__} simulation ({kernel_version()})"
 
 
-def _complete_variable(name: str, var: xr.Variable) -> None:
+def _complete_variable(name: str, var: xr.Variable, flags, texts, dimensionless) -> None:
     attrs = var.attrs
     if var.dtype.kind in "USO":
-        long_name, comment = TEXT.get(name, (name.replace("_", " "), ""))
+        long_name, comment = texts.get(name, (name.replace("_", " "), ""))
         attrs.setdefault("long_name", long_name)
         if comment:
             attrs.setdefault("comment", comment)
         attrs.pop("units", None)
         return
-    if name in FLAGS and var.dtype.kind in "iu":
-        values, meanings = FLAGS[name]
+    if name in flags and var.dtype.kind in "iu":
+        values, meanings = flags[name]
         attrs["flag_values"] = np.array(values, dtype=var.dtype)
         attrs["flag_meanings"] = meanings
         attrs["units"] = "1"
@@ -133,21 +99,33 @@ def _complete_variable(name: str, var: xr.Variable) -> None:
         attrs.setdefault("comment", f"units differ per row: see the variable {MIXED_UNITS[name]}")
         return
     if "units" not in attrs:
-        if name not in DIMENSIONLESS:
+        if name not in dimensionless:
             raise ValueError(f"variable {name!r} has no units: give it units in its builder")
         attrs["units"] = "1"
     if "long_name" not in attrs:
         raise ValueError(f"variable {name!r} has no long_name: give it one in its builder")
 
 
-def complete(ds: xr.Dataset, title: str, what: str) -> xr.Dataset:
+def complete(
+    ds: xr.Dataset,
+    title: str,
+    what: str,
+    flags: Mapping[str, Flag] | None = None,
+    texts: Mapping[str, tuple[str, str]] | None = None,
+    dimensionless: Collection[str] = (),
+) -> xr.Dataset:
     """Add the CF attributes to `ds` in place (see the module docstring) and return it.
 
     title: a one-line description of the file; what: how it was made, for `history`
-    (e.g. "frictiondisk run: campaign demo_line, task find_jump").
+    (e.g. "frictiondisk run: campaign demo_line, task find_jump"). flags, texts,
+    dimensionless: the builder's own variables, beside the shared FLAGS, TEXT and
+    DIMENSIONLESS.
     """
+    flags = {**FLAGS, **(flags or {})}
+    texts = {**TEXT, **(texts or {})}
+    units_one = DIMENSIONLESS | set(dimensionless)
     for name, var in ds.variables.items():
-        _complete_variable(str(name), var)
+        _complete_variable(str(name), var, flags, texts, units_one)
     ds.attrs.update(
         {
             "Conventions": CONVENTIONS,

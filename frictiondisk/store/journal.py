@@ -8,7 +8,7 @@ Layout of a campaign directory DIR::
     DIR/journal/corrupt/<key>.<n>.json   entries that failed verification, kept for inspection
     DIR/journal/corrupt/reasons.log      one line "<key>.<n>.json<TAB><reason>" per entry moved
 
-A run is addressed by its key (`run_key`): the sha256 of its canonical scene plus the
+A run is addressed by its key (journal_entry.run_key): the sha256 of its canonical scene plus the
 kernel version, so a changed input or changed numerics give a new key and an old entry is
 simply never looked up again. Each entry is written to a temporary file and renamed
 (`Journal.put`), so a crash leaves either no entry or a complete one; a reader still verifies
@@ -26,122 +26,16 @@ from __future__ import annotations
 
 import collections
 import contextlib
-import functools
-import hashlib
-import json
-import math
 import os
-import re
-from importlib import metadata
 from pathlib import Path
 from typing import Any
 
 from frictiondisk.store.files import TEMP_SUFFIX, atomic_write_bytes, fsync_directory
+from frictiondisk.store.journal_audit import REASONS_LOG
+from frictiondisk.store.journal_entry import KEY, check_key, encode, verify
 from frictiondisk.store.paths import SymlinkRefused, open_nofollow, read_nofollow, refuse_symlink
-from frictiondisk.version import NUMERICS_VERSION
 
-__all__ = [
-    "ENTRY_VERSION",
-    "Journal",
-    "kernel_version",
-    "run_key",
-]
-
-ENTRY_VERSION = 1
-_REASONS_LOG = "reasons.log"  # in journal/corrupt/: why each entry was moved there
-_ENTRY_FIELDS = ("version", "key", "inputs", "result", "sha256")
-_KEY = re.compile(r"[0-9a-f]{64}")  # a sha256 hex digest, as made by run_key
-
-
-# --- keys ---------------------------------------------------------------------------------
-
-# The libraries whose versions change what a run computes (numba compiles the kernel, numpy
-# and scipy do its arithmetic, scipy-radau and coulomb integrate with scipy).
-NUMERICS_LIBRARIES = ("numba", "numpy", "scipy")
-
-
-@functools.cache
-def kernel_version() -> str:
-    """Version of the numerics, part of every `run_key`, e.g.
-    "numerics 1, numba 0.68.1, numpy 2.4.6, scipy 1.17.1".
-
-    `NUMERICS_VERSION` (frictiondisk/version.py) is bumped by hand with any change that
-    alters what a run computes; an edited comment or docstring leaves every key as it was.
-    The library versions come from the installed distributions' metadata (nothing is
-    imported): a new numba, numpy or scipy can change results in the last digits, so
-    journal entries computed with other versions are not reused. Computed once per process.
-    """
-    libraries = ", ".join(f"{name} {metadata.version(name)}" for name in NUMERICS_LIBRARIES)
-    return f"numerics {NUMERICS_VERSION}, {libraries}"
-
-
-def run_key(config: Any) -> str:
-    """Journal key of one run: sha256 hex of its canonical scene and the kernel version.
-
-    `config` is a validated `SceneConfig` (anything with `.canonical()` works). The key is
-    the sha256 of `{"scene": config.canonical(), "kernel": kernel_version()}` as compact,
-    key-sorted JSON.
-    """
-    text = json.dumps(
-        {"scene": config.canonical(), "kernel": kernel_version()},
-        sort_keys=True,
-        separators=(",", ":"),
-    )
-    return hashlib.sha256(text.encode()).hexdigest()
-
-
-class _Inputs:
-    """Stored canonical inputs, seen by `run_key` as the config they came from."""
-
-    def __init__(self, canonical: dict[str, Any]) -> None:
-        self._canonical = canonical
-
-    def canonical(self) -> dict[str, Any]:
-        return self._canonical
-
-
-def key_of_inputs(inputs: dict[str, Any]) -> str:
-    """The key `run_key` gives the config whose canonical form is `inputs` (current numerics)."""
-    return run_key(_Inputs(inputs))
-
-
-def _check_key(key: Any) -> str:
-    if not isinstance(key, str) or not _KEY.fullmatch(key):
-        raise ValueError(
-            f"journal key {key!r} is not valid: expected a sha256 hex digest "
-            "(64 lowercase hex digits), as made by run_key"
-        )
-    return key
-
-
-# --- journal ------------------------------------------------------------------------------
-
-
-def _canonical_json(value: Any) -> str:
-    return json.dumps(value, sort_keys=True, separators=(",", ":"), allow_nan=False)
-
-
-def _entry_digest(key: str, inputs: Any, result: Any) -> str:
-    """sha256 hex of the canonical JSON of {"key", "inputs", "result"}."""
-    text = _canonical_json({"key": key, "inputs": inputs, "result": result})
-    return hashlib.sha256(text.encode()).hexdigest()
-
-
-def _non_finite_path(value: Any, path: str) -> str | None:
-    """Dotted path of the first NaN or infinity inside `value`, or None."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return path
-    if isinstance(value, dict):
-        items = value.items()
-    elif isinstance(value, list | tuple):
-        items = enumerate(value)
-    else:
-        return None
-    for k, item in items:
-        found = _non_finite_path(item, f"{path}.{k}" if path else str(k))
-        if found is not None:
-            return found
-    return None
+__all__ = ["Journal"]
 
 
 class Journal:
@@ -187,7 +81,7 @@ class Journal:
 
     def entry_path(self, key: str) -> Path:
         """Where the entry of `key` lives: `path/<key[:2]>/<key>.json`."""
-        _check_key(key)
+        check_key(key)
         shard = key[:2]
         if shard in self._shards:
             return self.path / shard / f"{key}.json"
@@ -214,7 +108,7 @@ class Journal:
             return self._corrupt(key, path, "a symbolic link (never followed)")
         except OSError as err:
             return self._corrupt(key, path, f"unreadable ({err.strerror or err})")
-        entry, reason = self._verify(key, raw)
+        entry, reason = verify(key, raw)
         if reason is not None:
             return self._corrupt(key, path, reason)
         return entry["result"]
@@ -225,7 +119,7 @@ class Journal:
 
         Writes nothing (no folder is created, a bad entry stays where it is for the driver's
         `get` to deal with), so a worker may call it while the driver holds the lock."""
-        _check_key(key)
+        check_key(key)
         shard = Path(campaign_dir) / "journal" / key[:2]
         if shard.is_symlink() or shard.parent.is_symlink():
             return None
@@ -233,95 +127,8 @@ class Journal:
             raw = read_nofollow(shard / f"{key}.json")
         except OSError:
             return None
-        entry, reason = cls._verify(key, raw)
+        entry, reason = verify(key, raw)
         return None if reason is not None else entry["result"]
-
-    @staticmethod
-    def _verify(key: str, raw: bytes) -> tuple[Any, str | None]:
-        """(entry, None) if `raw` is a valid entry of `key`, else (None, reason)."""
-        try:
-            entry = json.loads(raw.decode("utf-8"))
-        except (UnicodeDecodeError, ValueError) as err:
-            # json.JSONDecodeError is a ValueError; so is an out-of-range number
-            what = "empty file" if not raw.strip() else f"truncated or not JSON ({err})"
-            return None, what
-        if not isinstance(entry, dict):
-            return None, f"not a JSON object but {type(entry).__name__}"
-        missing = [name for name in _ENTRY_FIELDS if name not in entry]
-        if missing:
-            return None, f"missing field(s) {', '.join(missing)}"
-        if entry["version"] != ENTRY_VERSION:
-            return None, f"unsupported entry version {entry['version']!r} (expected 1)"
-        if entry["key"] != key:
-            return None, f"key field {entry['key']!r} differs from the file's key"
-        if not isinstance(entry["inputs"], dict) or not isinstance(entry["result"], dict):
-            return None, "inputs and result must be JSON objects"
-        try:
-            digest = _entry_digest(key, entry["inputs"], entry["result"])
-        except ValueError:  # NaN or Infinity written by hand: json.loads accepts them
-            return None, "contains NaN or infinity"
-        if entry["sha256"] != digest:
-            return None, "sha256 mismatch (content altered)"
-        try:
-            from_inputs = key_of_inputs(entry["inputs"])
-        except (TypeError, ValueError) as err:
-            return None, f"inputs cannot be hashed ({err})"
-        if from_inputs != key:
-            return None, (
-                f"its inputs give key {from_inputs[:12]}..., not {key[:12]}... "
-                "(an entry of another run, edited inputs, or other numerics)"
-            )
-        return entry, None
-
-    @classmethod
-    def audit(cls, campaign_dir: str | os.PathLike[str]) -> tuple[list[str], list[str]]:
-        """Read-only check of a journal for `status`: (problems of the entries present,
-        reasons of the entries already moved to corrupt/), one line each.
-
-        An entry whose inputs give another key under the current numerics is listed too:
-        it is either stale (written by other numerics: never looked up again) or filed
-        under the wrong key; `get` moves it aside only if a run asks for its key."""
-        journal = Path(campaign_dir) / "journal"
-        problems: list[str] = []
-        if journal.is_symlink():
-            return [f"{journal}: a symbolic link; refusing to follow it"], []
-        if not journal.is_dir():
-            return [], []
-        for shard in sorted(journal.iterdir()):
-            if len(shard.name) != 2:
-                continue
-            if shard.is_symlink():
-                problems.append(f"{shard.name}/: a symbolic link; refusing to follow it")
-                continue
-            if not shard.is_dir():
-                continue
-            for path in sorted(shard.glob("*.json")):
-                key = path.stem
-                if not _KEY.fullmatch(key):
-                    continue
-                try:
-                    raw = read_nofollow(path)
-                except SymlinkRefused:
-                    problems.append(f"{key}: a symbolic link (never followed)")
-                    continue
-                except OSError as err:
-                    problems.append(f"{key}: unreadable ({err.strerror or err})")
-                    continue
-                _, reason = cls._verify(key, raw)
-                if reason is not None:
-                    problems.append(f"{key}: {reason}")
-        return problems, cls.moved_aside(campaign_dir)
-
-    @staticmethod
-    def moved_aside(campaign_dir: str | os.PathLike[str]) -> list[str]:
-        """Lines "<file>: <reason>" of every entry moved to corrupt/ so far (reasons.log)."""
-        log = Path(campaign_dir) / "journal" / "corrupt" / _REASONS_LOG
-        try:
-            data = read_nofollow(log)
-        except OSError:
-            return []
-        lines = data.decode("utf-8", "replace").splitlines()
-        return [line.replace("\t", ": ", 1) for line in lines if "\t" in line]
 
     def _corrupt(self, key: str, path: Path, reason: str) -> None:
         """Move a bad entry to `corrupt/<key>.<n>.json` (first free n >= 1) and record why."""
@@ -341,7 +148,7 @@ class Journal:
                 return None
             fsync_directory(path.parent)
             fsync_directory(self.corrupt_dir)
-            self._append(self.corrupt_dir / _REASONS_LOG, f"{target.name}\t{reason}\n")
+            self._append(self.corrupt_dir / REASONS_LOG, f"{target.name}\t{reason}\n")
             return None
         return None
 
@@ -353,7 +160,7 @@ class Journal:
                 continue
             for entry in shard.glob("*.json"):
                 key = entry.stem
-                if _KEY.fullmatch(key) and key[:2] == shard.name:
+                if KEY.fullmatch(key) and key[:2] == shard.name:
                     found.append(key)
         return sorted(found)
 
@@ -367,7 +174,7 @@ class Journal:
 
     def __contains__(self, key: object) -> bool:
         """Whether an entry file for `key` exists (not verified)."""
-        return isinstance(key, str) and bool(_KEY.fullmatch(key)) and self.entry_path(key).exists()
+        return isinstance(key, str) and bool(KEY.fullmatch(key)) and self.entry_path(key).exists()
 
     def computed_counts(self) -> collections.Counter[str]:
         """How many times each key was put, from `computed.log`.
@@ -381,7 +188,7 @@ class Journal:
             return collections.Counter()
         lines = data.split(b"\n")[:-1]  # the part after the last newline is incomplete
         return collections.Counter(
-            text for line in lines if _KEY.fullmatch(text := line.decode("ascii", "replace"))
+            text for line in lines if KEY.fullmatch(text := line.decode("ascii", "replace"))
         )
 
     # writing ------------------------------------------------------------------------------
@@ -400,38 +207,9 @@ class Journal:
         tear the latest ones, and a torn entry fails its sha256 in `get` and is computed
         again, which is the journal's contract anyway.
 
-        `inputs` and `result` must be JSON-serializable dicts without NaN or infinity (pass
-        None for a missing number): ValueError names the offending field, TypeError a value
-        JSON cannot store.
+        `inputs` and `result`: as journal_entry.encode takes them (ValueError, TypeError).
         """
-        _check_key(key)
-        for name, value in (("inputs", inputs), ("result", result)):
-            if not isinstance(value, dict):
-                raise TypeError(f"journal entry {key}: {name} must be a dict, got {value!r}")
-        try:
-            # Round-trip through JSON first, so the digest is computed on exactly what a
-            # reader will load (tuples become lists, etc.).
-            inputs, result = json.loads(_canonical_json([inputs, result]))
-        except ValueError as err:  # NaN or infinity: walk the values only now, to name it
-            for name, value in (("inputs", inputs), ("result", result)):
-                bad = _non_finite_path(value, name)
-                if bad is not None:
-                    raise ValueError(
-                        f"journal entry {key}: {bad} is NaN or infinite, which JSON cannot "
-                        "store; pass None for a missing number"
-                    ) from None
-            raise ValueError(f"journal entry {key}: {err}; pass None for NaN") from None
-        except TypeError as err:
-            raise TypeError(f"journal entry {key}: {err}") from None
-        entry = {
-            "version": ENTRY_VERSION,
-            "key": key,
-            "inputs": inputs,
-            "result": result,
-            "sha256": _entry_digest(key, inputs, result),
-        }
-        # compact: indent would switch json to its pure-Python encoder (3x slower here)
-        data = (json.dumps(entry, sort_keys=True, allow_nan=False) + "\n").encode()
+        data = encode(key, inputs, result)
 
         path = self.entry_path(key)
         if key[:2] not in self._shards:

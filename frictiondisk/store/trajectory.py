@@ -96,35 +96,7 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
     before = np.flatnonzero(np.diff(t) <= 0)
     keep = np.setdiff1d(np.arange(n_time), before)
 
-    data_vars: dict[str, xr.Variable] = {}
-    for name, (units, long_name) in _BODY_VARIABLES.items():
-        values = getattr(traj, name)
-        if values is None:  # phi and phidot exist only for the disk
-            continue
-        data_vars[name] = xr.Variable(
-            ("time",),
-            np.asarray(values, dtype=float)[keep],
-            {"units": units, "long_name": long_name},
-        )
-    for name, (units, long_name) in _CONTACT_VARIABLES.items():
-        data_vars[name] = xr.Variable(
-            ("time", "contact"),
-            np.asarray(getattr(traj, name), dtype=float)[keep],
-            {"units": units, "long_name": long_name},
-        )
-    flags = {
-        "units": "1",
-        "flag_values": np.array([MODE_SLIDE, MODE_STICK], dtype=np.int8),
-        "flag_meanings": "slide stick",
-    }
-    data_vars["mode"] = xr.Variable(
-        ("time", "contact"), mode.astype(np.int8)[keep], {"long_name": "contact mode", **flags}
-    )
-    data_vars["mode_before_event"] = xr.Variable(
-        ("event", "contact"),
-        mode.astype(np.int8)[before],
-        {"long_name": "contact mode just before the switch at event_time", **flags},
-    )
+    data_vars = _state_variables(traj, mode, keep, before)
 
     coords = {
         "time": ("time", t[keep], {"units": "s", "long_name": "simulated time", "axis": "T"}),
@@ -156,6 +128,41 @@ def trajectory_dataset(result: SimulationResult, config: Any) -> xr.Dataset:
         f"x_ms = {head['x_ms']:g} m",
         what="frictiondisk simulate (one recorded run)",
     )
+
+
+def _state_variables(traj, mode: np.ndarray, keep: np.ndarray, before: np.ndarray) -> dict:
+    """The recorded state at the kept samples (dim `time`; the contacts' dim `contact`),
+    and the contact mode before each switch (dim `event`)."""
+    data_vars: dict[str, xr.Variable] = {}
+    for name, (units, long_name) in _BODY_VARIABLES.items():
+        values = getattr(traj, name)
+        if values is None:  # phi and phidot exist only for the disk
+            continue
+        data_vars[name] = xr.Variable(
+            ("time",),
+            np.asarray(values, dtype=float)[keep],
+            {"units": units, "long_name": long_name},
+        )
+    for name, (units, long_name) in _CONTACT_VARIABLES.items():
+        data_vars[name] = xr.Variable(
+            ("time", "contact"),
+            np.asarray(getattr(traj, name), dtype=float)[keep],
+            {"units": units, "long_name": long_name},
+        )
+    flags = {
+        "units": "1",
+        "flag_values": np.array([MODE_SLIDE, MODE_STICK], dtype=np.int8),
+        "flag_meanings": "slide stick",
+    }
+    data_vars["mode"] = xr.Variable(
+        ("time", "contact"), mode.astype(np.int8)[keep], {"long_name": "contact mode", **flags}
+    )
+    data_vars["mode_before_event"] = xr.Variable(
+        ("event", "contact"),
+        mode.astype(np.int8)[before],
+        {"long_name": "contact mode just before the switch at event_time", **flags},
+    )
+    return data_vars
 
 
 def write_trajectory(path: str | os.PathLike[str], result: SimulationResult, config: Any) -> Path:

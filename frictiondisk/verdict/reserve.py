@@ -10,7 +10,7 @@ disk without brake torque, Melan's shakedown demand with one). The reserve
 is > 0 where the first sticking circle holds and < 0 where it breaks. R1 moves smoothly
 with mu, so the reserve crosses zero at the jump of a point whose first sticking circle
 decides it (docs/model.md section 7), nearly linearly. The search interpolates on it
-(frictiondisk.search.bisection); verdicts stay the ground truth, so a reserve that misleads (a
+(frictiondisk.tasks.jump_search.bisection); verdicts stay the ground truth, so a reserve that misleads (a
 disk from rest, a jump decided by a later circle) costs runs, never a wrong mu*.
 NaN where the slave never stuck as a whole.
 """

@@ -1,0 +1,1 @@
+"""The accuracy study of a find_jump campaign (`frictiondisk accuracy`, docs/accuracy.md)."""

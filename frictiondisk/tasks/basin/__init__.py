@@ -1,0 +1,1 @@
+"""The `basin` task: outcome fractions over sampled initial states, or a basin map."""

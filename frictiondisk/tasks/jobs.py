@@ -1,0 +1,56 @@
+"""The work a planner hands out, as descriptions (what to run, never how): independent runs
+(`RunScenes`), a search advanced run after run on one worker (`RunSearch`) and a recorded
+run (`RunRecorded`); and `Sizing`, how the driver wants work cut. frictiondisk.engine.worker
+executes them (on Dask or in this process) and returns what each job's docstring names."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+from typing import Any
+
+
+@dataclasses.dataclass(frozen=True)
+class Sizing:
+    """How the driver wants work cut into jobs (performance only: results never depend
+    on it). batch_runs: independent runs per job; chain_s: time budget [s] of a job that
+    advances one search step after step (None: no chains, every run is its own unit);
+    max_jobs: most jobs to hand out now; workers: how many share the runs out now."""
+
+    batch_runs: int = 1
+    chain_s: float | None = None
+    max_jobs: int | None = None
+    workers: int = 1
+
+
+@dataclasses.dataclass(frozen=True)
+class RunScenes:
+    """Simulate each scene (`SceneConfig.canonical()`), in order. Returns the list of their
+    result summaries (`SimulationResult.summary()`)."""
+
+    scenes: tuple[dict[str, Any], ...]
+
+
+@dataclasses.dataclass(frozen=True)
+class RunSearch:
+    """Advance `search` (a frictiondisk.tasks.protocol.Search) one run after the other:
+    its first pending run, whose scene is `scene_of(request)`, fed back before the next;
+    to its end, or until it has run for `budget_s` seconds. A run the campaign's journal
+    already holds is read, not computed. Returns (search, [(request, summary), ...] of the
+    runs computed)."""
+
+    search: Any
+    scene_of: Callable[[Any], Any]  # request -> SceneConfig; picklable
+    budget_s: float | None = None
+
+
+@dataclasses.dataclass(frozen=True)
+class RunRecorded:
+    """Simulate the scene with its trajectory recorded every `dt_out` [s]. Returns the
+    SimulationResult."""
+
+    scene: dict[str, Any]
+    dt_out: float
+
+
+Job = RunScenes | RunSearch | RunRecorded

@@ -1,0 +1,340 @@
+"""What a `JumpSearch` found at one point: its jumps, windows, headline and how much of the
+grid below the headline is certified (`compose_result`, from the search's public snapshot,
+`JumpSearchState`). Pure Python."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+from frictiondisk.tasks.jump_search.bisection import (
+    STICK,
+    UNDETERMINED,
+    BisectionResult,
+    RunRecord,
+    RunRequest,
+)
+from frictiondisk.tasks.jump_search.certify import point_certification
+
+RUN_ROLES = ("search", "prescan", "certification")
+# a point's status: "converged" (a headline), NO_JUMP (no value of the whole grid sticks,
+# every one decided: mu* lies above it) or "failed" (no answer)
+NO_JUMP = "no_jump"
+
+
+def run_role(request: RunRequest) -> str:
+    """The role of a run of a bisection: `certification` at stricter numerics, else `search`."""
+    return "certification" if request.strict > 0 else "search"
+
+
+@dataclasses.dataclass(frozen=True)
+class Window:
+    """A sticking interval closed on both sides: a rising jump and the falling jump above it."""
+
+    lo: float  # the rising jump's mu*
+    hi: float  # the falling jump's mu*
+    narrow: bool  # narrower than the persistence width: never a headline
+
+    @property
+    def width(self) -> float:
+        return self.hi - self.lo
+
+
+@dataclasses.dataclass(frozen=True)
+class GridBelow:
+    """The prescan grid below the headline: how much of it has a decided verdict (prescan
+    or fill runs; a not-stick verdict always with the evidence of its own section, and a
+    value that sticks always inside a bisected window), and the largest gap between
+    decided values there, below which a window could still hide."""
+
+    decided: int  # grid values below the headline with a decided verdict
+    total: int  # grid values below the headline
+    resolution: float  # largest gap between decided values below the headline [1]
+
+    @property
+    def share(self) -> float:
+        return self.decided / self.total if self.total else 1.0
+
+
+@dataclasses.dataclass(frozen=True)
+class JumpSearchState:
+    """A finished JumpSearch as its answer is composed from it (JumpSearch.snapshot)."""
+
+    mus: tuple[float, ...]  # the prescan grid
+    tol: float
+    persist: float  # [tol] a headline sticks this far above its bracket
+    certified: bool  # certification enabled
+    found: tuple[BisectionResult, ...]  # every bisection's result, in the order started
+    last_scan: dict[float, RunRecord]  # mu -> its last prescan run
+    checks: dict[float, RunRecord]  # mu -> its settled persistence or fill run
+    never_ran: tuple[int, ...]  # grid indices the prescan wanted and never ran
+    failure: str | None  # why it ended early (aborted), None
+    headline: BisectionResult | None
+    headline_judged: bool  # its persistence run was decided and showed it persists
+    persists_nowhere: bool  # rising jumps, none persists
+    never_sticks: bool  # every prescan value decided not stick, no fill run sticks
+    runs: tuple[RunRecord, ...]  # every run, in the search's schedule order
+    prescan_runs: tuple[RunRecord, ...]  # every prescan run, retries included, in order
+    roles: dict[RunRequest, str]  # the role of every run
+
+
+@dataclasses.dataclass(frozen=True)
+class JumpSearchResult:
+    """All jumps of one point. The attributes of `BisectionResult` describe the *primary*
+    jump (the headline: the lowest rising jump that persists; else the lowest jump), so
+    code written for one jump keeps working; `jumps` holds every one, in increasing mu."""
+
+    status: str  # "converged", NO_JUMP or "failed" (see NO_JUMP)
+    reason: str
+    jumps: tuple[BisectionResult, ...]
+    scan: tuple[RunRecord, ...]  # the prescan runs, one per mu (its last retry level)
+    runs: tuple[RunRecord, ...]  # every run made: prescan, bisections, checks
+    primary: BisectionResult | None
+    prescan_runs: tuple[RunRecord, ...] = ()  # every prescan run, retries included
+    windows: tuple[Window, ...] = ()
+    grid_below: GridBelow | None = None  # the whole grid for NO_JUMP; None: no headline
+    checks: tuple[RunRecord, ...] = ()  # persistence and fill runs (settled)
+    roles: dict[RunRequest, str] = dataclasses.field(default_factory=dict)
+    grid_flag: str = "off"  # certification of the grid below the headline
+
+    @property
+    def mu_lo(self) -> float:
+        return self.primary.mu_lo if self.primary else float("nan")
+
+    @property
+    def mu_hi(self) -> float:
+        return self.primary.mu_hi if self.primary else float("nan")
+
+    @property
+    def mu_star(self) -> float:
+        return 0.5 * (self.mu_lo + self.mu_hi)
+
+    @property
+    def contradictions(self) -> tuple[tuple[float, float], ...]:
+        return tuple(c for jump in self.jumps for c in jump.contradictions)
+
+    @property
+    def monotone(self) -> bool:
+        """One rising jump and nothing that contradicts it."""
+        return len(self.jumps) == 1 and self.jumps[0].rising and not self.contradictions
+
+    def end_result(self, which: str) -> dict[str, Any] | None:
+        return self.primary.end_result(which) if self.primary else None
+
+    def role(self, request: RunRequest) -> str:
+        """`prescan` (with the grid values filled below the headline), `search` (bisections,
+        persistence runs) or `certification` (stricter numerics)."""
+        return self.roles.get(request) or run_role(request)
+
+    @property
+    def certification(self) -> str:
+        """The weakest certification of the point's jumps and of the grid below its
+        headline; of a point without a jump, that of its whole grid (`failed` if it has
+        no answer)."""
+        if self.status == NO_JUMP:
+            return self.grid_flag
+        if self.status != "converged":
+            return "failed"
+        flags = [j.certification for j in self.jumps if not above_headline(j, self.primary)]
+        if self.grid_flag != "off":
+            flags.append(self.grid_flag)
+        return point_certification(flags)
+
+
+def above_headline(jump: BisectionResult, head: BisectionResult | None) -> bool:
+    """A jump that failed wholly above the headline's bracket: it cannot be a lower rising
+    jump, so the headline stands without it (its failure is told, not hidden)."""
+    return (
+        head is not None
+        and jump is not head
+        and jump.status != "converged"
+        and not math.isnan(jump.mu_lo)
+        and jump.mu_lo >= head.mu_hi
+    )
+
+
+def _windows(jumps, persist_width: float) -> tuple[Window, ...]:
+    """Every rising jump followed directly by a falling one: a closed sticking interval."""
+    found = []
+    for below, above in zip(jumps, jumps[1:], strict=False):
+        if below.rising and not above.rising and below.status == above.status == "converged":
+            found.append(
+                Window(below.mu_star, above.mu_star, above.mu_lo - below.mu_hi < persist_width)
+            )
+    return tuple(found)
+
+
+def _grid_below(state: JumpSearchState, top: float) -> GridBelow:
+    """The grid below `top`: the headline's mu_lo, or math.inf for the whole grid (the
+    answer "no jump")."""
+    decided = {}
+    for source in (state.last_scan, state.checks):
+        for mu, run in source.items():
+            if run.outcome != UNDETERMINED:
+                decided[mu] = run.outcome == STICK
+    below = [mu for mu in state.mus if mu < top]
+    end = top if math.isfinite(top) else state.mus[-1]
+    seen = sorted(mu for mu in decided if mu < top) + [end]
+    gaps = [b - a for a, b in zip([state.mus[0], *seen], seen, strict=False)]
+    return GridBelow(sum(mu in decided for mu in below), len(below), max(gaps) if gaps else 0.0)
+
+
+def _distinct(jumps):
+    """The jumps without those whose converged bracket overlaps another's of the same
+    direction; of two such, the one found where the prescan put it (certified) stays."""
+    kept: list = []
+    for jump in jumps:
+        same = [
+            i
+            for i, k in enumerate(kept)
+            if k.status == jump.status == "converged"
+            and k.rising == jump.rising
+            and jump.mu_lo <= k.mu_hi
+            and k.mu_lo <= jump.mu_hi
+        ]
+        if not same:
+            kept.append(jump)
+        elif jump.certification == "certified" and kept[same[0]].certification != "certified":
+            kept[same[0]] = jump
+    return tuple(kept)
+
+
+def compose_result(state: JumpSearchState) -> JumpSearchResult:
+    """The result of a finished `JumpSearch` (frictiondisk.tasks.jump_search.jumps) from its
+    snapshot: the jumps that stand, the headline, the windows, the grid below it, and the
+    status and reason that say so."""
+    found = sorted(state.found, key=lambda j: (j.mu_lo, j.mu_hi))
+    # a jump that stricter numerics showed to be an artefact of the short horizon is dropped
+    jumps = tuple(j for j in found if j.certification != "vanished")
+    # a jump that stricter numerics moved onto another one (its re-search left its prescan
+    # cell, certify.CertifiedBisection.outer) is that jump: it vanished from where it was
+    jumps = _distinct(jumps)
+    vanished = len(found) - len(jumps)
+    scan = tuple(state.last_scan[mu] for mu in state.mus if mu in state.last_scan)
+    head = state.headline
+    primary = head or ([j for j in jumps if j.rising] or list(jumps) or [None])[0]
+    windows = _windows(jumps, state.persist * state.tol)
+    grid = None if head is None else _grid_below(state, head.mu_lo)
+    unresolved = [j for j in jumps if j.status != "converged" and above_headline(j, head)]
+    problems, undecided_note = _problems(state, jumps, scan, vanished, unresolved)
+    no_jump = not jumps and not problems and state.never_sticks
+    if not jumps and not problems and not no_jump:
+        problems.append(
+            f"no jump: every prescan value from mu = {state.mus[0]:.6g} to "
+            f"{state.mus[-1]:.6g} gave stick (the jump lies below the prescan)"
+        )
+    if no_jump:
+        # an answer, not a failure: mu* lies above the grid, as far as the grid can tell
+        grid = _grid_below(state, math.inf)
+        status = NO_JUMP
+        reason = (
+            f"no jump: no value from mu = {state.mus[0]:.6g} to {state.mus[-1]:.6g} "
+            f"sticks; {grid.decided} of {grid.total} grid values decided not stick "
+            f"(resolution {grid.resolution:.3g})"
+        )
+    elif problems:
+        status, reason = "failed", "; ".join(problems)
+    else:
+        status = "converged"
+        reason = _converged_reason(state, jumps, unresolved, windows, grid, scan, vanished)
+        reason += f"; {undecided_note}" if undecided_note else ""
+        reason += _tail_notes(state, scan, vanished)
+    return JumpSearchResult(
+        status,
+        reason,
+        jumps,
+        scan,
+        state.runs,
+        primary,
+        state.prescan_runs,
+        windows,
+        grid,
+        tuple(run for _, run in sorted(state.checks.items())),
+        state.roles,
+        _grid_flag(state, grid, no_jump),
+    )
+
+
+def _problems(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str], str]:
+    """Why the point fails (empty: it does not), and the note on prescan values left
+    undetermined."""
+    # an undetermined prescan value inside a converged jump's bracket is that jump's
+    # slow approach (bisection.Bisection.undecided), not a gap in the scan
+    undetermined = [
+        r.request.mu
+        for r in scan
+        if r.outcome == UNDETERMINED
+        and not any(j.status == "converged" and j.mu_lo < r.request.mu < j.mu_hi for j in jumps)
+    ]
+    problems = [state.failure] if state.failure else []
+    if state.never_ran:
+        problems.append(f"{len(state.never_ran)} prescan value(s) never ran")
+    # an undetermined value between decided neighbours is a gap in the grid, not a failure:
+    # the changes are bisected between decided values, and a gap below the headline leaves
+    # its grid less than wholly decided (uncertain); without any jump it is a failure
+    undecided_note = ""
+    if undetermined:
+        mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
+        undecided_note = f"prescan undetermined at mu = {mus} after every retry"
+        if not jumps:
+            problems.append(undecided_note)
+    problems += [
+        j.reason if math.isnan(j.mu_lo) else f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}"
+        for j in jumps
+        if j.status != "converged" and j not in unresolved
+    ]
+    if not jumps and vanished and not problems:
+        problems.append(
+            f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"
+        )
+    return problems, undecided_note
+
+
+def _converged_reason(state, jumps, unresolved, windows, grid, scan, vanished: int) -> str:
+    """The reason of a converged point: its jumps, the failed changes above its headline,
+    its windows and the grid below it."""
+    resolved = [j for j in jumps if j not in unresolved]
+    kinds = ", ".join(
+        f"{'rising' if j.rising else 'falling'} at {j.mu_star:.6g}"
+        + ("" if j.certification == "off" else f" ({j.certification})")
+        for j in resolved
+    )
+    reason = f"{len(resolved)} jump(s) to tol {state.tol:.3g}: {kinds}"
+    for j in unresolved:
+        reason += f"; above mu*, a change in [{j.mu_lo:.6g}, {j.mu_hi:.6g}] failed: {j.reason}"
+    if windows:
+        reason += "; sticking windows " + ", ".join(
+            f"[{w.lo:.6g}, {w.hi:.6g}]" + (" (narrow)" if w.narrow else "") for w in windows
+        )
+    if grid is not None:
+        reason += (
+            f"; {grid.decided} of {grid.total} prescan values below mu* decided "
+            f"(resolution {grid.resolution:.3g})"
+        )
+        if state.persists_nowhere:
+            reason += (
+                f"; no rising jump persists over {state.persist:g} tol (every sticking "
+                "set found is that narrow): the lowest one is taken, uncertain"
+            )
+        elif not state.headline_judged:
+            reason += "; the persistence run above mu* stayed undetermined"
+    return reason
+
+
+def _tail_notes(state, scan, vanished: int) -> str:
+    """What a converged reason ends with: an adaptive prescan's count, vanished jumps."""
+    notes = ""
+    if len(scan) < len(state.mus):
+        notes += f"; adaptive prescan ran {len(scan)} of {len(state.mus)} values"
+    if vanished:
+        notes += f"; {vanished} more vanished at stricter numerics"
+    return notes
+
+
+def _grid_flag(state, grid, no_jump: bool) -> str:
+    """Certification of the grid below the headline (of the whole grid without a jump)."""
+    if state.certified and grid is not None:
+        whole = grid.decided == grid.total and (no_jump or state.headline_judged)
+        return "certified" if whole else "uncertain"
+    return "uncertain" if state.persists_nowhere else "off"

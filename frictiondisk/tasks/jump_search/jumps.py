@@ -1,0 +1,414 @@
+"""Every jump of one parameter point: scan mu first, then bisect each change. Pure Python.
+
+Where the sticking set in mu is not an interval (a disk starting at rest, a Stribeck
+pin, docs/model.md section 7), a single bisection reports one jump as if it were the only
+one. `JumpSearch` runs a prescan over given values of mu, then bisects every pair of
+neighbouring decided values whose outcomes differ in stick / not stick: a *rising* jump
+(not stick below, stick above) or a *falling* one (stick below, not stick above). With
+`stride` > 1 the prescan is adaptive (prescan.py): every stride-th value first, more only
+where the verdicts and friction reserves do not explain an interval.
+
+The headline is the lowest rising jump whose sticking side persists, and it comes with a
+verdict at every prescan value below it:
+
+* persistence: a run at mu_hi + `persist` tol must stick too. If it does not, the sticking
+  set above that jump is a *window* narrower than the persistence width: its falling edge
+  is bisected, the search goes on above, and the window is reported
+  (`JumpSearchResult.windows`), never the headline;
+* the grid below: every prescan value below the headline that the adaptive prescan
+  skipped is run (an interval skipped on the friction reserve alone is unexamined), and a
+  change it reveals is bisected like any other (`JumpSearchResult.grid_below`). The
+  adaptive prescan saves runs above the headline only;
+* no jump: where the prescan finds no change and no value sticks, every grid value runs,
+  and a point on whose whole grid nothing sticks has the answer `no_jump` (mu* lies
+  above the grid), not a failure; its `grid_below` is the whole grid.
+
+With `certify` enabled every jump's bracket is re-checked at stricter numerics
+(certify.py), and the point is certified only with the whole grid below its headline
+decided.
+
+Like `Bisection` it is a state machine (`pending`, `feed`, `done`, `result`) that knows
+nothing of simulation, I/O or Dask. Its `pending()` lists every run that can go now, so a
+driver may run them in parallel. Prescan runs may use their own numerics.mode (e.g.
+`converge`, for size-versus-mu curves); the bisections always decide.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from frictiondisk.model.search_settings import OFF, Certify
+from frictiondisk.tasks.jump_search.bisection import STICK, UNDETERMINED, RunRecord, RunRequest
+from frictiondisk.tasks.jump_search.certify import CertifiedBisection
+from frictiondisk.tasks.jump_search.jump_result import (
+    RUN_ROLES,
+    JumpSearchResult,
+    JumpSearchState,
+    compose_result,
+    run_role,
+)
+from frictiondisk.tasks.jump_search.prescan import AdaptiveGrid
+
+__all__ = ["RUN_ROLES", "JumpSearch", "JumpSearchResult", "run_role"]
+
+
+class JumpSearch:
+    """Prescan `mus` (all of them, or adaptively from every `stride`-th), bisect every
+    stick / not-stick change to `tol`, check that the headline persists over `persist` tol
+    and run every prescan value below it."""
+
+    def __init__(
+        self,
+        mus: tuple[float, ...],
+        tol: float,
+        max_retries: int,
+        scan_mode: str | None = None,
+        split: int = 2,
+        certify: Certify = OFF,
+        root_finder: str = "itp",
+        stride: int = 1,
+        persist: float = 3.0,
+    ):
+        if len(mus) < 2 or len(set(mus)) != len(mus):
+            raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
+        self.mus = tuple(sorted(mus))
+        self.tol = tol
+        self.max_retries = max_retries
+        self.scan_mode = scan_mode
+        self.split = split  # parts per bisection round (bisection.Bisection)
+        self.certify = (
+            certify  # every jump's bracket is certified (frictiondisk.tasks.jump_search.certify)
+        )
+        self.root_finder = root_finder  # how each jump's bisection picks its runs
+        self.persist = persist  # [tol] a headline sticks this far above its bracket
+        self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
+        self._failure: str | None = None
+        self._level: dict[float, int] = {}  # mu -> retry level to ask for next
+        self._grid = AdaptiveGrid(self.mus, stride)  # which prescan values to run
+        self._index = {mu: k for k, mu in enumerate(self.mus)}
+        self.bisections: list[CertifiedBisection] = []
+        self._covered: set[tuple[float, float]] = set()  # pairs a bisection was started on
+        self._bisection_runs: list[RunRecord] = []
+        self._issued: set[RunRequest] = set()  # prescan requests asked for
+        # what the headline stands on: its persistence and the grid below it
+        self._checks: dict[float, RunRecord] = {}  # mu -> settled persistence or fill run
+        self._check_runs: list[RunRecord] = []  # every such run, retries included
+        self._waiting: set[float] = set()  # persistence / fill values without a settled run
+        self._persistence: dict[int, float] = {}  # bisection index -> its persistence mu
+        self.unjudged: set[int] = set()  # rising jumps whose persistence run stayed undetermined
+        self._filled = False  # every grid value below the headline asked for
+        self._complete = False  # nothing left to run (set by _advance)
+        self._pending: list[RunRequest] | None = None  # pending() until the next change
+
+    # ---- what to run ------------------------------------------------------------------
+    @property
+    def scanning(self) -> bool:
+        return self._failure is None and bool(self._grid.waiting)
+
+    @property
+    def done(self) -> bool:
+        return self._failure is not None or self._complete
+
+    def pending(self) -> list[RunRequest]:
+        """Every run that can go now (do not modify the list: it is kept until the next
+        feed, since a driver asks for it after every result of every point)."""
+        if self._pending is None:
+            if self.scanning:
+                self._pending = [
+                    self._scan_request(self.mus[k]) for k in sorted(self._grid.waiting)
+                ]
+                self._issued.update(self._pending)
+            else:
+                # two jumps that share a bracket end (a window's) ask for its runs once
+                wanted = [r for b in self.bisections if not b.done for r in b.pending()]
+                wanted += [self._check_request(mu) for mu in sorted(self._waiting)]
+                self._pending = list(dict.fromkeys(wanted))
+        return self._pending
+
+    def _scan_request(self, mu: float) -> RunRequest:
+        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
+
+    def _check_request(self, mu: float) -> RunRequest:
+        """A persistence run (off the grid: the bisections' numerics) or a grid value below
+        the headline (the prescan's)."""
+        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode if mu in self._index else None)
+
+    # ---- what came back ---------------------------------------------------------------
+    def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
+        if request not in self.pending():
+            raise ValueError(f"unexpected run {request}")
+        self._pending = None
+        record = RunRecord(request, result)
+        if self.scanning:
+            self._scan_runs.append(record)
+            if self._settled(request, result):
+                self._grid.settle(self._index[request.mu], result)
+            if not self.scanning and not self._grid.refine():
+                self._advance()
+            return
+        if request.mu in self._waiting and request == self._check_request(request.mu):
+            self._check_runs.append(record)
+            if self._settled(request, result):
+                self._checks[request.mu] = record
+                self._waiting.discard(request.mu)
+        else:
+            self._bisection_runs.append(record)
+            for bisection in self.bisections:
+                if not bisection.done and request in bisection.pending():
+                    bisection.feed(request, result)
+        if not self._waiting and all(b.done for b in self.bisections):
+            self._advance()
+
+    def _settled(self, request: RunRequest, result: dict[str, Any]) -> bool:
+        """Determined, or undetermined after every retry; else the next retry is due."""
+        if result["outcome"] != UNDETERMINED or request.level >= self.max_retries:
+            return True
+        self._level[request.mu] = request.level + 1
+        return False
+
+    def abort(self, reason: str) -> None:
+        """End as failed without more runs (e.g. its worker kept dying)."""
+        self._failure = reason
+        self._pending = None
+        self._waiting.clear()
+        for bisection in self.bisections:
+            bisection.abort(reason)
+
+    # ---- the search's next step --------------------------------------------------------
+    def _advance(self) -> None:
+        """Once nothing runs: bisect every change not bisected yet, else check the lowest
+        rising jump's persistence, else run the grid below the headline, else finish."""
+        self._pending = None
+        if self._failure is not None:
+            return
+        changes = self._new_changes()
+        for lo, hi, rising in changes:
+            self._bisect(lo, hi, rising)
+        if changes:
+            if all(b.done for b in self.bisections):
+                self._advance()  # every new bisection ended on its fed ends (a failure)
+            return
+        wanted = self._persistence_wanted()
+        if not wanted and not self._filled:
+            self._filled = True
+            wanted = self._fill_wanted()
+        if wanted:
+            self._waiting.update(wanted)
+        else:
+            self._complete = True
+
+    def known(self) -> list[tuple[float, bool]]:
+        """(mu, sticks) of every decided value at the point's own numerics: prescan values,
+        persistence and fill runs, and the ends of the brackets the bisections converged to
+        before certification; increasing in mu. (A certified bracket may have moved at
+        stricter numerics; the changes between these values are all at one level.)"""
+        return sorted((mu, run["outcome"] == STICK) for mu, run in self._decided().items())
+
+    def _decided(self) -> dict[float, dict[str, Any]]:
+        """mu -> the decided run behind it (known)."""
+        found: dict[float, dict[str, Any]] = {}
+        for source in (self._last_scan(), self._checks):
+            for mu, run in source.items():
+                if run.outcome != UNDETERMINED:
+                    found[mu] = run.result
+        for base in self._base_brackets():
+            for mu, which in ((base.mu_lo, "lo"), (base.mu_hi, "hi")):
+                end = base.end_result(which)
+                if end is not None:
+                    found.setdefault(mu, end)
+        return found
+
+    def _base_brackets(self):
+        """The converged bracket of each finished bisection at the point's own numerics
+        (its first search), unless its jump vanished at stricter numerics."""
+        for bisection in self.bisections:
+            if bisection.done and bisection.result().certification != "vanished":
+                base = bisection.searches[0]
+                if base.done and base.result().status == "converged":
+                    yield base.result()
+
+    def _new_changes(self) -> list[tuple[float, float, bool]]:
+        """Neighbouring decided values that differ and no bisection was started on."""
+        known = self.known()
+        bracketed = {(r.mu_lo, r.mu_hi) for r in self._base_brackets()}
+        return [
+            (mu_a, mu_b, stick_b)
+            for (mu_a, stick_a), (mu_b, stick_b) in zip(known, known[1:], strict=False)
+            if stick_a != stick_b
+            and (mu_a, mu_b) not in self._covered
+            and (mu_a, mu_b) not in bracketed
+        ]
+
+    def _bisect(self, mu_a: float, mu_b: float, rising: bool) -> None:
+        bisection = CertifiedBisection(
+            (mu_a, mu_b),
+            self.tol,
+            (mu_a, mu_b),
+            self.max_retries,
+            rising,
+            self.split,
+            self.certify,
+            self.root_finder,
+            outer=(self.mus[0], self.mus[-1]),
+        )
+        # its end checks are runs already made: fed, not run again
+        decided = self._decided()
+        for mu in (mu_a, mu_b):
+            bisection.feed(RunRequest(mu, 0), decided[mu])
+        self.bisections.append(bisection)
+        self._covered.add((mu_a, mu_b))
+
+    def _rising_jumps(self):
+        """(index, result, base) of the converged rising jumps, increasing in mu: the
+        reported result (after certification) and the bracket at the point's own numerics."""
+        found = []
+        for index, bisection in enumerate(self.bisections):
+            res = bisection.result()
+            base = bisection.searches[0].result()
+            if (
+                res.status == base.status == "converged"
+                and res.rising
+                and res.certification != "vanished"
+            ):
+                found.append((index, res, base))
+        return sorted(found, key=lambda item: item[2].mu_lo)
+
+    def _persists(self, index: int, base, known: dict[float, bool]) -> bool | None:
+        """Whether rising jump `index` sticks over the persistence width above the mu_hi of
+        its bracket at the point's own numerics: by the decided values in
+        (mu_hi, mu_hi + width]; None until one is there."""
+        mu = self._persistence.setdefault(index, base.mu_hi + self.persist * self.tol)
+        above = [m for m in known if base.mu_hi < m <= mu]
+        if not above:
+            if mu in self._checks:  # undetermined after every retry: taken, but not certified
+                self.unjudged.add(index)
+                return True
+            return None
+        return all(known[m] for m in above)
+
+    def _persistence_wanted(self) -> set[float]:
+        """The persistence run that the lowest rising jump not yet judged needs; empty once
+        the headline is found (or no rising jump is left)."""
+        known = dict(self.known())
+        for index, _, base in self._rising_jumps():
+            persists = self._persists(index, base, known)
+            if persists is None:
+                return {self._persistence[index]}
+            if persists:
+                return set()
+        return set()
+
+    def headline(self):
+        """The lowest rising jump that persists, else (`persists_nowhere`) the lowest rising
+        jump; None without one."""
+        found = self._headline()
+        return None if found is None else found[1]
+
+    def _headline(self):
+        """(bisection index, result) of the headline, or None."""
+        known = dict(self.known())
+        rising = self._rising_jumps()
+        for index, res, base in rising:
+            if self._persists(index, base, known):
+                return index, res
+        return (rising[0][0], rising[0][1]) if rising else None
+
+    @property
+    def persists_nowhere(self) -> bool:
+        """Rising jumps, but none persists: every sticking set found is narrower than the
+        persistence width at the point's own numerics (a structure at the resolution
+        limit, which stricter numerics may join up)."""
+        known = dict(self.known())
+        rising = self._rising_jumps()
+        return bool(rising) and not any(self._persists(i, base, known) for i, _, base in rising)
+
+    def headline_judged(self) -> bool:
+        """Whether the headline's persistence run was decided (not undetermined) and showed
+        it persists."""
+        found = self._headline()
+        return found is None or (found[0] not in self.unjudged and not self.persists_nowhere)
+
+    def _fill_wanted(self) -> set[float]:
+        """Every grid value below the headline not run yet; the whole grid where the
+        prescan found no change and every value it ran does not stick (the answer "no
+        jump" stands on the whole grid, as a headline on the grid below it)."""
+        ran = set(self._last_scan()) | set(self._checks)
+        head = self.headline()
+        if head is None:
+            if not self.bisections and self.never_sticks():
+                return {mu for mu in self.mus if mu not in ran}
+            return set()
+        base = self.bisections[self._headline()[0]].searches[0].result()
+        below = min(head.mu_lo, base.mu_lo)  # certification may have moved the bracket
+        return {mu for mu in self.mus if mu < below and mu not in ran}
+
+    def never_sticks(self) -> bool:
+        """Every prescan value run decided not stick (its last retry), and no fill run
+        sticks (one left undetermined leaves the grid less than wholly decided)."""
+        scan = self._last_scan().values()
+        return (
+            bool(scan)
+            and all(run.outcome not in (STICK, UNDETERMINED) for run in scan)
+            and all(run.outcome != STICK for run in self._checks.values())
+        )
+
+    # ---- the answer -------------------------------------------------------------------
+    def result(self) -> JumpSearchResult:
+        if not self.done:
+            raise ValueError("jump search not finished")
+        return compose_result(self.snapshot())
+
+    def snapshot(self) -> JumpSearchState:
+        """What the finished search found, as its answer is composed from it."""
+        last = self._last_scan()
+        runs = tuple(
+            sorted([*self._scan_runs, *self._bisection_runs, *self._check_runs], key=self._order)
+        )
+        return JumpSearchState(
+            mus=self.mus,
+            tol=self.tol,
+            persist=self.persist,
+            certified=self.certify.enabled,
+            found=tuple(b.result() for b in self.bisections),
+            last_scan=last,
+            checks=self.checks(),
+            never_ran=tuple(k for k in self._grid.wanted if self.mus[k] not in last),
+            failure=self._failure,
+            headline=self.headline(),
+            headline_judged=self.headline_judged(),
+            persists_nowhere=self.persists_nowhere,
+            never_sticks=self.never_sticks(),
+            runs=runs,
+            prescan_runs=tuple(sorted(self._scan_runs, key=self._order)),
+            roles={run.request: self.role(run.request) for run in runs},
+        )
+
+    def _last_scan(self) -> dict[float, RunRecord]:
+        """mu -> its last prescan run (the one at the highest retry level)."""
+        return {run.request.mu: run for run in self._scan_runs}
+
+    def checks(self) -> dict[float, RunRecord]:
+        """mu -> the settled persistence or fill run."""
+        return dict(self._checks)
+
+    def role(self, request: RunRequest) -> str:
+        """`prescan` (the prescan's runs, and the grid values below the headline it skipped),
+        `search` (bisections and persistence runs) or `certification` (stricter numerics)."""
+        if request in self._issued:
+            return "prescan"
+        if any(run.request == request for run in self._check_runs):
+            return "prescan" if request.mu in self._index else "search"
+        return run_role(request)
+
+    def _order(self, run: RunRecord) -> tuple:
+        """Prescan runs first (by retry level, then mu), then each bisection's runs in its
+        own schedule order, then the persistence and fill runs: fixed by the campaign, not by
+        the order results arrived in."""
+        request = run.request
+        if request in self._issued:
+            return (0, request.level, request.mu)
+        for index, bisection in enumerate(self.bisections):
+            key = bisection.schedule_key(request)
+            if key is not None:
+                return (1, index, *key)
+        return (2, request.level, request.mu)

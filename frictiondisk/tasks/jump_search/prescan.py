@@ -1,0 +1,137 @@
+"""Which prescan values to run: a coarse grid first, refined where something changes.
+
+A dense prescan runs every value of its grid. `AdaptiveGrid` runs every `stride`-th value
+(and the last), then runs a grid value inside an interval between two run values while
+
+* its ends differ in stick / not stick (refined down to neighbouring grid values, so a
+  jump gets the same bracket, and so the same bisection and mu*, as in the dense prescan),
+* an end is undetermined after every retry, or
+* an end's friction reserve (frictiondisk/verdict/reserve.py) contradicts its verdict: a run
+  that sticks should have a positive reserve; one that does not, a negative one or none
+  (never stuck). A contradiction means the reserve does not describe the verdicts there,
+  so it cannot vouch for the interval.
+
+Where the ends differ and their reserves agree with their verdicts, the grid value run
+next is the one nearest the reserve's zero (secant, or unit slope from the one finite
+reserve: the reserve is mu minus a demand that moves slowly with mu), else the middle.
+
+An interval whose ends agree in verdict and whose reserves agree with those verdicts is
+not run inside: the prescan takes it to hold no change. A change the dense prescan sees
+is missed only there, as an island narrower than stride grid steps whose ends' reserves
+both agree with their verdicts, and only above a headline: the search runs every grid
+value below its headline, and the whole grid of a point where the prescan found no change
+and nothing sticks (frictiondisk.tasks.jump_search.jumps). Measured against dense prescans
+(docs/benchmarks.md): no miss on the figure campaigns and the well-posedness study's
+scenes; under `stick_rule: contacts` one, which is why that rule keeps a dense prescan by
+default.
+
+Pure Python: grid indices in, grid indices out; the run summaries are fed by the caller.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from frictiondisk.tasks.jump_search.bisection import STICK, UNDETERMINED, zero_crossing
+
+
+def default_stride(n_values: int, mode: str, stick_rule: str) -> int:
+    """The coarse stride a prescan of n_values gets unless its campaign sets one: about
+    sqrt(n), so the coarse grid and one change's refinement stay small together. 1
+    (dense) for a `converge` prescan, whose every value is data (size versus mu), for
+    `stick_rule: contacts`, whose sticking islands the reserve does not show (a dense
+    disk_xms_at_rest line has one that an adaptive prescan misses), and below 6 values."""
+    if mode == "converge" or stick_rule == "contacts" or n_values < 6:
+        return 1
+    return round(math.sqrt(n_values))
+
+
+def stride_of(prescan, stick_rule: str) -> int:
+    """The stride a point with this stick rule runs its campaign's `prescan` with: the
+    campaign's own, else `default_stride`."""
+    if prescan.stride is not None:
+        return prescan.stride
+    return default_stride(len(prescan.mu), prescan.mode, stick_rule)
+
+
+def needs_a_run_inside(a: dict[str, Any], b: dict[str, Any]) -> bool:
+    """Whether the interval between run summaries `a` and `b` needs a grid value run
+    inside: its verdicts differ, or its ends do not explain it."""
+    outcomes = (a["outcome"], b["outcome"])
+    if UNDETERMINED in outcomes or (outcomes[0] == STICK) != (outcomes[1] == STICK):
+        return True
+    return not all(reserve_explains(run) for run in (a, b))
+
+
+def reserve_explains(run: dict[str, Any]) -> bool:
+    """A run whose friction reserve agrees with its verdict: positive if it sticks,
+    negative or NaN (never stuck) if not."""
+    reserve = _finite(run.get("reserve"))
+    if run["outcome"] == STICK:
+        return reserve is not None and reserve > 0
+    return reserve is None or reserve <= 0
+
+
+def _finite(value: Any) -> float | None:
+    return float(value) if value is not None and math.isfinite(value) else None
+
+
+class AdaptiveGrid:
+    """The grid indices to run, grown as run summaries come back (`settle`)."""
+
+    def __init__(self, mus: tuple[float, ...], stride: int):
+        n_values = len(mus)
+        if n_values < 2 or stride < 1:
+            raise ValueError(f"need 2 or more values and stride >= 1, got {n_values}, {stride}")
+        self.mus = mus  # the grid, increasing
+        self.wanted: set[int] = set(range(0, n_values, stride)) | {n_values - 1}
+        self._runs: dict[int, dict[str, Any]] = {}  # index -> its settled run's summary
+
+    def settle(self, index: int, summary: dict[str, Any]) -> None:
+        """Record the final run (last retry level) of grid value `index`."""
+        if index not in self.wanted:
+            raise ValueError(f"grid value {index} was not asked for")
+        self._runs[index] = summary
+
+    @property
+    def waiting(self) -> set[int]:
+        """Wanted indices without a settled run."""
+        return self.wanted - self._runs.keys()
+
+    def refine(self) -> set[int]:
+        """Once nothing is waiting: one grid index inside every interval that needs a run
+        (added to `wanted`); empty when the prescan is complete."""
+        if self.waiting:
+            return set()
+        ran = sorted(self._runs)
+        new = {
+            self._split(i, j)
+            for i, j in zip(ran, ran[1:], strict=False)
+            if j - i >= 2 and needs_a_run_inside(self._runs[i], self._runs[j])
+        }
+        self.wanted |= new
+        return new
+
+    def _split(self, i: int, j: int) -> int:
+        """The grid index to run inside (i, j): nearest the reserve's zero where both ends
+        explain their verdicts, else the middle."""
+        a, b = self._runs[i], self._runs[j]
+        if not (reserve_explains(a) and reserve_explains(b)):
+            return (i + j) // 2
+        zero = _reserve_zero((self.mus[i], a), (self.mus[j], b))
+        if zero is None:
+            return (i + j) // 2
+        return min(range(i + 1, j), key=lambda k: abs(self.mus[k] - zero))
+
+
+def _reserve_zero(*ends: tuple[float, dict[str, Any]]) -> float | None:
+    """mu where the reserve crosses zero: the secant through two finite reserves, or a
+    unit slope from the one finite reserve; None without a finite reserve."""
+    finite = [(mu, r) for mu, run in ends if (r := _finite(run.get("reserve"))) is not None]
+    if len(finite) == 2 and finite[0][1] != finite[1][1]:
+        return zero_crossing(*finite[0], *finite[1])
+    if finite:
+        mu, r = finite[0]
+        return mu - r
+    return None

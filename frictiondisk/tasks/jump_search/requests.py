@@ -1,0 +1,62 @@
+"""The scene of one run that a search requests (mu, mode, retry and certification
+level), from its point's scene (`run_config`); and `PointScenes`, the same as an object
+that travels with a search to the worker that advances it (tasks.jobs.RunSearch).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+from typing import Any
+
+from frictiondisk.model.scene import MAX_HORIZON_BUDGET, SceneConfig, scene_from_dict
+from frictiondisk.model.search_settings import OFF, Certify
+from frictiondisk.tasks.jump_search.bisection import RunRequest
+from frictiondisk.verdict.horizon import horizon_key, horizon_of
+
+
+def run_config(point_config, request: RunRequest, horizon_factor: float, certify: Certify = OFF):
+    """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
+    set, horizon lengthened by the retry level; at certification level `request.strict`
+    rtol and atol are multiplied by certify.rtol and the horizon budget by certify.horizon,
+    once per level."""
+    num = point_config.numerics
+    mode = request.mode or num.mode
+    key = f"numerics.{horizon_key(mode)}"
+    horizon = horizon_of(point_config, mode)
+    overrides: dict[str, Any] = {"params.mu": request.mu}
+    if mode != num.mode:
+        overrides["numerics.mode"] = mode
+    if request.level:
+        overrides[key] = horizon * horizon_factor**request.level
+    if request.strict:
+        # a stricter run observes from the same horizon on, with rtol and atol x certify.rtol
+        # (atol too: on a braked disk it moves mu* more than rtol does) and certify.horizon
+        # times the budget to find its evidence (docs/model.md section 7)
+        overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
+        overrides["numerics.atol"] = num.atol * certify.rtol**request.strict
+        budget = num.horizon_budget * certify.horizon**request.strict
+        overrides["numerics.horizon_budget"] = min(budget, MAX_HORIZON_BUDGET)
+        if certify.observe:
+            # it decides only on what it sees (a repeating section, a stick): an
+            # extrapolated verdict is then a prediction that certification checks
+            overrides["numerics.evidence"] = "observe"
+    return point_config.with_overrides(overrides)
+
+
+@dataclasses.dataclass(frozen=True)
+class PointScenes:
+    """The scene of each run a point's search asks for: `run_config` from the point's scene
+    (`point`: its `SceneConfig.canonical()`), built once where it is first called."""
+
+    point: dict[str, Any]
+    horizon_factor: float
+    certify: Certify = OFF
+
+    @functools.cached_property
+    def config(self) -> SceneConfig:
+        """The point's scene."""
+        return scene_from_dict(self.point)
+
+    def __call__(self, request: RunRequest) -> SceneConfig:
+        return run_config(self.config, request, self.horizon_factor, self.certify)

@@ -1,0 +1,36 @@
+"""The registry of tasks: name -> entry (tasks/entry.py), in the order a campaign file's
+schema, its messages and docs/reference.md list them; and of the studies made on top of a
+campaign (`frictiondisk accuracy`). The one place that names a task: adding a task is
+adding its package and one line here."""
+
+from __future__ import annotations
+
+from frictiondisk.tasks.accuracy.entry import AccuracyEntry
+from frictiondisk.tasks.basin.entry import BasinEntry
+from frictiondisk.tasks.entry import TaskEntry
+from frictiondisk.tasks.find_jump.entry import FindJumpEntry
+from frictiondisk.tasks.scan.entry import ScanEntry
+from frictiondisk.tasks.trace.entry import TraceEntry
+from frictiondisk.tasks.trajectory.entry import TrajectoryEntry
+
+TASKS: dict[str, TaskEntry] = {
+    entry.name: entry
+    for entry in (
+        FindJumpEntry(),
+        ScanEntry(),
+        TrajectoryEntry(),
+        BasinEntry(),
+        TraceEntry(),
+    )
+}
+
+# studies of a campaign (its own command each, not a campaign-file section)
+STUDIES = {entry.name: entry for entry in (AccuracyEntry(),)}
+
+
+def entry_for(name: str) -> TaskEntry:
+    """The entry of the task `name`; KeyError naming the known tasks if there is none."""
+    try:
+        return TASKS[name]
+    except KeyError:
+        raise KeyError(f"no task {name!r}; the tasks are {', '.join(TASKS)}") from None

@@ -1,0 +1,32 @@
+"""The answer of a scan campaign as text, printed by `run` and `status`: the outcome, size
+and a per point, then the reason of each undetermined point."""
+
+from __future__ import annotations
+
+import xarray as xr
+
+from frictiondisk.store.partial import PENDING
+from frictiondisk.store.tables import columns, head_of, number, point_rows, reasons
+
+
+def scan_table(results: xr.Dataset) -> list[str]:
+    """Lines of the table (a pending point of a partial file: `pending`); [] without
+    outcomes."""
+    if "outcome" not in results:
+        return []
+    dims = list(results["outcome"].dims)
+    names = [name for name in ("outcome", "size", "a", "reason") if name in results]
+    rows, undetermined = [], []
+    for coords, row in point_rows(results, names):
+        outcome = str(row["outcome"].values.item()) or PENDING
+        measures = [number(float(row[m]), ".4g") if m in row else "-" for m in ("size", "a")]
+        rows.append([f"{c:g}" for c in coords] + [outcome, *measures])
+        if outcome == "undetermined" and "reason" in row:
+            undetermined.append((coords, str(row["reason"].values.item())))
+    heads = [head_of(results, d) for d in dims]
+    heads += ["outcome", *(head_of(results, m) for m in ("size", "a") if m in results)]
+    return [
+        "outcome per point:",
+        *columns(heads, rows),
+        *reasons(f"undetermined points ({len(undetermined)}), why:", dims, undetermined),
+    ]
