@@ -7,8 +7,8 @@ back, so a study stopped at any point resumes where it stopped: run the same com
 again (a campaign already finished is replayed from its journal, computing nothing).
 
 This module is the studies' one door to the engine (`run_campaigns` and
-`campaign_from_dict`, the functions behind `frictiondisk.run_campaigns` and
-`frictiondisk.load_campaign`; the package root ranks above studies in the layers, so a
+`campaign_from_dict` or `load_campaign`, the functions behind `frictiondisk.run_campaigns`
+and `frictiondisk.load_campaign`; the package root ranks above studies in the layers, so a
 study imports them from where they live).
 """
 
@@ -22,11 +22,23 @@ from typing import Any
 CHUNK = 60  # campaigns handed to the engine at once (one Dask client, one driver loop)
 
 
+def name_part(value: float) -> str:
+    """A number as a campaign name may hold it (letters, digits, _ and -): 0.005 -> 0p005."""
+    return f"{value:g}".replace(".", "p").replace("+", "")
+
+
 def campaign(data: dict[str, Any]):
     """The validated campaign of a dict (a ConfigError names every bad key)."""
     from frictiondisk.model.campaign import campaign_from_dict
 
     return campaign_from_dict(data, source=f"<study campaign {data.get('name', '?')}>")
+
+
+def campaign_file(path: Path):
+    """The validated campaign of a campaign YAML file."""
+    from frictiondisk.model.campaign import load_campaign
+
+    return load_campaign(path)
 
 
 def run(campaigns: Iterable, out: Path, workers: int = 2, chunk: int = CHUNK) -> int:

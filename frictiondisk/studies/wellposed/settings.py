@@ -22,6 +22,8 @@ import json
 import math
 from typing import Any
 
+from frictiondisk.studies.campaigns import name_part
+
 TOL = 1.0e-4
 DEFAULT_STEP = 0.01  # the default's prescan step (the issue's own campaign and the shipped ones)
 REFERENCE_STEP = 0.01
@@ -56,7 +58,7 @@ def locate_name(seed: int, index: int, setting: str, step: float, observe: bool)
     a campaign of its own name, so that one output folder can hold several."""
     name = f"{scene_name(seed, index)}-{setting}"
     if setting != "reference" and step != DEFAULT_STEP:
-        name += f"-step{step:g}"
+        name += f"-step{name_part(step)}"
     if setting == "default" and observe:
         name += "-observe"
     return name
