@@ -11,6 +11,7 @@ import math
 import pytest
 
 from frictiondisk.studies import campaigns
+from frictiondisk.studies.wellposed import found as found_module
 from frictiondisk.studies.wellposed import judge, longer, report, rows, scenes, settings, study
 from frictiondisk.studies.wellposed.found import Found
 
@@ -271,6 +272,25 @@ def test_the_report_counts_disagreements_silent_errors_and_failures(tmp_path):
     former.write_text(json.dumps(entry) + "\n")
     assert rows.read_rows(former)[(1, 2)]["reference"] == rows_[1]["reference"]
     assert rows.known_watches([former])[(1, 2)][0.20]["sticks"] is True
+
+
+def test_the_default_on_the_engine_is_read_back_by_replaying_its_search(tmp_path):
+    """Seed 0, scene 0 without the reference (--cost-only): the default and the
+    uncertified default as find_jump campaigns; each read back by rebuilding its search
+    from runs.nc, which a runs.nc short of a run cannot do. Run again, it resumes."""
+    options = study.Options(reference=False)
+    (row,) = study.run_study([(0, 0)], tmp_path, options)
+    default = row["default"]
+    assert default.certified and default.claims and "reference" not in row
+    assert default.runs > row["uncertified"].runs  # certification runs
+    assert (0.02, False) in default.claims  # the lowest grid value does not stick
+    folder = tmp_path / "s0-0-default"
+    campaign = campaigns.campaign(settings.locate_campaign("s0-0-default", row["scene"], "default"))
+    runs = campaigns.results(folder, "runs")
+    assert found_module.replay(campaign, runs).headline().mu_star == default.mu_star
+    with pytest.raises(found_module.ReplayMismatch, match="not in runs.nc"):
+        found_module.replay(campaign, runs.isel(run=slice(1, None)))
+    assert study.run_study([(0, 0)], tmp_path, options) == [row]
 
 
 @pytest.mark.slow

@@ -25,14 +25,14 @@ from frictiondisk.studies import campaigns
 from frictiondisk.studies.wellposed.judge import combine_watches, disagrees, verdict
 from frictiondisk.studies.wellposed.report import report
 from frictiondisk.studies.wellposed.rows import read_rows
-from frictiondisk.studies.wellposed.scenes import coulomb_pin, draw_scene
+from frictiondisk.studies.wellposed.scenes import draw_scene
 from frictiondisk.studies.wellposed.settings import (
     locate_campaign,
     watch_campaign,
     watch_prefix,
     watch_scene,
 )
-from frictiondisk.studies.wellposed.study import earlier_watch, read_watches
+from frictiondisk.studies.wellposed.study import earlier_watch, read_watches, watches_of
 
 
 def unsettled(rows: list[dict]) -> list[dict]:
@@ -69,34 +69,32 @@ def default_scene(seed: int, index: int):
 def watch_longer(rows: list[dict], out: Path, longer: int, workers: int) -> dict:
     """(seed, index) -> mu -> the longer settling run at each undetermined mu of `rows`;
     at longer 1 a watch the row holds is taken, not run again."""
-    plans = []  # (key, watch, name or None, mus)
-    scans = []
+    scans = {}  # (seed, index, watch) -> the scan campaign of its longer watches
     for row in rows:
         key = (row["seed"], row["index"])
-        undecided = undecided_watches(row)
-        kinds = ("regularized", "coulomb") if coulomb_pin(row["scene"]) else ("regularized",)
-        for watch in kinds:
+        for watch in watches_of(row["scene"]):
             todo = [
                 mu
-                for mu, run in sorted(undecided.items())
+                for mu, run in sorted(undecided_watches(row).items())
                 if longer != 1 or earlier_watch(run, watch) is None
             ]
-            scene = watch_scene(default_scene(*key), longer, exact=watch == "coulomb")
-            scan = watch_campaign(watch_prefix(*key, watch, scene), scene, todo) if todo else None
-            scans += [scan] if scan else []
-            plans.append((key, watch, scan["name"] if scan else None, undecided))
-    campaigns.run(scans, out, workers)
-    shown = {(key, watch): read_watches(out / name) for key, watch, name, _ in plans if name}
+            if todo:
+                scene = watch_scene(default_scene(*key), longer, exact=watch == "coulomb")
+                scans[(*key, watch)] = watch_campaign(watch_prefix(*key, watch, scene), scene, todo)
+    campaigns.run(scans.values(), out, workers)
+    shown = {where: read_watches(out / scan["name"]) for where, scan in scans.items()}
     found: dict[tuple[int, int], dict[float, dict]] = {}
-    for key, watch, _, undecided in plans:
-        for mu, run in undecided.items():
-            watches = found.setdefault(key, {}).setdefault(mu, {})
-            taken = shown.get((key, watch), {}).get(mu) or earlier_watch(run, watch)
-            watches[watch] = taken
-    return {
-        key: {mu: combine_watches(mu, w["regularized"], w.get("coulomb")) for mu, w in by.items()}
-        for key, by in found.items()
-    }
+    for row in rows:
+        key = (row["seed"], row["index"])
+        for mu, run in undecided_watches(row).items():
+            watches = {
+                watch: shown.get((*key, watch), {}).get(mu) or earlier_watch(run, watch)
+                for watch in watches_of(row["scene"])
+            }
+            found.setdefault(key, {})[mu] = combine_watches(
+                mu, watches["regularized"], watches.get("coulomb")
+            )
+    return found
 
 
 def main(argv: list[str] | None = None) -> int:

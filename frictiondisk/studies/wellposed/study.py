@@ -114,30 +114,29 @@ def watched_mu(row: dict) -> tuple[list[float], list[float]]:
     return disputed(row["default"], row["reference"]), persist
 
 
+def watches_of(scene: dict) -> tuple[str, ...]:
+    """The watches a scene's disputes get: the regularized one; on a Coulomb pin the exact
+    Coulomb integrator's too."""
+    return ("regularized", "coulomb") if coulomb_pin(scene) else ("regularized",)
+
+
 def settle(rows: list[dict], scenes: dict, out: Path, workers: int, known: dict) -> None:
     """Watch every disagreement at its disputed mu (a scan campaign per scene and watch,
     of the mu no earlier study watched), then give each row its settling runs."""
-    plans = []  # (row, watch, prefix, mu the scan runs)
+    scans = {}  # (seed, index, watch) -> the scan campaign of the mu it watches here
     for row in rows:
-        settled, persisted = watched_mu(row)
         key = (row["seed"], row["index"])
-        wanted = sorted({*settled, *persisted})
+        wanted = sorted({mu for mus in watched_mu(row) for mu in mus})
         earlier = known.get(key, {})
-        kinds = ("regularized", "coulomb") if coulomb_pin(row["scene"]) else ("regularized",)
-        for watch in kinds:
-            scene = watch_scene(scenes[key], exact=watch == "coulomb")
+        for watch in watches_of(row["scene"]):
             todo = [mu for mu in wanted if earlier_watch(earlier.get(mu), watch) is None]
-            plans.append((row, watch, watch_prefix(*key, watch, scene), todo, scene))
-    scans = [watch_campaign(prefix, scene, todo) for _, _, prefix, todo, scene in plans if todo]
-    campaigns.run(scans, out, workers)
-    shown: dict[tuple[int, int, str], dict[float, dict]] = {}
-    for row, watch, prefix, todo, scene in plans:
-        if todo:
-            name = watch_campaign(prefix, scene, todo)["name"]
-            shown[(row["seed"], row["index"], watch)] = read_watches(out / name)
+            if todo:
+                scene = watch_scene(scenes[key], exact=watch == "coulomb")
+                scans[(*key, watch)] = watch_campaign(watch_prefix(*key, watch, scene), scene, todo)
+    campaigns.run(scans.values(), out, workers)
+    shown = {where: read_watches(out / scan["name"]) for where, scan in scans.items()}
     for row in rows:
         settled, persisted = watched_mu(row)
-        key = (row["seed"], row["index"])
         row["settled"] = [settling_run(row, mu, shown, known) for mu in settled]
         row["persisted"] = [settling_run(row, mu, shown, known) for mu in persisted]
 
@@ -160,9 +159,7 @@ def settling_run(row: dict, mu: float, shown: dict, known: dict) -> dict:
     key = (row["seed"], row["index"])
     earlier = known.get(key, {}).get(mu)
     watches, reused = {}, False
-    for watch in ("regularized", "coulomb"):
-        if watch == "coulomb" and not coulomb_pin(row["scene"]):
-            continue
+    for watch in watches_of(row["scene"]):
         found = earlier_watch(earlier, watch)
         reused |= found is not None
         watches[watch] = found if found is not None else shown[(*key, watch)][mu]
