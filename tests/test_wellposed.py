@@ -274,29 +274,11 @@ def test_the_report_counts_disagreements_silent_errors_and_failures(tmp_path):
     assert rows.known_watches([former])[(1, 2)][0.20]["sticks"] is True
 
 
-def test_the_default_on_the_engine_is_read_back_by_replaying_its_search(tmp_path):
-    """Seed 0, scene 0 without the reference (--cost-only): the default and the
-    uncertified default as find_jump campaigns; each read back by rebuilding its search
-    from runs.nc, which a runs.nc short of a run cannot do. Run again, it resumes."""
-    options = study.Options(reference=False)
-    (row,) = study.run_study([(0, 0)], tmp_path, options)
-    default = row["default"]
-    assert default.certified and default.claims and "reference" not in row
-    assert default.runs > row["uncertified"].runs  # certification runs
-    assert (0.02, False) in default.claims  # the lowest grid value does not stick
-    folder = tmp_path / "s0-0-default"
-    campaign = campaigns.campaign(settings.locate_campaign("s0-0-default", row["scene"], "default"))
-    runs = campaigns.results(folder, "runs")
-    assert found_module.replay(campaign, runs).headline().mu_star == default.mu_star
-    with pytest.raises(found_module.ReplayMismatch, match="not in runs.nc"):
-        found_module.replay(campaign, runs.isel(run=slice(1, None)))
-    assert study.run_study([(0, 0)], tmp_path, options) == [row]
-
-
 @pytest.mark.slow
 def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default(tmp_path):
-    """Seed 0, scene 0 end to end: three find_jump campaigns on the engine, read back by
-    replaying each search from its runs.nc; run again, it resumes from the journals."""
+    """Seed 0, scene 0 end to end: three find_jump campaigns on the engine, each read back
+    by rebuilding its search from runs.nc (which a runs.nc short of a run cannot do); run
+    again, it resumes from the journals and computes nothing."""
     (row,) = study.run_study([(0, 0)], tmp_path)
     default, reference = row["default"], row["reference"]
     assert math.isfinite(reference.mu_star)
@@ -309,5 +291,13 @@ def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default
         assert default.status == "failed" or default.certification == "uncertain"
         assert "stricter numerics" in default.reason, default.reason
     assert judge.silent_errors([row]) == 0
-    assert (tmp_path / "s0-0-reference" / "runs.nc").is_file()
-    assert study.run_study([(0, 0)], tmp_path) == [row]  # the journals answer every run
+    assert default.runs > row["uncertified"].runs  # certification runs
+    assert (0.02, False) in default.claims  # the lowest grid value does not stick
+    campaign = campaigns.campaign(settings.locate_campaign("s0-0-default", row["scene"], "default"))
+    runs = campaigns.results(tmp_path / "s0-0-default", "runs")
+    assert found_module.replay(campaign, runs).headline().mu_star == default.mu_star
+    with pytest.raises(found_module.ReplayMismatch, match="not in runs.nc"):
+        found_module.replay(campaign, runs.isel(run=slice(1, None)))
+    journal = sorted((tmp_path / "s0-0-reference" / "journal").iterdir())
+    assert study.run_study([(0, 0)], tmp_path) == [row]
+    assert sorted((tmp_path / "s0-0-reference" / "journal").iterdir()) == journal
