@@ -13,24 +13,32 @@ from frictiondisk.studies.brake.common import OMEGA, bisect, bounds, corotation
 
 BETA_B = np.linspace(0.0, 0.03, 13)  # as campaigns/fig11_betab_mu.yaml [N m s/rad]
 STARTS = {"stick_corot_start": OMEGA, "stick_rest_start": 0.0}  # row key -> phidot0
-BRACKET = (0.1, 1.2)
+# mu: its low end below c_s x_ms / F_n = 0.1, where an unbraked disk creeps onto the rim of
+# its sticking disc and a run there never decides (the former plain bisection from 0.1 took
+# that undetermined run for not stick)
+BRACKET = (0.09, 1.2)
 TOL = 1e-4
-COROTATION_TOL = 2e-3  # the co-rotation rule's bisection: each step a recorded run
+COROTATION_BRACKET = (0.1, 1.2)  # the co-rotation rule's plain bisection: each step a recorded run
+COROTATION_TOL = 2e-3
 
 
 def stick_campaign(key: str, betas: np.ndarray) -> dict:
     """mu* of the `stick` rule along beta_b from one initial spin: the default numerics
-    (rtol 1e-6, atol 1e-9, t_decide 30 s), no certification."""
+    (rtol 1e-6, atol 1e-9, t_decide 30 s), no certification; at each beta_b both ends of
+    BRACKET run first and the change between them is halved to TOL (root_finder bisect),
+    as a plain bisection would, but an undetermined run is retried with a longer horizon
+    where a plain bisection took it for not stick."""
     return {
         "name": f"brake-{key.replace('_', '-')}-{len(betas)}",
         "scene": "disk",
         "params": {"phidot0": STARTS[key]},
         "numerics": {"rtol": 1e-6, "atol": 1e-9, "t_decide": 30.0},
         "find_jump": {
-            "bracket": list(BRACKET),
+            "prescan": {"mu": list(BRACKET), "stride": 1},
             "tol": TOL,
             "along": {"params.beta_b": [float(b) for b in betas]},
             "certify": False,
+            "root_finder": "bisect",
         },
     }
 
@@ -59,7 +67,9 @@ def part1(quick: bool, out: Path, workers: int) -> list[dict]:
         row = {"beta_b": float(bb), **{key: float(stick[key][0][k]) for key in STARTS}}
         row["R1"] = float(stick["stick_corot_start"][1][k])
         lo, hi = bisect(
-            lambda m, b=bb: corotation(m, b, OMEGA)["corotates"], *BRACKET, COROTATION_TOL
+            lambda m, b=bb: corotation(m, b, OMEGA)["corotates"],
+            *COROTATION_BRACKET,
+            COROTATION_TOL,
         )
         row["corotation_rule"] = 0.5 * (lo + hi)
         row["R_corot"] = corotation(hi, bb, OMEGA)["R"]
