@@ -7,13 +7,23 @@
 #   make test    create .venv if needed, install from the lock file, run the test suite
 #   make lock    refresh requirements/lock.txt (the newest versions pyproject.toml allows;
 #                LOCK_ARGS= keeps the pinned versions and only adds what is new)
-#   make bench   kernel, campaign and contact-layout benchmarks (ratios against baselines
-#                run alongside; bench_layouts: cost per step against N, arrow vs dense LU),
-#                runs per mu* (bench_runs: the search against plain bisection), start-up
-#                (bench_startup: warm simulate, the fixed cost of run), the six figure
-#                campaigns one by one against one run of all six (bench_together;
-#                BENCH_TOGETHER_ARGS=--quick for a smoke check)
-#                and the strong-scaling table (BENCH_SCALING_ARGS=--full for the campaign files as is)
+#   make bench   the performance benchmarks (benchmarks/, docs/benchmarks.md): each measures
+#                its baseline in the same run, prints ratios and writes its numbers to
+#                out/bench/<name>.json (benchmarks/harness.py): kernel, campaign and
+#                contact-layout benchmarks (bench_layouts: cost per step against N, arrow vs
+#                dense LU), runs per mu* (bench_runs: the search against plain bisection),
+#                start-up (bench_startup: warm simulate, the fixed cost of run), basin
+#                campaigns per run (bench_basin), the six figure campaigns one by one against
+#                one run of all six (bench_together; BENCH_TOGETHER_ARGS=--quick for a smoke
+#                check) and the strong-scaling table (BENCH_SCALING_ARGS=--full for the
+#                campaign files as is)
+#   make study-wellposed  the well-posedness study (docs/wellposed.md) into out/wellposed/:
+#                500 scenes, about 4 hours on 2 idle cores, resumable (STUDY_ARGS= adds
+#                options, e.g. STUDY_ARGS="--seeds 1 --scenes 10")
+#   make study-error-model  regenerate frictiondisk/model/numerics_error.csv (the error model
+#                of numerics auto, docs/accuracy.md) from out/error_model/; hours
+#   make study-brake, study-layouts, study-corotation  the braked disk's studies
+#                (docs/brake.md, docs/layouts.md, docs/user-guide.md section 3)
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml, and the traced Fig 11)
 #                into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
@@ -28,6 +38,7 @@ PYTHON ?= python3
 PYTEST_ARGS ?=
 BENCH_SCALING_ARGS ?= --quick
 BENCH_TOGETHER_ARGS ?= --repeat 2
+STUDY_ARGS ?=
 
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.frictiondisk-installed
@@ -48,7 +59,8 @@ DEMO_DISK_PNG := $(DEMO_DISK_DIR)/mu_star.png
 LOCK := requirements/lock.txt
 LOCK_ARGS ?= --upgrade
 
-.PHONY: all install lock demo test bench figures gallery basin-figures lint clean distclean
+.PHONY: all install lock demo test bench figures gallery basin-figures lint clean distclean \
+	study-wellposed study-error-model study-brake study-layouts study-corotation
 
 all: test
 
@@ -103,6 +115,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_layouts.py
 	$(BIN)/python benchmarks/bench_runs.py
 	$(BIN)/python benchmarks/bench_startup.py
+	$(BIN)/python benchmarks/bench_basin.py
 	$(BIN)/python benchmarks/bench_together.py $(BENCH_TOGETHER_ARGS)
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
@@ -113,7 +126,24 @@ gallery: figures
 	cp out/figures/fig*.png out/figures/trace_fig11_betab_mu.png figures/
 
 basin-figures: $(STAMP)
-	$(BIN)/python benchmarks/basin_study.py --out out/basin --figures figures
+	$(BIN)/python -m frictiondisk.studies.basin --out out/basin --figures figures
+
+# The studies (frictiondisk/studies/): each runs its campaigns on the engine into out/<study>/
+# and resumes from their journals when run again.
+study-wellposed: $(STAMP)
+	$(BIN)/python -m frictiondisk.studies.wellposed -o out/wellposed $(STUDY_ARGS)
+
+study-error-model: $(STAMP)
+	$(BIN)/python -m frictiondisk.studies.error_model -o out/error_model --write
+
+study-brake: $(STAMP)
+	$(BIN)/python -m frictiondisk.studies.brake -o out/brake --figures figures
+
+study-layouts: $(STAMP)
+	$(BIN)/python -m frictiondisk.studies.layouts -o out/study_layouts
+
+study-corotation: $(STAMP)
+	$(BIN)/python -m frictiondisk.studies.corotation -o out/corotation --figure figures/brake_drift.png
 
 lint: $(STAMP)
 	$(BIN)/ruff check $(LINT_PATHS)

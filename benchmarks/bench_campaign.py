@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 
 import xarray as xr
+from harness import Record
 
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.worker import warm_up
@@ -66,6 +67,7 @@ def main() -> None:
     warm_up()
     import distributed  # noqa: F401  (import time is not campaign time)
 
+    record = Record("campaign")
     for name, template in LINES.items():
         print(f"== 10-point {name} line in x_ms, dmu = 1e-4 ==")
         warm = template.format(lanes=2)
@@ -83,6 +85,11 @@ def main() -> None:
             f"(target <= 15 %); without the fixed {fixed1:.3f} s (lock, replay, netCDF "
             f"writes): {(w1 - fixed1) / k1 - 1:6.1%}"
         )
+        record.number(f"{name}: wall, 1 worker", w1, "s")
+        record.ratio(f"{name}: speed-up, 2 workers over 1", w1, w2, ">= 1.7")
+        record.ratio(f"{name}: runs, warm over cold", n1, n_cold)
+        record.ratio(f"{name}: wall over kernel sum, 1 worker", w1, k1, "<= 1.15")
+    record.write()
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 from bench_together import CAMPAIGNS, campaign_files, kernel_seconds
+from harness import Record
 
 TARGET = 0.25  # certification's extra wall time (issue 28)
 
@@ -86,6 +87,13 @@ def main(argv: list[str] | None = None) -> int:
         )
         problems = agree(last["on"], last["off"])
         print("mu* certified vs uncertified: " + ("; ".join(problems) or "within each bracket"))
+    record = Record("certify_cost")
+    median = {mode: statistics.median(times[mode]) for mode in times}
+    kernels = {mode: statistics.median(kernel[mode]) for mode in kernel}
+    record.ratio("wall, certified over uncertified", median["on"], median["off"], "<= 1.25")
+    record.ratio("kernel, certified over uncertified", kernels["on"], kernels["off"])
+    record.number("mu* outside the other's bracket", len(problems), "1", "== 0")
+    record.write()
     return 0
 
 

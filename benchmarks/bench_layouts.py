@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import sys
 
+from harness import Record
+
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
 
@@ -50,7 +52,7 @@ def best_run(config, repeats: int, dense_lu: bool = False):
     return best.wall_s, best
 
 
-def bench_scaling(ns, repeats, layout):
+def bench_scaling(ns, repeats, layout, record):
     print(f"== cost per step, {layout} of N points (arrow solver, {T_DECIDE:g} s run) ==")
     print("     N   steps  events  outcome      wall [s]  per step [us]  per event [ms]")
     per_step = {}
@@ -63,7 +65,9 @@ def bench_scaling(ns, repeats, layout):
             f"  {wall:8.3f}  {per_step[n] * 1e6:13.1f}  {per_event:14.3f}"
         )
     lo, hi = min(ns), max(ns)
-    ratio = per_step[hi] / per_step[lo]
+    ratio = record.ratio(
+        f"{layout}: cost per step, N = {hi} over N = {lo}", per_step[hi], per_step[lo], "<= 100"
+    )
     print(
         f"  cost({hi}) / cost({lo}) = {ratio:.1f}   (target <= 100; linear {hi / lo:.0f})",
         flush=True,
@@ -71,7 +75,7 @@ def bench_scaling(ns, repeats, layout):
     return ratio
 
 
-def bench_dense(n, repeats):
+def bench_dense(n, repeats, record):
     print(f"== dense LU vs arrow solver, ring of N = {n} points, same {T_COMPARE:g} s run ==")
     config = scene(n, T_COMPARE)
     wall_a, arrow = best_run(config, repeats)
@@ -79,7 +83,12 @@ def bench_dense(n, repeats):
     same = (arrow.outcome, arrow.n_transitions) == (dense.outcome, dense.n_transitions)
     print(f"  arrow : {wall_a / arrow.n_steps * 1e6:10.1f} us/step  steps {arrow.n_steps}")
     print(f"  dense : {wall_d / dense.n_steps * 1e6:10.1f} us/step  steps {dense.n_steps}")
-    speedup = (wall_d / dense.n_steps) / (wall_a / arrow.n_steps)
+    speedup = record.ratio(
+        f"dense LU over arrow, N = {n}, per step",
+        wall_d / dense.n_steps,
+        wall_a / arrow.n_steps,
+        ">= 20",
+    )
     d_r1 = abs(arrow.R1 - dense.R1)
     shown = f"{d_r1:.1e} m" if d_r1 == d_r1 else "n/a (no sticking in the run)"
     print(
@@ -94,6 +103,8 @@ if __name__ == "__main__":
     quick = "--quick" in sys.argv
     ns = NS[:4] if quick else NS
     simulate(scene(12, 0.5))  # JIT warm-up (compiles or loads the cache)
-    bench_scaling(ns, 2 if quick else 3, "ring")
-    bench_scaling(ns, 1, "annulus")
-    bench_dense(48 if quick else N_COMPARE, 2)
+    record = Record("layouts")
+    bench_scaling(ns, 2 if quick else 3, "ring", record)
+    bench_scaling(ns, 1, "annulus", record)
+    bench_dense(48 if quick else N_COMPARE, 2, record)
+    record.write()

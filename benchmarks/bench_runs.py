@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 import yaml
+from harness import Record
 
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.worker import warm_up
@@ -141,6 +142,7 @@ def main(argv: list[str] | None = None) -> int:
     warm_up()
     import distributed  # noqa: F401  (import time is not campaign time)
 
+    record = Record("runs")
     for name in args.only or list(CASES):
         for tol in args.tol or (1e-4, 1e-8):
             spec = CASES[name]()
@@ -167,6 +169,16 @@ def main(argv: list[str] | None = None) -> int:
                 f"{bisect['per_point']:.1f} runs/point",
                 flush=True,
             )
+            key = f"{name}, tol {tol:g}"
+            record.ratio(
+                f"{key}: runs per point, after over before",
+                after["per_point"],
+                before["per_point"],
+                target,
+            )
+            record.ratio(f"{key}: wall, after over before", after["wall"], before["wall"])
+            record.number(f"{key}: max |mu* after - before|", gap, "1")
+    record.write()
     return 0
 
 

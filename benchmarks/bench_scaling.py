@@ -37,6 +37,7 @@ import types
 from pathlib import Path
 
 import xarray as xr
+from harness import Record
 
 from frictiondisk.engine.cluster import task_sizing
 from frictiondisk.engine.runner import run_campaign
@@ -385,12 +386,14 @@ def main() -> None:
     import dask.array  # noqa: F401  (xarray imports it when writing results.nc: once per process)
     import distributed  # noqa: F401  (import time is not campaign time)
 
+    record = Record("scaling")
     loops = KernelLoops(loop_s=2.0)
     driver_task_s = driver_cpu_per_task()
     print(
         f"driver CPU per task (empty tasks through an in-process cluster): "
         f"{driver_task_s * 1e3:.2f} ms"
     )
+    record.number("driver CPU per task", driver_task_s * 1e3, "ms")
     for name in args.only:
         text, what = campaign_text(name, quick)
         text = text.replace("SPLIT", str(args.split))
@@ -418,6 +421,9 @@ def main() -> None:
                     f"(the machine's limit {limit[2]:.2f}x)"
                 )
             print(f"  target, {target}: {'met' if verdict else 'NOT MET'}")
+            for n, value in sorted(rows.items()):
+                record.number(f"{title}: speed-up on {n} workers over 1", value, "1")
+            record.number(f"{title}: 2 workers, share of the machine's limit", of_limit[2], "1")
         if name in "cd" and args.split != 2:
             plain = text.replace(f"split: {args.split}", "split: 2")
             wall, runs, *_ = time_campaign(plain, 1, args.repeats, processes=args.processes)
@@ -425,6 +431,8 @@ def main() -> None:
                 f"  plain bisection (split 2) on 1 worker: {wall:.2f} s (best of "
                 f"{args.repeats}), {runs} runs"
             )
+
+    record.write()
 
 
 if __name__ == "__main__":

@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 import xarray as xr
+from harness import Record
 
 ROOT = Path(__file__).resolve().parent.parent
 CLI = [sys.executable, "-m", "frictiondisk.cli"]
@@ -88,6 +89,14 @@ def main() -> int:
         f"run, one-point campaign   {run_wall:6.3f} s   fixed start-up {fixed:.3f} s   "
         f"target <= 0.7 s: ratio {fixed / 0.7:.2f}"
     )
+    record = Record("startup")
+    record.number("python -c pass", bare, "s")
+    record.number("import numba, beyond python's start", numba, "s")
+    record.number("import dask.distributed, beyond python's start", dask, "s")
+    record.number("warm simulate demo_pin", sim_wall, "s", "<= 0.6")
+    record.number("fixed start-up of run", fixed, "s", "<= 0.7")
+    record.ratio("warm simulate over bare python", sim_wall, bare)
+    record.write()
     return 0
 
 

@@ -38,6 +38,7 @@ from pathlib import Path
 
 import xarray as xr
 import yaml
+from harness import Record
 
 ROOT = Path(__file__).resolve().parent.parent
 CLI = [sys.executable, "-m", "frictiondisk.cli", "run"]
@@ -172,6 +173,12 @@ def main(argv: list[str] | None = None) -> int:
                 f"  {mode:<10} 2 workers at {limit / median[mode]:.0%} of the machine's limit "
                 f"(two 1-worker copies side by side: {limit:.1f} s each half)"
             )
+    record = Record("together")
+    record.ratio(
+        "wall, together over one by one", median["together"], median["sequential"], f"<= {TARGET}"
+    )
+    record.ratio("utilization, one by one over together", use["sequential"], use["together"])
+    record.write()
     return 0
 
 

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from harness import Record
 
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.worker import warm_up
@@ -57,7 +58,7 @@ def directions(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return d / np.hypot(d[:, 0], d[:, 1])[:, None]
 
 
-def compare(figure: str, out: Path) -> None:
+def compare(figure: str, out: Path, record: Record) -> None:
     line_name, trace_name = PAIRS[figure]
     line, line_runs, line_wall = run(line_name, out)
     trace, trace_runs, trace_wall = run(trace_name, out)
@@ -88,6 +89,9 @@ def compare(figure: str, out: Path) -> None:
     print(f"  {'runs':22s} {line_runs:10d} {trace_runs:10d} {trace_runs / line_runs:11.2f}")
     print(f"  {'wall [s]':22s} {line_wall:10.1f} {trace_wall:10.1f} {trace_wall / line_wall:11.2f}")
     print(f"  {'points':22s} {line.sizes[name]:10d} {len(key):10d}")
+    record.ratio(f"{figure}: runs, trace over line", trace_runs, line_runs)
+    record.ratio(f"{figure}: wall, trace over line", trace_wall, line_wall)
+    record.number(f"{figure}: traced mu* off the line's, at most", off.max(), "tol", "<= 2")
     print(
         f"  traced mu* at the line's keys: max {off.max():.2f} tol, mean {off.mean():.2f} tol "
         f"off the line's mu* ({int((off <= 2).sum())} of {off.size} within 2 tol)"
@@ -134,8 +138,10 @@ def main(argv: list[str] | None = None) -> int:
     figures = list(PAIRS) if args.all else ["fig11"]
     with tempfile.TemporaryDirectory() as tmp:
         out = args.out or Path(tmp)
+        record = Record("trace")
         for figure in figures:
-            compare(figure, out)
+            compare(figure, out, record)
+    record.write()
     return 0
 
 

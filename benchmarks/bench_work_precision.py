@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 import yaml
+from harness import Record
 
 from frictiondisk.engine.runner import run_campaign
 from frictiondisk.engine.worker import warm_up
@@ -168,6 +169,7 @@ def main(argv: list[str] | None = None) -> int:
     import distributed  # noqa: F401  (import time is not campaign time)
 
     results: dict[tuple[str, bool], dict[float, dict]] = {}
+    record = Record("work_precision")
     print(
         "line       tol     numerics chosen                     expected  runs/pt (cert)  "
         "steps/pt  kernel/pt  certified  right  cost/right  |mu* - ref| (certified)"
@@ -185,9 +187,17 @@ def main(argv: list[str] | None = None) -> int:
                 results.setdefault((line, baseline), {})[tol] = m
                 label = f"{line}{'/def' if baseline else ''}"
                 print(row(label, tol, m), flush=True)
+                record.number(f"{label}, tol {tol:g}: kernel per right mu*", m["cost"], "s")
+                record.number(f"{label}, tol {tol:g}: right of certified", m["right"], "1")
+            if not args.no_baseline:
+                for tol in tols:
+                    auto, default = results[(line, False)][tol], results[(line, True)][tol]
+                    key = f"{line}, tol {tol:g}: kernel per right mu*, auto over default numerics"
+                    record.ratio(key, auto["cost"], default["cost"])
     if args.figure:
         figure(results, args.figure)
         print(f"figure: {args.figure}")
+    record.write()
     return 0
 
 

@@ -5,9 +5,10 @@ atol, t_decide) are chosen here, before anything runs, as the cheapest measured 
 whose expected mu* error is at most ERROR_FRACTION x tol. The expectation comes from an
 error model of the scene's *kind* (`scene_kinds`): the table numerics_error.csv next to
 this module, the mu* error measured per kind against rtol and atol and against the
-decision horizon, with its provenance (the command that measured it,
-benchmarks/study_error_model.py) in its header. Nothing here is a value for a particular
-campaign: the table is data, the rules below are the same for every campaign.
+decision horizon, with its provenance (the command and commit that generated it; the
+generator is frictiondisk/studies/error_model.py) in its header. Nothing here is a value
+for a particular campaign: the table is data, the rules below are the same for every
+campaign.
 
 Rules (docs/accuracy.md, "Numerics from the tol"):
 

@@ -3,7 +3,7 @@
 Right-hand side, switching functions, their rate along the motion and the Jacobian's
 sparsity, written again from the model document and independent of the numba kernel: the
 equations behind the scipy Radau cross-check (simulation/radau.py) and the studies that
-evaluate the model pointwise (benchmarks/study_brake.py).
+evaluate the model pointwise (studies/brake/rotation_term.py).
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ class NumpyModel:
     stribeck_delta: float
     # True: u_i = v_i + omega_m e_z x z_i (docs/model.md section 3, the model). False: u_i = v_i, the
     # contact state integrated without the rotation term -- a study variant only
-    # (benchmarks/study_brake.py), reachable from Python, never from a scene file.
+    # (studies/brake/rotation_term.py), reachable from Python, never from a scene file.
     objective_rate: bool = True
 
     @classmethod
@@ -139,7 +139,7 @@ class NumpyModel:
         if self.objective_rate:
             zx, zy = Zx / self.c_i, Zy / self.c_i
             ux, uy = vx - om * zy, vy + om * zx
-        else:  # the variant without the rotation term (study_brake.py)
+        else:  # the variant without the rotation term (studies/brake/rotation_term.py)
             ux, uy = vx, vy
         kx, ky = Zx + self.beta_i * ux, Zy + self.beta_i * uy
         speed = np.sqrt(vx * vx + vy * vy)  # sqrt, not hypot: analytic for the complex step

@@ -394,7 +394,7 @@ def simulate_radau(
     Numerical failure never raises: it ends the run as `undetermined` with the reason.
     dense_lu: no stage matrix here (an argument of every method, simulation/simulate.py);
     verdict: the thresholds of the label. objective_rate=False integrates the contact state without the rotation term of docs/model.md
-    section 3 (u_i = v_i): a study variant (benchmarks/study_brake.py), not the model.
+    section 3 (u_i = v_i): a study variant (studies/brake/rotation_term.py), not the model.
     """
     wall0 = time.perf_counter()
     model = NumpyModel.from_config(config, objective_rate=objective_rate)

@@ -34,7 +34,7 @@ that their error is the modelling error alone:
 * `points`    (disk only) contact points N = 1, 4, 12, 48, 192, 768 in the campaign's own
               contact.layout (ring or annulus). Reference: N = 768, the finest
               discretization of the continuous ring or facing. (The N = 768 rows at the
-              reference numerics are slow; benchmarks/study_layouts.py runs the same
+              reference numerics are slow; frictiondisk/studies/layouts.py runs the same
               sequence at the default numerics.)
 """
 

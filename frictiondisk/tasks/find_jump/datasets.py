@@ -11,7 +11,6 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.model.search_settings import CERTIFICATION_FLAGS
-from frictiondisk.verdict.horizon import horizon_of
 from frictiondisk.store import cf
 from frictiondisk.store.campaign_datasets import (
     campaign_attrs,
@@ -25,6 +24,7 @@ from frictiondisk.tasks.find_jump.jump_datasets import all_jumps
 from frictiondisk.tasks.jump_search.jump_result import RUN_ROLES, run_role
 from frictiondisk.tasks.jump_search.requests import run_config
 from frictiondisk.tasks.jump_search.runs import RunRequest
+from frictiondisk.verdict.horizon import horizon_of
 
 CERTIFICATION_PENDING = -1  # a point not finished yet (partial results)
 OUTCOMES = cf.OUTCOMES

@@ -1,0 +1,110 @@
+"""The study's report: the claims over all rows, then every disagreement and failure."""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+
+import numpy as np
+
+from frictiondisk.studies.wellposed.judge import disagrees, missed_jump, silent, verdict
+from frictiondisk.studies.wellposed.scenes import describe
+from frictiondisk.studies.wellposed.settings import PERSIST_STEPS, SETTINGS, TOL
+from frictiondisk.tasks.jump_search.jump_result import NO_JUMP
+
+
+def report(rows: list[dict], wall_s: float) -> list[str]:
+    """The report's lines (wall_s: this invocation's wall time [s])."""
+    settings = [s for s in SETTINGS if all(s in r for r in rows)]
+    differ = [
+        r for r in rows if "reference" in settings and disagrees(r["default"], r["reference"])
+    ]
+    lines = [f"well-posedness study: {len(rows)} scenes, tol {TOL:g}, {wall_s:.0f} s"]
+    lines += settled_lines(differ)
+    lines += answer_lines(rows, settings)
+    lines += cost_lines(rows, settings)
+    lines += row_lines(rows, differ)
+    return lines
+
+
+def settled_lines(differ: list[dict]) -> list[str]:
+    """Disagreements by who was right, silent errors, missed jumps."""
+    counts = Counter(verdict(r) for r in differ)
+    missed = [r for r in differ if missed_jump(r)]
+    return [
+        f"  default against the dense reference: {len(differ)} disagree; settled run by run: "
+        + ", ".join(
+            f"{k} right {v}" if k in ("default", "reference", "both") else f"{k} {v}"
+            for k, v in sorted(counts.items())
+        ),
+        f"  silent errors (settled against a certified default): {sum(map(silent, differ))}",
+        f"  missed jumps (sticking at the reference's lower mu_hi and at mu_hi + "
+        f"{', '.join(map(str, PERSIST_STEPS))} tol): {len(missed)}, "
+        f"{sum(1 for r in missed if r['default'].certified)} of them certified by the default",
+    ]
+
+
+def answer_lines(rows: list[dict], settings: list[str]) -> list[str]:
+    """Failed points, points without a jump, certification, the grid below mu*, windows."""
+    n = len(rows)
+    default = [r["default"] for r in rows]
+    failed = sum(1 for f in default if f.status == "failed")
+    without = [r for r in rows if r["default"].status == NO_JUMP]
+    # a scene in which no value of the whole grid sticks has no mu*: an answer (NO_JUMP),
+    # not a failure; it is compared with the reference like any other
+    agree = [r for r in without if "reference" in r and math.isnan(r["reference"].mu_star)]
+    flags = Counter(f.certification for f in default)
+    shares = [f.grid_share for f in default if math.isfinite(f.grid_share)]
+    whole = sum(1 for s in shares if s >= 1.0)
+    windowed = {s: sum(1 for r in rows if r[s].windows) for s in settings if s != "uncertified"}
+    return [
+        f"  failed points (honest, with a reason): {failed} of {n} "
+        f"({100 * failed / max(1, n):.1f} %); no jump on the whole grid: {len(without)} "
+        f"({len(agree)} as in the reference)",
+        "  certification of the default: "
+        + ", ".join(f"{k} {v}" for k, v in sorted(flags.items())),
+        f"  grid below mu* decided: {whole} of {len(shares)} headlines on their whole grid "
+        f"(mean share {np.mean(shares) if shares else math.nan:.3f}); resolution "
+        f"{np.nanmax([f.resolution for f in default] or [math.nan]):.3g} at most",
+        "  scenes with sticking windows: " + ", ".join(f"{s} {k}" for s, k in windowed.items()),
+    ]
+
+
+def cost_lines(rows: list[dict], settings: list[str]) -> list[str]:
+    """Runs and kernel time per setting; certification's cost over the uncertified default."""
+    walls = {s: sum(r[s].wall_s for r in rows) for s in settings}
+    runs = {s: sum(r[s].runs for r in rows) for s in settings}
+    uncertified = walls.get("uncertified", 0.0)
+    extra = walls["default"] / uncertified - 1.0 if uncertified > 0 else math.nan
+    return [
+        "  runs: "
+        + ", ".join(f"{s} {runs[s]}" for s in settings)
+        + "; kernel wall time [s]: "
+        + ", ".join(f"{s} {walls[s]:.1f}" for s in settings),
+        f"  certification costs {100 * extra:+.0f} % kernel wall time over uncertified",
+    ]
+
+
+def row_lines(rows: list[dict], differ: list[dict]) -> list[str]:
+    """Every disagreement with its watches, and every failed point with its reason."""
+    lines = []
+    if differ:
+        lines.append("  disagreements (seed/scene: default mu* [cert], reference mu*, settled):")
+    for r in differ:
+        d, ref = r["default"], r["reference"]
+        runs_text = "; ".join(
+            f"{s['mu']:.5f} {s['outcome']} at {s['t_end']:.0f} s"
+            for s in [*r["settled"], *r.get("persisted", [])]
+        )
+        lines.append(
+            f"    {r['seed']}/{r['index']}: {d.mu_star:.5f} [{d.certification}] vs "
+            f"{ref.mu_star:.5f} -> {verdict(r)} right; "
+            f"{describe(r['scene'])}; runs: {runs_text}"
+        )
+    for r in rows:
+        if r["default"].status == "failed":
+            lines.append(
+                f"    failed {r['seed']}/{r['index']}: {r['default'].reason}; "
+                f"{describe(r['scene'])}"
+            )
+    return lines

@@ -1,0 +1,180 @@
+"""The study run end to end, on the engine: locate every scene's jumps under each setting,
+then watch every disagreement, then assemble the rows.
+
+Both steps are campaigns run into one output folder (frictiondisk.studies.campaigns), so
+an interrupted study resumes from its journals: run the same command again.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+from frictiondisk.studies import campaigns
+from frictiondisk.studies.wellposed.found import read_found
+from frictiondisk.studies.wellposed.judge import (
+    combine_watches,
+    disagrees,
+    disputed,
+    lower_reference,
+)
+from frictiondisk.studies.wellposed.rows import known_watches, read_rows, write_rows
+from frictiondisk.studies.wellposed.scenes import coulomb_pin, draw_scene
+from frictiondisk.studies.wellposed.settings import (
+    DEFAULT_STEP,
+    PERSIST_STEPS,
+    TOL,
+    locate_campaign,
+    locate_name,
+    watch_campaign,
+    watch_prefix,
+    watch_scene,
+)
+
+SCENES_PER_CALL = 20  # scenes whose campaigns go to the engine together
+
+
+@dataclasses.dataclass(frozen=True)
+class Options:
+    """How a study runs. reference False: the default and uncertified settings only (the
+    cost of certification). observe: the default's certification watches
+    (certify.observe). step: the default's prescan step. reference_from: a rows file or
+    study folder whose references are taken instead of located again (the reference
+    dominates the study's cost). settled_from: rows files or study folders whose settling
+    runs are taken where the same scene and mu are disputed again."""
+
+    workers: int = 2
+    reference: bool = True
+    observe: bool = False
+    step: float = DEFAULT_STEP
+    reference_from: Path | None = None
+    settled_from: tuple[Path, ...] = ()
+
+
+def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options()) -> list[dict]:
+    """Every (seed, index) of `jobs`, located and settled into `out`; the rows, in job
+    order, also written to out/rows.jsonl."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    references = read_rows(options.reference_from) if options.reference_from else {}
+    rows: list[dict] = []
+    scenes = {}
+    for start in range(0, len(jobs), SCENES_PER_CALL):
+        part = jobs[start : start + SCENES_PER_CALL]
+        located, defaults = locate(part, out, options, references)
+        rows += located
+        scenes.update(defaults)
+    if options.reference:
+        settle(rows, scenes, out, options.workers, known_watches(list(options.settled_from)))
+    write_rows(out, rows)
+    return rows
+
+
+def locate(jobs, out: Path, options: Options, references: dict):
+    """Rows with each setting's `Found` for `jobs`, and each scene's default point scene
+    (the watches start from it)."""
+    settings = ("default", "uncertified") + (("reference",) if options.reference else ())
+    planned = {}  # (seed, index, setting) -> validated campaign
+    for seed, index in jobs:
+        scene = draw_scene(seed, index)
+        for setting in settings:
+            if setting == "reference" and (seed, index) in references:
+                continue
+            name = locate_name(seed, index, setting, options.step, options.observe)
+            numerics = None
+            if setting == "reference":
+                num = planned[(seed, index, "default")].base.numerics
+                numerics = {"t_decide": num.t_decide, "rtol": num.rtol, "atol": num.atol}
+            data = locate_campaign(name, scene, setting, numerics, options.step, options.observe)
+            planned[(seed, index, setting)] = campaigns.campaign(data)
+    campaigns.run(planned.values(), out, options.workers)
+    rows, defaults = [], {}
+    for seed, index in jobs:
+        row = {"seed": seed, "index": index, "scene": draw_scene(seed, index)}
+        for setting in settings:
+            campaign = planned.get((seed, index, setting))
+            if campaign is None:
+                row[setting] = references[(seed, index)]["reference"]
+            else:
+                row[setting] = read_found(out / campaign.name, campaign)
+        row["settled"], row["persisted"] = [], []
+        rows.append(row)
+        defaults[(seed, index)] = planned[(seed, index, "default")].points()[0].config
+    return rows, defaults
+
+
+def watched_mu(row: dict) -> tuple[list[float], list[float]]:
+    """The disputed mu of a disagreeing row, and those above the reference's lower mu_hi
+    watched for a jump the default missed (none where the scenes agree)."""
+    if not disagrees(row["default"], row["reference"]):
+        return [], []
+    persist = []
+    if lower_reference(row):
+        persist = [row["reference"].mu_hi + k * TOL for k in PERSIST_STEPS]
+    return disputed(row["default"], row["reference"]), persist
+
+
+def watches_of(scene: dict) -> tuple[str, ...]:
+    """The watches a scene's disputes get: the regularized one; on a Coulomb pin the exact
+    Coulomb integrator's too."""
+    return ("regularized", "coulomb") if coulomb_pin(scene) else ("regularized",)
+
+
+def settle(rows: list[dict], scenes: dict, out: Path, workers: int, known: dict) -> None:
+    """Watch every disagreement at its disputed mu (a scan campaign per scene and watch,
+    of the mu no earlier study watched), then give each row its settling runs."""
+    scans = {}  # (seed, index, watch) -> the scan campaign of the mu it watches here
+    for row in rows:
+        key = (row["seed"], row["index"])
+        wanted = sorted({mu for mus in watched_mu(row) for mu in mus})
+        earlier = known.get(key, {})
+        for watch in watches_of(row["scene"]):
+            todo = [mu for mu in wanted if earlier_watch(earlier.get(mu), watch) is None]
+            if todo:
+                scene = watch_scene(scenes[key], exact=watch == "coulomb")
+                scans[(*key, watch)] = watch_campaign(watch_prefix(*key, watch, scene), scene, todo)
+    campaigns.run(scans.values(), out, workers)
+    shown = {where: read_watches(out / scan["name"]) for where, scan in scans.items()}
+    for row in rows:
+        settled, persisted = watched_mu(row)
+        row["settled"] = [settling_run(row, mu, shown, known) for mu in settled]
+        row["persisted"] = [settling_run(row, mu, shown, known) for mu in persisted]
+
+
+def earlier_watch(run: dict | None, watch: str) -> dict | None:
+    """The watch `watch` of an earlier settling run, if it has one (a run without the
+    exact Coulomb watch, from before it, has its regularized watch only)."""
+    if run is None:
+        return None
+    if watch in run:
+        return run[watch]
+    if watch == "regularized":
+        return {k: run[k] for k in ("outcome", "t_end", "reason")}
+    return None
+
+
+def settling_run(row: dict, mu: float, shown: dict, known: dict) -> dict:
+    """The settling run at mu of a row: its watches, from this study's scans or from an
+    earlier study's rows (then marked `reused`)."""
+    key = (row["seed"], row["index"])
+    earlier = known.get(key, {}).get(mu)
+    watches, reused = {}, False
+    for watch in watches_of(row["scene"]):
+        found = earlier_watch(earlier, watch)
+        reused |= found is not None
+        watches[watch] = found if found is not None else shown[(*key, watch)][mu]
+    run = combine_watches(mu, watches["regularized"], watches.get("coulomb"))
+    return {**run, "reused": True} if reused else run
+
+
+def read_watches(folder: Path) -> dict[float, dict]:
+    """mu -> outcome, t_end and reason of every run of a watch scan."""
+    ds = campaigns.results(folder)
+    return {
+        float(mu): {
+            "outcome": str(ds.outcome.values[k]),
+            "t_end": float(ds.t_end.values[k]),
+            "reason": str(ds.reason.values[k]),
+        }
+        for k, mu in enumerate(ds.mu.values)
+    }
