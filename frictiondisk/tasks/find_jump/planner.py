@@ -14,8 +14,10 @@ on (`refinement`). A point starts once the two points that bound its interval ar
 and fewer than `lanes` points of its row are in flight. Its bracket is predicted by
 interpolation: linear between those two, quadratic with the end of the interval they
 were cut from, half-width tol / 2, or 2 |quadratic - linear| where that is larger, so
-that a point of a smooth line costs two runs before certification. A side that does not
-hold widens (bisection.Bisection). Which points a prediction uses is fixed by the
+that a point of a smooth line costs two runs before certification. A prediction that
+misses widens x8, x64, ... up to the campaign bracket, and an undetermined run at a
+prediction waits for the horizon ladder until nothing else can close the bracket
+(jump_search/expanding.py). Which points a prediction uses is fixed by the
 campaign, never by timing, so 1 and 2 workers give identical results.
 """
 
