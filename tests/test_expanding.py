@@ -92,16 +92,17 @@ def test_a_predicted_bracket_that_misses_widens_x8_from_itself():
 
 
 def test_a_widening_stops_at_the_full_bracket_before_passing_it():
-    full = (0.05, 0.3)
-    bracket = (0.29, 0.29 + TOL)
+    """A prediction at 0.29 of a jump at 0.31, above the campaign bracket [0.05, 0.3]:
+    the widening x8 tries 0.3 before passing it; one at 0.2901 never goes past 0.3."""
+    tol, full = 1e-6, (0.05, 0.3)
+    bracket = (0.29, 0.29 + tol)
     expanding = dataclasses.replace(PREDICTED, full=full)
-    res = search(bracket, oracle(mu_star=0.29001), expanding, tol=1e-6)
-    ends = {run.request.mu for run in res.runs}
-    assert holds(res, mu_star=0.29001, tol=1e-6)
-    far = search(bracket, oracle(mu_star=0.31), expanding, tol=1e-6)
-    assert holds(far, mu_star=0.31, tol=1e-6)
+    near = search(bracket, oracle(mu_star=0.2901), expanding, tol=tol)
+    assert holds(near, mu_star=0.2901, tol=tol)
+    assert all(run.request.mu <= 0.3 for run in near.runs)
+    far = search(bracket, oracle(mu_star=0.31), expanding, tol=tol)
+    assert holds(far, mu_star=0.31, tol=tol)
     assert 0.3 in {run.request.mu for run in far.runs}  # tried before going past it
-    assert all(mu <= 0.3 for mu in ends)
 
 
 def test_an_undetermined_end_next_to_an_end_that_holds_is_laddered_at_once():
