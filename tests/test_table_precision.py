@@ -123,6 +123,8 @@ def test_scan_and_basin_coordinates_1e8_apart_differ_on_screen():
     assert rows[0] != rows[1], rows
     coarse = scan.assign_coords(mu=("mu", [0.05, 0.2], {"units": "1"}))
     assert [line.split()[0] for line in scan_table(coarse)[2:4]] == ["0.05", "0.2"]
+    # a file without the measures has no columns for them (it once failed to print)
+    assert scan_table(scan.drop_vars(["size", "a"]))[2].split()[1:] == ["stick_slip"]
     basin = xr.Dataset(
         {"n_samples": ("mu", [0, 0]), "status": ("mu", ["pending", "pending"])},
         coords={"mu": ("mu", mus), "outcome": ("outcome", ["stick"])},

@@ -27,7 +27,8 @@ def scan_table(results: xr.Dataset) -> list[str]:
     rows, undetermined = [], []
     for coords, row in point_rows(results, names):
         outcome = str(row["outcome"].values.item()) or PENDING
-        measures = [number(float(row[m]), ".4g") if m in row else "-" for m in ("size", "a")]
+        # one column per measure the file has (as the heads below)
+        measures = [number(float(row[m]), ".4g") for m in ("size", "a") if m in results]
         rows.append([f"{c:{f}}" for c, f in zip(coords, specs, strict=True)] + [outcome, *measures])
         if outcome == "undetermined" and "reason" in row:
             undetermined.append((coords, str(row["reason"].values.item())))
