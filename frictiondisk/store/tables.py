@@ -33,6 +33,28 @@ def point_rows(results: xr.Dataset, names: list[str]) -> list[tuple[tuple, xr.Da
     return rows
 
 
+MU_DECIMALS = 6  # decimals of a mu in a table at least (tol 1e-4 and coarser: today's look)
+
+
+def mu_decimals(tol: float | None) -> int:
+    """Decimals that show a mu to two places below the tol's (tol 1e-8 -> 10, 2e-5 -> 7,
+    1e-4 -> 6), never fewer than MU_DECIMALS; MU_DECIMALS without a finite tol."""
+    if tol is None or not math.isfinite(tol) or tol <= 0:
+        return MU_DECIMALS
+    place = -math.floor(math.log10(tol) + 1e-9)  # 1e-8 -> 8 (log10 may round below)
+    return max(MU_DECIMALS, place + 2)
+
+
+def distinct_spec(values) -> str:
+    """The shortest `.Ng` (N >= 6, i.e. `g`'s own) that prints distinct values
+    distinctly: a grid step of 1e-8 in mu shows, a step of 0.025 keeps `g`'s look."""
+    finite = {float(v) for v in values if math.isfinite(float(v))}
+    for digits in range(6, 18):
+        if len({f"{v:.{digits}g}" for v in finite}) == len(finite):
+            return f".{digits}g"
+    return ".17g"
+
+
 def number(value: float, spec: str) -> str:
     """`value` formatted with `spec`; '-' if it is not finite."""
     return f"{value:{spec}}" if math.isfinite(value) else "-"
@@ -48,12 +70,17 @@ def columns(heads: list[str], rows: list[list[str]]) -> list[str]:
     return [line.rstrip() for line in lines]
 
 
-def reasons(title: str, dims: list[str], which: list[tuple[tuple, str]]) -> list[str]:
-    """`title`, then one line `  dim = value, ...: reason` per point of `which`."""
+def reasons(
+    title: str, dims: list[str], which: list[tuple[tuple, str]], specs: list[str] | None = None
+) -> list[str]:
+    """`title`, then one line `  dim = value, ...: reason` per point of `which` (each
+    coordinate in its spec of `specs`, `g` by default)."""
     if not which:
         return []
+    specs = specs or ["g"] * len(dims)
     where = [
-        ", ".join(f"{d} = {c:g}" for d, c in zip(dims, coords, strict=True)) for coords, _ in which
+        ", ".join(f"{d} = {c:{f}}" for d, c, f in zip(dims, coords, specs, strict=True))
+        for coords, _ in which
     ]
     return [
         title,
@@ -65,6 +92,11 @@ def flag_text(var: xr.DataArray, value) -> str:
     """The meaning of one CF flag value of `var`."""
     code = int(value)
     return flag_meanings(var).get(code, str(code))
+
+
+def coordinate_specs(results: xr.Dataset, dims: list[str]) -> list[str]:
+    """The spec of each dimension's coordinate in a table (distinct_spec of its values)."""
+    return [distinct_spec(results[d].values.ravel()) for d in dims]
 
 
 def head_of(results: xr.Dataset, dim: str) -> str:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import xarray as xr
 
+from frictiondisk.store.tables import coordinate_specs
 from frictiondisk.tasks.basin.sampling import STICK
 
 
@@ -20,11 +21,15 @@ def summary_lines(results: xr.Dataset) -> list[str]:
         )
         return [f"basin map, {int(results['n_samples'])} cells: {shares}"]
     dims = list(results["n_samples"].dims)
+    specs = coordinate_specs(results, dims)  # neighbouring grid values print apart
     stacked = results.stack(point=dims) if dims else results.expand_dims("point")
     lines = []
     for k in range(stacked.sizes["point"]):
         row = stacked.isel(point=k)
-        where = ", ".join(f"{d} = {float(row[d]):.6g}" for d in dims) or "basin"
+        where = (
+            ", ".join(f"{d} = {float(row[d]):{f}}" for d, f in zip(dims, specs, strict=True))
+            or "basin"
+        )
         if int(row.n_samples) == 0:  # partial results: this point has not finished
             lines.append(f"{where}: {row.status.values.item()}")
             continue

@@ -14,13 +14,16 @@ on (`refinement`). A point starts once the two points that bound its interval ar
 and fewer than `lanes` points of its row are in flight. Its bracket is predicted by
 interpolation: linear between those two, quadratic with the end of the interval they
 were cut from, half-width tol / 2, or 2 |quadratic - linear| where that is larger, so
-that a point of a smooth line costs two runs before certification. A side that does not
-hold widens (bisection.Bisection). Which points a prediction uses is fixed by the
+that a point of a smooth line costs two runs before certification. A prediction that
+misses widens x8, x64, ... up to the campaign bracket, and an undetermined run at a
+prediction waits for the horizon ladder until nothing else can close the bracket
+(jump_search/expanding.py). Which points a prediction uses is fixed by the
 campaign, never by timing, so 1 and 2 workers give identical results.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
@@ -29,12 +32,14 @@ from frictiondisk.tasks.in_order import feed_in_order
 from frictiondisk.tasks.jobs import RunScenes, RunSearch, Sizing
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRequest, cold_run_count
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
+from frictiondisk.tasks.jump_search.expanding import PREDICTED, Expanding
 from frictiondisk.tasks.jump_search.jumps import JumpSearch, JumpSearchResult, run_role
 from frictiondisk.tasks.jump_search.prescan import stride_of
 from frictiondisk.tasks.jump_search.requests import PointScenes, run_config
 from frictiondisk.tasks.protocol import Planner
 
 WARM_ERROR_FACTOR = 2.0  # half-width of a quadratic prediction: this x |quadratic - linear|
+COLD = Expanding(defer=True)  # a cold point: its bracket is the user's, its probes predict
 
 
 class JumpPlanner(Planner):
@@ -227,8 +232,9 @@ class JumpPlanner(Planner):
             return
         bracket = self._predicted_bracket(i)
         self.warm[i] = bracket is not None
+        full = tuple(self.task.bracket)
         self.bisections[i] = CertifiedBisection(
-            bracket or tuple(self.task.bracket),
+            bracket or full,
             self.task.tol,
             tuple(self.task.limits),
             self.task.max_retries,
@@ -236,6 +242,9 @@ class JumpPlanner(Planner):
             certify=self.task.certify,
             root_finder=self.task.root_finder,
             guided=bracket is None,  # cold: open with the stick end and its reserve
+            # a prediction that misses widens x8, x64, ... up to the full bracket, and the
+            # ladder waits where a probe elsewhere may make it unnecessary (expanding.py)
+            expanding=dataclasses.replace(PREDICTED, full=full) if bracket else COLD,
         )
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:

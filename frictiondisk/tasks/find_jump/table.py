@@ -10,7 +10,16 @@ import math
 import numpy as np
 import xarray as xr
 
-from frictiondisk.store.tables import columns, flag_text, head_of, number, point_rows, reasons
+from frictiondisk.store.tables import (
+    columns,
+    coordinate_specs,
+    flag_text,
+    head_of,
+    mu_decimals,
+    number,
+    point_rows,
+    reasons,
+)
 from frictiondisk.tasks.jump_search.jump_result import NO_JUMP, RUN_ROLES
 
 
@@ -31,16 +40,20 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
     names = ["mu_star", "mu_lo", "mu_hi", "n_runs", "status"]
     names += [name for name in ("certification", "reason") if name in results]
     below = _grid_below_column(results)
+    tol = results.attrs.get("tol")
+    places = mu_decimals(None if tol is None else float(tol))  # two below the tol's place
+    specs = coordinate_specs(results, dims)
     rows, failed, without = [], [], []
     for i, (coords, row) in enumerate(point_rows(results, names)):
         status = str(row["status"].values.item())
         mu, lo, hi = (float(row[v]) for v in ("mu_star", "mu_lo", "mu_hi"))
         if status != "converged":
             mu = lo = hi = math.nan
-        bracket = f"[{lo:.6f}, {hi:.6f}]" if math.isfinite(lo) and math.isfinite(hi) else "-"
+        finite = math.isfinite(lo) and math.isfinite(hi)
+        bracket = f"[{lo:.{places}f}, {hi:.{places}f}]" if finite else "-"
         rows.append(
-            [f"{c:g}" for c in coords]
-            + [number(mu, ".6f"), bracket, str(int(row["n_runs"]))]
+            [f"{c:{f}}" for c, f in zip(coords, specs, strict=True)]
+            + [number(mu, f".{places}f"), bracket, str(int(row["n_runs"]))]
             + [f"{status}{_jumps_note(results, i)}"]
             + ([flag_text(results["certification"], row["certification"])] if certified else [])
             + ([below[i]] if below else [])
@@ -52,13 +65,12 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
     heads += ["mu*", "bracket [mu_lo, mu_hi]", "runs", "status"]
     heads += ["certification"] if certified else []
     heads += ["grid below mu* decided"] if below else []
-    tol = results.attrs.get("tol")
     title = f"mu* per point (bracket width <= tol {float(tol):g}):" if tol else "mu* per point:"
     return [
         title,
         *columns(heads, rows),
-        *reasons(f"points without a jump on their grid ({len(without)}):", dims, without),
-        *reasons(f"failed points ({len(failed)}), why:", dims, failed),
+        *reasons(f"points without a jump on their grid ({len(without)}):", dims, without, specs),
+        *reasons(f"failed points ({len(failed)}), why:", dims, failed, specs),
     ]
 
 

@@ -42,6 +42,13 @@ import math
 from typing import Any
 
 from frictiondisk.model.search_settings import ROOT_FINDERS
+from frictiondisk.tasks.jump_search.expanding import (
+    PLAIN,
+    Expanding,
+    expanding_probe,
+    ladder_due,
+    widened_end,
+)
 from frictiondisk.tasks.jump_search.runs import (
     STICK,
     UNDETERMINED,
@@ -50,7 +57,6 @@ from frictiondisk.tasks.jump_search.runs import (
     RunRequest,
 )
 
-WIDEN_FACTOR = 2.0  # a widened bracket is this many times wider
 ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
 UNDECIDED_SPAN = 10  # [tol] undecided mu a bracket may straddle: wider is a failure
 
@@ -79,6 +85,7 @@ class Bisection:
         split: int = 2,
         strict: int = 0,
         root_finder: str = "itp",
+        expanding: Expanding = PLAIN,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
@@ -112,8 +119,15 @@ class Bisection:
         self._signal: dict[float, float] = {}  # mu -> friction reserve (decided runs, finite)
         # (schedule key, mu) of the decided runs: "the last two" never depend on timing
         self._decided: list[tuple[tuple[int, int, float], float]] = []
-        self._probe: tuple[int, float] | None = None  # (round, mu) of this round's probe
         self._itp: tuple[int, int] | None = None  # (first bisect round, its round budget)
+        # a missed prediction (expanding.py): undetermined runs whose retry waits
+        self.expanding = expanding if split == 2 else PLAIN
+        self._deferred: list[float] = []  # their mu, in the order they were deferred
+        self._steps: dict[float, int] = {}  # deferred mu -> probes made away from it
+        self._expand_steps = 0  # the steps of this round's probe away from a deferred run
+        self._laddered: set[float] = set()  # mu whose retry is due: never deferred again
+        self._epoch = 0  # bumped on every deferral: the round's probes are chosen anew
+        self._interior_cache: tuple[tuple[int, int], str, list[float]] | None = None
 
     # ---- what to run ------------------------------------------------------------------
     def pending(self) -> list[RunRequest]:
@@ -121,7 +135,8 @@ class Bisection:
         if self.done:
             return []
         if self.phase == "check":
-            mus = [mu for mu in (self.lo, self.hi) if mu not in self._known]
+            ends = (self.lo, self.hi)
+            mus = [mu for mu in ends if mu not in self._known and mu not in self._deferred]
         else:
             mus = [mu for mu in self._interior() if mu not in self._known]
         requests = [RunRequest(mu, self._level.get(mu, 0), strict=self.strict) for mu in mus]
@@ -147,22 +162,122 @@ class Bisection:
         return (min(inside), max(inside)) if inside and self.split == 2 else None
 
     def _interior(self) -> list[float]:
-        """This round's interior points, increasing: lo + j (hi - lo) / parts; around the
-        undecided mu [u_lo, u_hi], the midpoints of (lo, u_lo) and (u_hi, hi), but at most
-        UNDECIDED_SPAN / 2 tol away (a wide bracket's midpoint once hit a far transient)."""
+        """This round's interior points, increasing; chosen once per round and deferral
+        (pending() asks again after every result)."""
+        key = (self._round, self._epoch)
+        if self._interior_cache is None or self._interior_cache[0] != key:
+            kind, mus = self._choose_interior()
+            self._interior_cache = (key, kind, mus)
+        return self._interior_cache[2]
+
+    def _interior_kind(self) -> str | None:
+        """How this round's interior was chosen: straddle, ladder, expand, itp, mid or split."""
+        key = (self._round, self._epoch)
+        cache = self._interior_cache
+        return cache[1] if cache is not None and cache[0] == key else None
+
+    def _choose_interior(self) -> tuple[str, list[float]]:
+        """lo + j (hi - lo) / parts; around the undecided mu [u_lo, u_hi], the midpoints of
+        (lo, u_lo) and (u_hi, hi), but at most UNDECIDED_SPAN / 2 tol away (a wide
+        bracket's midpoint once hit a far transient); away from a deferred run
+        (expanding.py); else the interpolating probe."""
         width = self.hi - self.lo
         u = self._straddled()
         if u is not None:
             near = 0.5 * UNDECIDED_SPAN * self.tol
             below, above = 0.5 * (self.lo + u[0]), 0.5 * (u[1] + self.hi)
-            return [max(below, u[0] - near), min(above, u[1] + near)]
+            return "straddle", [max(below, u[0] - near), min(above, u[1] + near)]
+        deferred = self._deferred_inside()
+        if deferred is not None:
+            return self._away_from(deferred)
         if self.split == 2 and self.root_finder == "itp":
-            return [self._itp_probe()]
+            kind, probe = self._choose_probe()
+            return kind, [probe]
         parts = self.split
         # the last round: the fewest parts that reach tol (same test as _maybe_converged)
         while parts > 2 and width / (parts - 1) <= self.tol * (1 + 1e-9):
             parts -= 1
-        return [self.lo + j * width / parts for j in range(1, parts)]
+        return "split", [self.lo + j * width / parts for j in range(1, parts)]
+
+    # ---- a missed prediction (expanding.py) -------------------------------------------
+    @property
+    def _stick_end(self) -> float:
+        return self.hi if self.rising else self.lo
+
+    def _deferred_inside(self) -> float | None:
+        """The deferred run inside the bracket nearest its sticking end, if any."""
+        inside = [
+            mu
+            for mu in self._deferred
+            if self.lo < mu < self.hi and mu not in self._known and mu not in self.undecided
+        ]
+        if not inside:
+            return None
+        return min(inside, key=lambda mu: abs(self._stick_end - mu))
+
+    def _away_from(self, deferred: float) -> tuple[str, list[float]]:
+        """The next probe away from a deferred run towards the sticking end, or the run's
+        retry once that end lies within tol of it."""
+        if not ladder_due(deferred, self._stick_end, self.tol):
+            steps = self._steps.get(deferred, 0) + 1
+            probe = expanding_probe(deferred, self._stick_end, self.tol, steps)
+            if self.lo < probe < self.hi and probe not in self._known:
+                self._steps[deferred] = self._expand_steps = steps
+                return "expand", [probe]
+        self._laddered.add(deferred)
+        return "ladder", [deferred]
+
+    def _defer(self, request: RunRequest) -> bool:
+        """Postpone the retry of an undetermined run (a predicted bracket's end, or a probe
+        at a prediction: expanding.py); False where its retry is due now."""
+        mu = request.mu
+        if request.level >= self.max_retries or mu in self._laddered:
+            return False
+        if self.phase == "check":
+            if not (self.expanding.predicted and mu in (self.lo, self.hi)):
+                return False
+        elif not (self.expanding.defer and self._interior_kind() in ("itp", "expand")):
+            return False
+        self._deferred.append(mu)
+        if self._interior_kind() == "expand":  # the steps from it go on growing
+            self._steps[mu] = self._expand_steps
+        self._level[mu] = request.level + 1
+        self._epoch += 1
+        if self.phase == "check":
+            self._after_check()
+        return True
+
+    def _holds(self, end: float) -> bool:
+        """A decided bracket end gave the verdict its side of the jump should give."""
+        sticks = self._known[end] == STICK
+        return sticks == (end == self.hi) if self.rising else sticks == (end == self.lo)
+
+    def _past_deferred_end(self) -> None:
+        """A predicted bracket with a deferred end, once both ends are settled: both
+        deferred, the bracket widens to `widen` x its width about its centre; the other end
+        holds, the deferred end moves out to `widen` x the width from it, or its retry is
+        due where the two lie within tol; the other end does not hold, the jump lies beyond
+        it (widened as for ends that agree)."""
+        lo, hi, width = self.lo, self.hi, self.hi - self.lo
+        if lo not in self._known and hi not in self._known:
+            centre, half = 0.5 * (lo + hi), 0.5 * width
+            self.lo = widened_end(centre, half, False, self.expanding, self.limits)
+            self.hi = widened_end(centre, half, True, self.expanding, self.limits)
+            for end in {lo, hi} & {self.lo, self.hi}:  # at a limit: no room to move
+                self._laddered.add(end)
+                self._deferred.remove(end)
+        else:
+            deferred, other = (lo, hi) if lo not in self._known else (hi, lo)
+            if not self._holds(other):
+                self._widen_beyond(other, width)
+                return
+            moved = widened_end(other, width, deferred > other, self.expanding, self.limits)
+            if abs(other - deferred) <= self.tol * (1 + 1e-9) or moved == deferred:
+                self._laddered.add(deferred)
+                self._deferred.remove(deferred)  # its retry is pending as a bracket end
+                return
+            self.lo, self.hi = (moved, hi) if deferred == lo else (lo, moved)
+        self._round += 1
 
     # ---- what came back ---------------------------------------------------------------
     def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
@@ -171,6 +286,8 @@ class Bisection:
             raise ValueError(f"unexpected run {request}")
         self.runs.append(RunRecord(request, result))
         outcome = result["outcome"]
+        if outcome == UNDETERMINED and self._defer(request):
+            return
         if outcome == UNDETERMINED:
             # undecided mu inside the bracket are straddled while they span at most
             # UNDECIDED_SPAN tol: the jump's slow approach, bracketed from both sides
@@ -240,7 +357,11 @@ class Bisection:
             self._failure = reason
 
     def _after_check(self) -> None:
+        settled = (*self._known, *self._deferred)
+        if self.lo not in settled or self.hi not in settled:
+            return
         if self.lo not in self._known or self.hi not in self._known:
+            self._past_deferred_end()
             return
         lo_stick = self._known[self.lo] == STICK
         hi_stick = self._known[self.hi] == STICK
@@ -261,7 +382,14 @@ class Bisection:
                 f"bracket inverted: mu_lo = {self.lo:.10g} gave stick, "
                 f"mu_hi = {self.hi:.10g} gave {self._outcome_at(self.hi)}"
             )
-        elif not lo_stick:  # both ends not stick: the jump lies above
+        else:  # both ends agree: the jump lies beyond the end that does not hold
+            self._widen_beyond(self.hi if not lo_stick else self.lo, width)
+
+    def _widen_beyond(self, end: float, width: float) -> None:
+        """The jump lies beyond `end` (above hi: not stick there; below lo: stick there):
+        the bracket moves past it, `expanding.widen` x `width` wide (guided by the
+        reserve), or the search fails at the limit."""
+        if end == self.hi:
             if self.hi >= self.limits[1]:
                 self._failure = (
                     f"no stick up to the limit: mu_lo = {self.lo:.10g} gave "
@@ -269,17 +397,16 @@ class Bisection:
                     f"{self._outcome_at(self.hi)}"
                 )
             else:
-                far = min(self.limits[1], self.hi + WIDEN_FACTOR * width)
+                far = widened_end(self.hi, width, True, self.expanding, self.limits)
                 self._next_round(self.hi, self._guided_end(self.hi, far))
-        else:  # both ends stick: the jump lies below
-            if self.lo <= self.limits[0]:
-                self._failure = (
-                    f"stick down to the limit: mu_lo = {self.lo:.10g} (= limit) gave stick, "
-                    f"mu_hi = {self.hi:.10g} gave stick"
-                )
-            else:
-                far = max(self.limits[0], self.lo - WIDEN_FACTOR * width)
-                self._next_round(self._guided_end(self.lo, far), self.lo)
+        elif self.lo <= self.limits[0]:
+            self._failure = (
+                f"stick down to the limit: mu_lo = {self.lo:.10g} (= limit) gave stick, "
+                f"mu_hi = {self.hi:.10g} gave {self._outcome_at(self.hi)}"
+            )
+        else:
+            far = widened_end(self.lo, width, False, self.expanding, self.limits)
+            self._next_round(self._guided_end(self.lo, far), self.lo)
 
     def _after_round(self) -> None:
         """Once every interior point is decided: the lowest part whose ends differ in the
@@ -318,14 +445,10 @@ class Bisection:
             self._maybe_converged()
 
     # ---- the interpolating probe (root_finder "itp") ---------------------------------
-    def _itp_probe(self) -> float:
-        """This round's point: the signal's root estimate, nudged past it, inside ITP's
-        window. Computed once per round (pending() asks again after every result)."""
-        if self._probe is None or self._probe[0] != self._round:
-            self._probe = (self._round, self._choose_probe())
-        return self._probe[1]
-
-    def _choose_probe(self) -> float:
+    def _choose_probe(self) -> tuple[str, float]:
+        """This round's point ("itp": the signal's root estimate, nudged past it, inside
+        ITP's window; "mid": the midpoint, where ITP keeps its promise by bisecting or the
+        signal says nothing)."""
         lo, hi, tol = self.lo, self.hi, self.tol
         mid = 0.5 * (lo + hi)
         first, budget = self._itp
@@ -334,10 +457,10 @@ class Bisection:
         # (a hair under, so that rounding at the last round cannot leave it above tol)
         window = tol * 2.0 ** (budget - (self._round - first) - 1) * (1.0 - 1e-6)
         if 2.0 * window <= hi - lo:  # no room left: bisection keeps the promise
-            return mid
+            return "mid", mid
         estimate = self._root_estimate()
         if estimate is None:
-            return mid
+            return "mid", mid
         near, far = (lo, hi) if estimate - lo < hi - estimate else (hi, lo)
         toward_far = 1.0 if far > near else -1.0
         if abs(estimate - near) < tol:
@@ -350,8 +473,8 @@ class Bisection:
             probe = estimate + toward_far * step
         probe = min(max(probe, hi - window), lo + window)
         if not lo < probe < hi or probe in self._known:
-            return mid
-        return probe
+            return "mid", mid
+        return "itp", probe
 
     def _root_estimate(self) -> float | None:
         """Where the friction reserve crosses zero inside (lo, hi), or None: the secant

@@ -39,6 +39,7 @@ from frictiondisk.tasks.jump_search.bisection import (
     RunRecord,
     RunRequest,
 )
+from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
@@ -65,6 +66,7 @@ class CertifiedBisection:
         root_finder: str = "itp",
         guided: bool = False,
         outer: tuple[float, float] | None = None,
+        expanding: Expanding = PLAIN,
     ):
         self.tol = tol
         self.limits = limits
@@ -78,8 +80,16 @@ class CertifiedBisection:
         self.split = split
         self.certify = certify
         self.root_finder = root_finder
+        self.expanding = expanding  # how its first search reaches past a missed prediction
         self.search = Bisection(
-            bracket, tol, limits, max_retries, rising, split, root_finder=root_finder
+            bracket,
+            tol,
+            limits,
+            max_retries,
+            rising,
+            split,
+            root_finder=root_finder,
+            expanding=expanding,
         )
         self.searches: list[Bisection] = [self.search]
         # the guided opening (module docstring): the stick end, then the reserve's zero
@@ -182,6 +192,7 @@ class CertifiedBisection:
             self.rising,
             self.split,
             root_finder=self.root_finder,
+            expanding=self.expanding,
         )
         self.searches = [self.search]
         for run in ends:

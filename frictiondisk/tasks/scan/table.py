@@ -6,7 +6,14 @@ from __future__ import annotations
 import xarray as xr
 
 from frictiondisk.store.partial import PENDING
-from frictiondisk.store.tables import columns, head_of, number, point_rows, reasons
+from frictiondisk.store.tables import (
+    columns,
+    coordinate_specs,
+    head_of,
+    number,
+    point_rows,
+    reasons,
+)
 
 
 def scan_table(results: xr.Dataset) -> list[str]:
@@ -16,11 +23,13 @@ def scan_table(results: xr.Dataset) -> list[str]:
         return []
     dims = list(results["outcome"].dims)
     names = [name for name in ("outcome", "size", "a", "reason") if name in results]
+    specs = coordinate_specs(results, dims)  # a grid step of 1e-8 in mu shows
     rows, undetermined = [], []
     for coords, row in point_rows(results, names):
         outcome = str(row["outcome"].values.item()) or PENDING
-        measures = [number(float(row[m]), ".4g") if m in row else "-" for m in ("size", "a")]
-        rows.append([f"{c:g}" for c in coords] + [outcome, *measures])
+        # one column per measure the file has (as the heads below)
+        measures = [number(float(row[m]), ".4g") for m in ("size", "a") if m in results]
+        rows.append([f"{c:{f}}" for c, f in zip(coords, specs, strict=True)] + [outcome, *measures])
         if outcome == "undetermined" and "reason" in row:
             undetermined.append((coords, str(row["reason"].values.item())))
     heads = [head_of(results, d) for d in dims]
@@ -28,5 +37,5 @@ def scan_table(results: xr.Dataset) -> list[str]:
     return [
         "outcome per point:",
         *columns(heads, rows),
-        *reasons(f"undetermined points ({len(undetermined)}), why:", dims, undetermined),
+        *reasons(f"undetermined points ({len(undetermined)}), why:", dims, undetermined, specs),
     ]

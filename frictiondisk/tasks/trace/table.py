@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from frictiondisk.store.tables import columns, flag_text
+from frictiondisk.store.tables import columns, flag_text, mu_decimals
 
 
 def _meanings(results: xr.Dataset, name: str) -> list[str]:
@@ -21,6 +21,10 @@ def trace_lines(results: xr.Dataset) -> list[str]:
         return []
     name = str(results.attrs["trace_key_var"])
     key, mu = results[name].values, results["mu_star"].values
+    places = mu_decimals(float(results.attrs["tol"]))  # two below the tol's place
+    # today's look where it shows as much (tol 1e-4: 6 and 8 significant digits)
+    curve_mu = ".6g" if places <= 6 else f".{places}f"
+    fold_mu = ".8g" if places <= 8 else f".{places}f"
     flags = _meanings(results, "certification") if results.sizes["point"] else []
     rows = []
     for c in range(results.sizes["curve"]):
@@ -32,7 +36,7 @@ def trace_lines(results: xr.Dataset) -> list[str]:
                 str(c),
                 str(stop - start),
                 f"{key[start]:.6g} -> {key[stop - 1]:.6g}",
-                f"{mu[start]:.6g} -> {mu[stop - 1]:.6g}",
+                f"{mu[start]:{curve_mu}} -> {mu[stop - 1]:{curve_mu}}",
                 "closed"
                 if int(results["curve_closed"][c])
                 else f"{results['curve_first_end'].values[c]} / {results['curve_last_end'].values[c]}",
@@ -60,7 +64,7 @@ def trace_lines(results: xr.Dataset) -> list[str]:
                     str(f),
                     str(int(results["fold_curve"][f])),
                     f"{float(results[f'fold_{name}'][f]):.8g} [{k_in:.8g}, {k_out:.8g}]",
-                    f"{float(results['fold_mu'][f]):.8g} [{lo:.8g}, {hi:.8g}]",
+                    f"{float(results['fold_mu'][f]):{fold_mu}} [{lo:{fold_mu}}, {hi:{fold_mu}}]",
                     "window" if kinds[f] == "sticking_window_closes" else "gap",
                     str(results["fold_status"].values[f]),
                     certs[f],
