@@ -27,7 +27,12 @@
 #   make figures run the paper's figure campaigns (campaigns/fig*.yaml, and the traced Fig 11)
 #                into out/figures/
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
-#   make gallery make figures, then copy the PNGs into figures/ (the gallery of docs/user-guide.md: commit them)
+#   make gallery draw every PNG under figures/ again from this code (frictiondisk/cli/gallery.py:
+#                the figure campaigns, the basin campaigns, the brake and corotation studies,
+#                the accuracy studies, the work-precision benchmark; commit them). Hours
+#                from nothing; RUNS=DIR starts from finished run folders DIR/<campaign>/
+#                (`frictiondisk run campaigns/X.yaml -o DIR/X`), rerunning only what this
+#                numerics version has not journaled; GALLERY_ARGS="--only basin" picks
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
 #                and draw figures/basin_*.png (docs/user-guide.md, "Basin stability")
 #   make lint    ruff check + ruff format --check
@@ -39,6 +44,8 @@ PYTEST_ARGS ?=
 BENCH_SCALING_ARGS ?= --quick
 BENCH_TOGETHER_ARGS ?= --repeat 2
 STUDY_ARGS ?=
+RUNS ?=
+GALLERY_ARGS ?=
 
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.frictiondisk-installed
@@ -120,10 +127,11 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
 
 figures: $(STAMP)
-	$(BIN)/python -m frictiondisk.cli.gallery --campaigns campaigns --out out/figures --figures out/figures
+	$(BIN)/python -m frictiondisk.cli.figure_campaigns --campaigns campaigns --out out/figures --figures out/figures
 
-gallery: figures
-	cp out/figures/fig*.png out/figures/trace_fig11_betab_mu.png figures/
+gallery: $(STAMP)
+	$(BIN)/python -m frictiondisk.cli.gallery --out out/gallery --figures figures \
+		$(if $(RUNS),--runs $(RUNS)) $(GALLERY_ARGS)
 
 basin-figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.studies.basin --out out/basin --figures figures

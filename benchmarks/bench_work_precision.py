@@ -130,6 +130,9 @@ def figure(results: dict, path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from frictiondisk.figures.footer import add_footer, code_footer
+    from frictiondisk.figures.plotting import save_figure
+
     fig, (cost_ax, runs_ax) = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
     for (line, baseline), per_tol in sorted(results.items()):
         tols = sorted(per_tol)
@@ -154,7 +157,9 @@ def figure(results: dict, path: Path) -> None:
         ax.invert_xaxis()
         ax.grid(True, which="both", alpha=0.3)
     runs_ax.legend(fontsize=8)
-    fig.savefig(path, dpi=120)
+    # the footer (also in the PNG's metadata): the lines ran just now with this numerics
+    add_footer(fig, code_footer("benchmarks/bench_work_precision.py"))
+    save_figure(fig, path)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,86 +1,190 @@
-"""`make figures`: run every figure campaign (campaigns/fig*.yaml, and the traced Fig 11)
-and draw its figure.
+"""`make gallery`: draw every PNG under figures/ again from this code.
 
-    python -m frictiondisk.cli.gallery [--campaigns campaigns] [--out out/figures] [--figures out/figures]
+    python -m frictiondisk.cli.gallery [--runs DIR] [--out out/gallery] [--figures figures]
+        [--only NAME ...] [--list]
 
-The campaigns run together, in one process on one set of workers (run_campaigns: each
-into OUT/<name>/, resuming whatever is already there, like `frictiondisk run A.yaml
-B.yaml -o OUT`). Then each figure is written as FIGURES/<name>.png and .pdf from the
-netCDF files alone (by default under the ignored out/, so the tracked tree stays clean;
-`make gallery` copies the PNGs into figures/, the gallery of docs/user-guide.md) (like
-`frictiondisk plot`; size-versus-mu figures get their bisection runs). Printed: the wall
-time of each figure's campaign (from the start of the run to its last point), the run's,
-the drawing's and the total.
+`GALLERY` names every PNG of figures/ and the one command that draws it (a test holds the
+two equal: tests/test_gallery.py). Each generator runs as its own process, from the
+repository root, in the order below (the cheap ones first); its campaigns run or resume
+into OUT/<campaign>/, and its PNGs are written into FIGURES.
+
+`--runs DIR`: run folders made before, DIR/<campaign>/ as `frictiondisk run
+campaigns/<campaign>.yaml -o DIR/<campaign>` leaves them (e.g. every shipped campaign run
+once). A campaign folder that OUT does not hold yet is copied from DIR first (if DIR's
+says `complete`), and the generator resumes the copy: a run is reused only if the journal
+holds it under this code's numerics version (the version is part of every journal key),
+so the figure is this code's either way, and a folder of older numerics is run again.
+No figure needs campaigns/clutch_annulus.yaml (hours).
+
+Cost on 2 cores with nothing reused (docs/user-guide.md, "The gallery"): the figure
+campaigns about 20 min (disk_xms_at_rest 5, each Fig 11 start 3), the basin campaigns 2,
+the brake study, the corotation scans and the three accuracy studies some minutes each,
+the work-precision benchmark about 21 min.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import shutil
+import subprocess
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
-from frictiondisk.engine.runner import run_campaigns
-from frictiondisk.tasks.campaign import load_campaign
+PAPER = tuple(
+    f"fig{name}"
+    for name in (
+        "04_trajectory",
+        "05_limit_cycle",
+        "06_a_mu",
+        "07_pin_xms",
+        "08_pin_x0",
+        "09_disk_xms",
+        "10_disk_x0",
+        "11_betab_mu",
+        "11_betab_mu_corotating",
+    )
+)
+# campaigns drawn by `frictiondisk plot`'s figure: the paper's, the traced planes of
+# docs/trace.md, the disk from rest of docs/brake.md and the pin line of `make demo` (README)
+PLOTTED = (*PAPER, "trace_fig11_betab_mu", "trace_stribeck_pin", "disk_xms_at_rest", "demo_line")
+BASIN = ("basin_pin_x0", "basin_pin_map", "basin_pin_boundary", "basin_disk_map")
 
-TRACED = ("trace_fig11_betab_mu.yaml",)  # traced planes shown beside the figures (docs/trace.md)
+
+@dataclass(frozen=True)
+class Generator:
+    """One command of the gallery and the PNGs it leaves in FIGURES.
+
+    `command`: the arguments after `python`, where {out}, {figures} and {campaigns} stand
+    for the folders of the call; `campaigns`: the run folders it resumes from OUT (copied
+    from --runs); `copies`: (file under OUT, PNG name) pairs copied into FIGURES after it."""
+
+    name: str
+    outputs: tuple[str, ...]
+    command: tuple[str, ...]
+    campaigns: tuple[str, ...] = ()
+    copies: tuple[tuple[str, str], ...] = ()
 
 
-def draw_figure(campaign, out_dir: Path, figure_root: Path) -> None:
-    """Save the figure of the finished campaign in out_dir as FIGURES/<name>.png, .pdf."""
-    import matplotlib
+def _accuracy(name: str, figure: str, *options: str) -> Generator:
+    """`frictiondisk accuracy` of campaigns/NAME.yaml, its work-precision figure as FIGURE."""
+    command = ("-m", "frictiondisk.cli", "accuracy", f"{{campaigns}}/{name}.yaml")
+    return Generator(
+        name,
+        (figure,),
+        (*command, "-o", f"{{out}}/{name}", *options),
+        copies=((f"{name}/work_precision.png", figure),),
+    )
 
-    matplotlib.use("Agg")
-    from frictiondisk.figures.plotting import save_figure
-    from frictiondisk.tasks.plot import figure_for_dir
 
-    # the bisection runs belong to size-versus-mu figures (a converge prescan, Figs 7-8);
-    # on a dense jump line they would hide it
-    prescan = getattr(campaign.task, "prescan", None)
-    show_runs = prescan is not None and prescan.mode == "converge"
-    fig = figure_for_dir(out_dir, show_runs=show_runs)
-    for suffix in (".png", ".pdf"):
-        save_figure(fig, figure_root / f"{campaign.name}{suffix}")
+GALLERY: tuple[Generator, ...] = (
+    Generator(
+        "figures",
+        (*(f"{name}.png" for name in PLOTTED), "fig11_bounds.png"),
+        ("-m", "frictiondisk.cli.figure_campaigns", "--campaigns", "{campaigns}")
+        + ("--out", "{out}", "--figures", "{figures}", "--formats", "png", "--only", *PLOTTED),
+        campaigns=PLOTTED,
+    ),
+    Generator(
+        "basin",
+        tuple(f"{name}.png" for name in ("basin_pin_x0", "basin_pin_map", "basin_disk_map")),
+        ("-m", "frictiondisk.studies.basin", "--campaigns", "{campaigns}")
+        + ("-o", "{out}", "--figures", "{figures}"),
+        campaigns=BASIN,
+    ),
+    _accuracy("accuracy_pin", "work_precision_pin.png"),
+    _accuracy(
+        "accuracy_brake",
+        "work_precision_brake.png",
+        "--knobs",
+        "rtol,t_decide,eps",
+        "--tol",
+        "1e-5",
+    ),
+    _accuracy(
+        "accuracy_brake_contacts",
+        "work_precision_brake_contacts.png",
+        *("--knobs", "rtol,t_decide", "--tol", "1e-5"),
+    ),
+    Generator(
+        "corotation",
+        ("brake_drift.png",),
+        ("-m", "frictiondisk.studies.corotation", "-o", "{out}/corotation")
+        + ("--figure", "{figures}/brake_drift.png"),
+    ),
+    Generator(
+        "brake",
+        ("brake_admissibility.png", "brake_rotation_term.png"),
+        ("-m", "frictiondisk.studies.brake", "-o", "{out}/brake", "--figures", "{figures}"),
+    ),
+    Generator(
+        "work_precision_tol",
+        ("work_precision_tol.png",),
+        ("benchmarks/bench_work_precision.py", "--figure", "{figures}/work_precision_tol.png"),
+    ),
+)
+
+
+def outputs() -> list[str]:
+    """Every PNG name the gallery writes into FIGURES."""
+    return [name for generator in GALLERY for name in generator.outputs]
+
+
+def seed(names: tuple[str, ...], runs: Path, out: Path) -> None:
+    """Copy each finished run folder RUNS/<name> that OUT does not hold yet into OUT."""
+    for name in names:
+        source, target = runs / name, out / name
+        if target.exists():
+            print(f"  {name}: resuming {target}", flush=True)
+            continue
+        status = source / "status.json"
+        state = json.loads(status.read_text()).get("state") if status.is_file() else None
+        if state != "complete":
+            print(f"  {name}: {source} is not a complete run folder ({state}): runs here")
+            continue
+        shutil.copytree(source, target, ignore=shutil.ignore_patterns("lock"))
+        print(f"  {name}: copied from {source}", flush=True)
+
+
+def run_generator(generator: Generator, args: argparse.Namespace) -> int:
+    """Run one generator (seeded from --runs); its exit status."""
+    folders = {"out": args.out, "figures": args.figures, "campaigns": args.campaigns}
+    if args.runs is not None:
+        seed(generator.campaigns, args.runs, args.out)
+    command = [sys.executable, *(part.format(**folders) for part in generator.command)]
+    print(f"== {generator.name}: {' '.join(command[1:])}", flush=True)
+    start = time.perf_counter()
+    status = subprocess.run(command, check=False).returncode
+    for source, name in generator.copies:
+        if status == 0:
+            shutil.copyfile(args.out / source, args.figures / name)
+    print(f"== {generator.name}: exit {status}, {time.perf_counter() - start:.0f} s", flush=True)
+    return status
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=Path, help="finished run folders to start from")
+    parser.add_argument("--out", type=Path, default=Path("out/gallery"))
+    parser.add_argument("--figures", type=Path, default=Path("figures"))
     parser.add_argument("--campaigns", type=Path, default=Path("campaigns"))
-    parser.add_argument("--out", type=Path, default=Path("out/figures"))
-    parser.add_argument("--figures", type=Path, default=Path("out/figures"))
+    names = [generator.name for generator in GALLERY]
+    parser.add_argument("--only", nargs="+", choices=names, help="these generators only")
+    parser.add_argument("--list", action="store_true", help="print each generator's PNGs")
     args = parser.parse_args(argv)
-    files = sorted(args.campaigns.glob("fig*.yaml"))
-    files += [args.campaigns / name for name in TRACED if (args.campaigns / name).is_file()]
-    if not files:
-        print(f"no figure campaigns (fig*.yaml) in {args.campaigns}", file=sys.stderr)
-        return 2
-    total = time.perf_counter()
-    campaigns = [load_campaign(path) for path in files]
-    # the traces first (TaskEntry.starts_first): the run offers free workers in this order,
-    # and a trace has few runs in flight for long (one correction per curve end), so the
-    # lines fill round it instead of leaving it alone at the end (docs/benchmarks.md)
-    first = sorted(campaigns, key=lambda campaign: not campaign.entry.starts_first)
-    ran_first = run_campaigns(first, args.out, workers=2, progress=False)
-    summaries = dict(zip((campaign.name for campaign in first), ran_first, strict=True))
-    ran = time.perf_counter() - total
-    for campaign in campaigns:
-        summary = summaries[campaign.name]
-        draw_figure(campaign, args.out / campaign.name, args.figures)
-        where = f"{args.figures / campaign.name}.png, .pdf"
-        print(f"{campaign.name:<26} {summary.wall_s:7.1f} s   {where}", flush=True)
-    rest, corotating = args.out / "fig11_betab_mu", args.out / "fig11_betab_mu_corotating"
-    if (rest / "results.nc").is_file() and (corotating / "results.nc").is_file():
-        # Fig 11 with both starts and the Melan shakedown and collapse bounds
-        from frictiondisk.tasks.find_jump.brake_figure import main as brake_figure
-
-        for suffix in (".png", ".pdf"):
-            brake_figure(
-                [str(rest), str(corotating), "-o", str(args.figures / f"fig11_bounds{suffix}")]
-            )
-    drawn = time.perf_counter() - total - ran
-    print(f"{'all campaigns, one run':<26} {ran:7.1f} s")
-    print(f"{'drawing the figures':<26} {drawn:7.1f} s")
-    print(f"{'all figures':<26} {time.perf_counter() - total:7.1f} s")
+    chosen = [g for g in GALLERY if args.only is None or g.name in args.only]
+    if args.list:
+        for generator in chosen:
+            print(f"{generator.name}: {' '.join(generator.outputs)}")
+        return 0
+    args.out.mkdir(parents=True, exist_ok=True)
+    args.figures.mkdir(parents=True, exist_ok=True)
+    failed = [g.name for g in chosen if run_generator(g, args) != 0]
+    if failed:
+        print(f"failed: {', '.join(failed)}", file=sys.stderr)
+        return 1
     return 0
 
 

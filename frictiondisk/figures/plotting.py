@@ -20,6 +20,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from frictiondisk.figures.footer import FOOTER_KEY, footer_text
 from frictiondisk.figures.style import SLIDE_COLOR, STICK_COLOR, styled  # noqa: F401 (re-exported)
 from frictiondisk.model.headline import scene_headline
 from frictiondisk.simulation.result import SimulationResult
@@ -29,6 +30,8 @@ STICK_WIDTH = 2.2
 SLIDE_WIDTH = 1.0
 
 FIGURE_FORMATS = {".png": "png", ".pdf": "pdf", ".svg": "svg"}
+# where each format keeps the footer in its metadata (matplotlib's savefig `metadata=`)
+FOOTER_FIELD = {"png": FOOTER_KEY, "pdf": "Subject", "svg": "Description"}
 
 
 @styled
@@ -161,7 +164,10 @@ def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:
     """Save `fig` to `path`, format chosen by the suffix (.png, .pdf or .svg).
 
     Missing parent directories are created; the file is written to a temporary name next to
-    `path` and renamed, so a reader never sees a partial image. Returns the path written.
+    `path` and renamed, so a reader never sees a partial image. The figure's footer (its
+    caption, footer.py) goes into the file's metadata too (PNG: the "Description" text
+    chunk), so that which numerics made a figure can be read without its pixels. Returns
+    the path written.
     """
     path = Path(path)
     fmt = FIGURE_FORMATS.get(path.suffix.lower())
@@ -170,4 +176,6 @@ def save_figure(fig: Figure, path: str | os.PathLike[str]) -> Path:
             f"cannot tell the figure format from {str(path)!r}: "
             f"expected a suffix among {', '.join(FIGURE_FORMATS)}"
         )
-    return atomic_write(path, lambda tmp: fig.savefig(tmp, format=fmt, dpi=150))
+    footer = footer_text(fig)
+    metadata = {FOOTER_FIELD[fmt]: footer} if footer else None
+    return atomic_write(path, lambda tmp: fig.savefig(tmp, format=fmt, dpi=150, metadata=metadata))

@@ -19,6 +19,7 @@ from matplotlib.legend import Legend
 from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter
 
+from frictiondisk.figures.footer import FOOTER_GID, FOOTER_SEP, chars_per_line, wrap_parts
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 from frictiondisk.verdict.horizon import horizon_key
 
@@ -35,7 +36,6 @@ RUG_Y = 0.03  # axes fraction at which points without a value are drawn
 MAX_LISTED = 8  # failed points listed by name; the rest are counted
 LIST_WIDTH = 112  # characters per line of the failure list (fits 7.2 in at NOTE_FONT_PT)
 REGION_FONT_PT = 12.0
-CAPTION_SEP = " | "
 
 # marker style of each outcome (face colour, edge colour, marker)
 OUTCOME_STYLE: dict[str, dict[str, Any]] = {
@@ -187,18 +187,7 @@ def caption_text(ds: xr.Dataset, mode: str | None = None) -> str:
     (method, rtol, atol, horizon, mode; from the numerics_yaml attribute, or `mode`: the
     one the task ran every point in), the physical parameters that are not varied, and the
     package and numerics versions."""
-    return CAPTION_SEP.join(_caption_parts(ds, mode))
-
-
-def _wrap_parts(parts: list[str], width: int) -> list[str]:
-    """Join caption parts into lines of at most `width` characters (a part is never split)."""
-    lines: list[str] = []
-    for part in parts:
-        if lines and len(lines[-1]) + len(CAPTION_SEP) + len(part) <= width:
-            lines[-1] += CAPTION_SEP + part
-        else:
-            lines.append(part)
-    return lines
+    return FOOTER_SEP.join(_caption_parts(ds, mode))
 
 
 def new_figure(
@@ -211,8 +200,8 @@ def new_figure(
     Returns the figure, the plot's subfigure and the note's (or None). Separate subfigures
     keep the note and caption out of the plot's constrained layout.
     """
-    chars = int(width * 72 / (0.56 * CAPTION_FONT_PT))
-    caption = _wrap_parts(_caption_parts(results, mode), chars)
+    chars = chars_per_line(width)
+    caption = wrap_parts(_caption_parts(results, mode), chars)
     caption_h = 0.1 + 0.14 * len(caption)
     note_h = 0.125 * note_lines + 0.2 if note_lines else 0.0
     ratios = [height, *([note_h] if note_lines else []), caption_h]
@@ -226,7 +215,7 @@ def new_figure(
         va="center",
         fontsize=CAPTION_FONT_PT,
         color="0.3",
-        gid="caption",
+        gid=FOOTER_GID,
     )
     return fig, subs[0], (subs[1] if note_lines else None)
 

@@ -80,6 +80,7 @@ def plot(results: dict[str, list[dict]], beta_b: float, out: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from frictiondisk.figures.footer import add_footer, code_footer
     from frictiondisk.figures.plotting import save_figure
 
     fig, axes = plt.subplots(1, len(results), figsize=(6.2 * len(results), 4.6), sharey=True)
@@ -88,7 +89,8 @@ def plot(results: dict[str, list[dict]], beta_b: float, out: Path) -> Path:
         ax.set_title(f"braked disk \u03b2_b = {beta_b} N m s/rad, start: {name}")
     np.atleast_1d(axes)[0].set_ylabel("per master revolution, last revolution [m]")
     np.atleast_1d(axes)[0].legend(fontsize=6.5, loc="lower left")
-    fig.tight_layout()
+    # this code's numerics: the scans resume only runs journaled under them
+    add_footer(fig, code_footer("python -m frictiondisk.studies.corotation"))
     return save_figure(fig, out)
 
 

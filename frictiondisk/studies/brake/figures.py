@@ -1,10 +1,14 @@
 """The brake study's two figures: mu* against the bounds with the micro-slip, and the
-rotation term."""
+rotation term. Their footer names this code's numerics: the study computes every run it
+draws now (its campaigns resume only runs journaled under this numerics version)."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
+from frictiondisk.figures.footer import add_footer, code_footer
 from frictiondisk.studies.brake.common import N_POINTS, REV, bounds
 
 
@@ -66,9 +70,7 @@ def figure_admissibility(rows, micro, path):
     bx.set_title(f"β_b = {micro[0]['beta_b']}, φ̇0 = ω_m: micro-slip per revolution")
     bx.legend(fontsize=8, ncol=2)
     bx.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    _save(fig, path)
 
 
 def figure_rotation(runs, mustar, path):
@@ -109,6 +111,15 @@ def figure_rotation(runs, mustar, path):
         a.set_xlabel("time [master revolutions]")
         a.grid(alpha=0.3)
         a.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
+    _save(fig, path)
+
+
+def _save(fig, path: Path) -> None:
+    """Footer, layout and file (with the footer in its metadata) of a study figure."""
+    import matplotlib.pyplot as plt
+
+    from frictiondisk.figures.plotting import save_figure
+
+    add_footer(fig, code_footer("python -m frictiondisk.studies.brake"))
+    save_figure(fig, path)
     plt.close(fig)

@@ -24,6 +24,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
+from frictiondisk.figures.footer import add_footer, data_footer
 from frictiondisk.figures.style import styled
 from frictiondisk.tasks.accuracy.ladder import INTEGRATOR_KNOBS
 
@@ -102,14 +103,18 @@ def work_precision_figure(ds: xr.Dataset) -> Figure:
         f"scene {ds.attrs.get('scene', '?')}, {ds.attrs.get('point', '')}, tol = {tol:g}"
     )
     fig.suptitle(title, fontsize=10)
+    name = ds.attrs.get("campaign_name", "?")
+    add_footer(fig, data_footer(f"frictiondisk accuracy, campaign {name}", [ds]))
     if failed:
         lines = [
             f"not shown: {ds['label'].values[i]} ({ds['status'].values[i]}: "
             f"{str(ds['reason'].values[i])[:90]})"
             for i in failed
         ]
-        fig.text(0.01, 0.0, "\n".join(lines), fontsize=6, va="bottom", ha="left")
-        fig.get_layout_engine().set(rect=(0, 0.012 * len(lines), 1, 1 - 0.012 * len(lines)))
+        bottom = fig.get_layout_engine().get()["rect"][1]  # above the footer
+        fig.text(0.01, bottom, "\n".join(lines), fontsize=6, va="bottom", ha="left")
+        bottom += 0.012 * len(lines)
+        fig.get_layout_engine().set(rect=(0, bottom, 1, 1 - bottom))
     return fig
 
 

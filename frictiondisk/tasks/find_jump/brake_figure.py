@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from frictiondisk.figures.footer import add_footer, data_footer
 from frictiondisk.figures.shared import MU_LABEL
 from frictiondisk.figures.style import styled
 from frictiondisk.tasks.campaign import campaign_from_text
@@ -106,6 +107,8 @@ def plot_brake(series: dict[str, xr.Dataset]):
     ax_gap.axhline(0.0, color="0.3", lw=0.8)
     ax_gap.set_ylabel("\u03bc* \u2212 shakedown [-]")
     ax_gap.set_xlabel("brake damping \u03b2_b [N m s/rad]")
+    names = ", ".join(str(r.attrs.get("campaign_name", "?")) for r in series.values())
+    add_footer(fig, data_footer(f"Fig 11 with its bounds, campaigns {names}", series.values()))
     return fig
 
 

@@ -1,0 +1,74 @@
+"""The figures the repository ships (figures/*.png): each drawn by a generator of `make
+gallery`, each from this code's numerics (read from the footer kept in the PNG's metadata,
+so no pixels are read and nothing is simulated)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from matplotlib.figure import Figure
+from PIL import Image
+
+from frictiondisk.cli.gallery import GALLERY, outputs
+from frictiondisk.figures.footer import (
+    FOOTER_KEY,
+    add_footer,
+    code_footer,
+    footer_text,
+    numerics_versions,
+)
+from frictiondisk.figures.plotting import save_figure
+from frictiondisk.version import NUMERICS_VERSION
+
+ROOT = Path(__file__).resolve().parents[1]
+SHIPPED = sorted((ROOT / "figures").glob("*.png"))
+
+
+def test_every_shipped_png_is_drawn_by_a_gallery_generator():
+    written = outputs()
+    assert len(written) == len(set(written)), "two generators write the same PNG"
+    present = {path.name for path in SHIPPED}
+    assert set(written) - present == set(), "the gallery writes PNGs figures/ lacks"
+    assert present - set(written) == set(), "PNGs under figures/ that no generator draws"
+
+
+def test_the_gallery_names_its_generators_once():
+    names = [generator.name for generator in GALLERY]
+    assert len(names) == len(set(names))
+
+
+@pytest.mark.parametrize("path", SHIPPED, ids=lambda path: path.name)
+def test_a_shipped_figure_names_this_code_s_numerics_version(path):
+    footer = Image.open(path).text.get(FOOTER_KEY, "")
+    assert footer, f"{path.name} keeps no footer in its metadata: draw it with `make gallery`"
+    versions = numerics_versions(footer)
+    assert versions, f"{path.name}'s footer names no numerics version: {footer!r}"
+    assert set(versions) == {NUMERICS_VERSION}, (
+        f"{path.name} was drawn from numerics {sorted(set(versions))}, the code is at "
+        f"{NUMERICS_VERSION}: draw it again (`make gallery`)"
+    )
+
+
+def test_save_figure_keeps_the_footer_in_the_png(tmp_path):
+    fig = Figure(figsize=(4.0, 3.0), layout="constrained")
+    fig.add_subplot().plot([0, 1], [0, 1])
+    footer = code_footer("a test")
+    add_footer(fig, footer)
+    drawn = footer_text(fig)
+    assert drawn.replace("\n", " | ") == footer  # wrapped to the width at its separators only
+    text = Image.open(save_figure(fig, tmp_path / "f.png")).text[FOOTER_KEY]
+    assert text == drawn
+    assert numerics_versions(text) == [NUMERICS_VERSION]
+
+
+def test_a_figure_without_a_footer_keeps_none(tmp_path):
+    fig = Figure(figsize=(2.0, 2.0))
+    fig.add_subplot()
+    assert footer_text(fig) is None
+    assert FOOTER_KEY not in Image.open(save_figure(fig, tmp_path / "g.png")).text
+
+
+def test_numerics_versions_reads_the_kernel_version_text():
+    assert numerics_versions("frictiondisk 0.1.0 | numerics 12, numba 0.1") == [12]
+    assert numerics_versions("numerics rodas4, rtol 1e-06 | numerics 7, numba") == [7]
