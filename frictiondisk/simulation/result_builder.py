@@ -138,6 +138,8 @@ def _evidence(vs: np.void) -> Evidence:
         limit=float(vs["ev_limit"]),
         lag=int(vs["ev_lag"]),
         points=int(vs["ev_points"]),
+        sliding_revs=int(vs["sliding_revs"]),
+        envelope_revs=int(vs["envelope_revs"]),
     )
 
 

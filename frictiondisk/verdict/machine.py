@@ -75,6 +75,8 @@ def begin(vp, rules, p, pts, motion, vs):
     vs.ev_ratio = math.nan
     vs.ev_ratio_bound = math.nan
     vs.ev_limit = math.nan
+    vs.sliding_revs = 0
+    vs.envelope_revs = 0
     vs.t_stop = rules.horizon
     vs.extension = NOT_EXTENDED
     vs.settle_revs = 0

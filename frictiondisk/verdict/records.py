@@ -42,7 +42,7 @@ EV_CONTRACT = 2  # the section contracts geometrically to a cycle with slip (not
 EV_DEPART = 3  # slip grows and sticking time shrinks step after step (not stick)
 EV_SHAKEDOWN = 4  # slip per step falls to an extrapolated limit <= tolerance (stick)
 EV_CANNOT = 5  # no co-rotating state can be held: mu F_n below the spring's or brake's pull
-EV_SLIDING = 6  # slides as a whole, its slip per revolution not falling revolution by revolution
+EV_SLIDING = 6  # slides as a whole, its slip per revolution and its lowest value not falling
 SOURCE_CYCLES = 1  # the section of the onsets of whole-body sticking phases
 SOURCE_REVOLUTIONS = 2  # the section of the state at every whole master revolution
 
@@ -87,6 +87,8 @@ VERDICT = np.dtype(
         ("ev_ratio", np.float64),  # its contraction ratio per step
         ("ev_ratio_bound", np.float64),  # the extrapolated bound on that ratio (EV_CONTRACT)
         ("ev_limit", np.float64),  # slip limit (EV_SHAKEDOWN) or travel still to come [m]
+        ("sliding_revs", np.int64),  # revolutions slid as a whole at the last sliding check
+        ("envelope_revs", np.int64),  # H of its lowest-slip comparison (verdict/sliding.py)
         # the horizon
         ("t_stop", np.float64),  # where the run stops unless a rule decides earlier [s]
         ("extension", np.int64),  # NOT_EXTENDED, FINISHING_PHASE or PHASE_BROKE
