@@ -64,6 +64,7 @@ def build_result(
         sections=section_log(run.phases, motion),
         slip_total=run.slip_total,
         reserve=friction_reserve(config, R1),
+        decided_by=named.rule,
         **_revolution_measures(facts.revs),
         **(energy or {}),
     )
