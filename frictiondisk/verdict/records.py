@@ -51,7 +51,8 @@ RULES = np.dtype(
         ("corotation", np.bool_),  # stick_rule corotation (else contacts)
         ("converge", np.bool_),  # mode converge: run until the limit cycle converged
         ("stop_on_stick", np.bool_),  # stop at a stick verdict
-        ("observe", np.bool_),  # evidence observe: verdicts only on what the run shows
+        ("observe", np.bool_),  # evidence observe (now): verdicts only on what the run shows
+        ("watch", np.float64),  # observe until this time, then extrapolate [s] (0: no watch)
         ("bound", np.bool_),  # the shakedown bound decides this braked disk too
         ("hold", np.float64),  # one master revolution T [s]
         ("horizon", np.float64),  # t_decide or t_max [s]
