@@ -19,7 +19,8 @@
 #                campaign files as is)
 #   make study-wellposed  the well-posedness study (docs/wellposed.md) into out/wellposed/:
 #                500 scenes, about 4 hours on 2 idle cores, resumable (STUDY_ARGS= adds
-#                options, e.g. STUDY_ARGS="--seeds 1 --scenes 10")
+#                options, e.g. STUDY_ARGS="--seeds 1 --scenes 10"); then generator 2 (issue 50)
+#                into out/wellposed2/: 200 scenes (seeds 1-4)
 #   make study-error-model  regenerate frictiondisk/model/numerics_error.csv (the error model
 #                of numerics auto, docs/accuracy.md) from out/error_model/; hours
 #   make study-brake, study-layouts, study-corotation  the braked disk's studies
@@ -139,7 +140,11 @@ basin-figures: $(STAMP)
 # The studies (frictiondisk/studies/): each runs its campaigns on the engine into out/<study>/
 # and resumes from their journals when run again.
 study-wellposed: $(STAMP)
-	$(BIN)/python -m frictiondisk.studies.wellposed -o out/wellposed $(STUDY_ARGS)
+	$(BIN)/python -m frictiondisk.studies.wellposed -o out/wellposed $(STUDY_ARGS); \
+	first=$$?; \
+	$(BIN)/python -m frictiondisk.studies.wellposed -o out/wellposed2 --generator 2 \
+		--seeds 1-4 $(STUDY_ARGS); \
+	exit $$(( first | $$? ))
 
 study-error-model: $(STAMP)
 	$(BIN)/python -m frictiondisk.studies.error_model -o out/error_model --write

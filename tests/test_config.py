@@ -61,6 +61,7 @@ DEFAULTS = {
         "cycle_count": 3,
         "stick_rule": "corotation",
         "evidence": "extrapolate",
+        "observe_until": 0.0,
         "horizon_budget": 8.0,
         "max_steps": 2_000_000,
         "max_events": 200_000,

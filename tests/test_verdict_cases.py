@@ -147,6 +147,35 @@ CASES = (
         "ln(slip) over slide_revs revolutions",
     ),
     Case(
+        "issue 50 disk d1 (Stribeck, from rest), mu = 0.1516406",
+        None,
+        "sliding.lowest_slip_holds",
+        "envelope_periods",
+        "stick",
+        "",
+        "the lower end of a certified bracket: its slip per revolution oscillates 2-4 % with "
+        "a period of 5 revolutions (the beat of the slave's spring-mass frequency with the "
+        "revolution) while its troughs fall 0.2204, 0.2167, 0.2128 m; a fall of 0.6 % a "
+        "revolution is never established over 8 revolutions, and it was read as sliding at "
+        "91.5 s. It sticks at 170.8 s. The lowest slip of the newest 2 periods against the 2 "
+        "before sees the fall, and the run is extended until it sticks",
+        covered_by="tests/test_sliding_envelope.py::test_an_oscillating_slip_whose_troughs_"
+        "fall_is_watched_until_it_sticks",
+    ),
+    Case(
+        "issue 50 disk d1 (Stribeck, from rest), mu = 0.15162",
+        None,
+        "sliding.envelope_window",
+        "envelope_min_revs",
+        "slide",
+        "",
+        "the same oscillation about a level (it slides a steady 0.2377 m a revolution to "
+        "8000 s) is still read as sliding, at 160 s instead of 85 s: 2 windows of 10 "
+        "revolutions (2 periods) must show the lowest slip not falling",
+        covered_by="tests/test_sliding_envelope.py::test_a_slip_that_oscillates_about_a_level_"
+        "is_still_a_sliding_state",
+    ),
+    Case(
         "study seed 6 scene 32, mu = 0.0765753",
         at(SEED_6_SCENE_32, 0.0765753),
         "section_evidence._approaching",

@@ -260,7 +260,7 @@ def test_the_report_counts_disagreements_silent_errors_and_failures(tmp_path):
     lines = report.report(rows_, 10.0)
     assert "1 disagree; settled run by run: reference right 1" in lines[1]
     assert lines[2].endswith(": 1")  # silent: settled against a certified default
-    assert "failed points (honest, with a reason): 1 of 3 (33.3 %)" in lines[4]
+    assert "failed points (honest, with a reason): 1 of 3 (33.3 %)" in lines[5]
     assert any("certification costs +56 %" in line for line in lines)  # 7.0 s over 4.5 s
     assert any(line.startswith("    1/2: 0.25000 [certified] vs 0.15000") for line in lines)
     assert any("failed 1/4: undetermined at 0.3" in line for line in lines)
@@ -272,6 +272,46 @@ def test_the_report_counts_disagreements_silent_errors_and_failures(tmp_path):
     former.write_text(json.dumps(entry) + "\n")
     assert rows.read_rows(former)[(1, 2)]["reference"] == rows_[1]["reference"]
     assert rows.known_watches([former])[(1, 2)][0.20]["sticks"] is True
+
+
+def test_generator_2_draws_its_own_wider_scenes():
+    """Issue 50: an independent stream, a pin every fourth scene, disks from rest with small
+    J_s, annulus layouts, braked disks, Stribeck v_s down to 0.002 m/s; 200 scenes valid."""
+    drawn = [scenes.draw(2, 1, k) for k in range(200)]
+    assert drawn[:8] == [scenes.draw_scene2(1, k) for k in range(8)]
+    assert all(s != scenes.draw_scene(1, k) for k, s in enumerate(drawn[:8]))
+    assert [s["scene"] for s in drawn[:4]] == ["pin", "disk", "disk", "disk"]
+    disks = [s for s in drawn if s["scene"] == "disk"]
+    assert any(s["contact"].get("layout") == "annulus" for s in disks)
+    assert any(s["params"]["phidot0"] == 0.0 and s["params"]["J_s"] < 0.02 for s in disks)
+    assert any(s["params"]["beta_b"] > 0.0 for s in disks)
+    stribeck = [s["contact"]["stribeck"] for s in drawn if "stribeck" in s["contact"]]
+    assert min(st["v_s"] for st in stribeck) < 0.003 and max(st["v_s"] for st in stribeck) <= 0.02
+    for scene in drawn:
+        campaigns.campaign(settings.locate_campaign("g2", scene, "default"))  # validates
+    assert settings.scene_name(1, 4, generator=2) == "g2-s1-4" != settings.scene_name(1, 4)
+    with pytest.raises(ValueError, match="generator must be one of"):
+        scenes.draw(3, 1, 0)
+
+
+def test_a_certified_end_that_its_watch_contradicts_is_a_silent_error_within_tol():
+    """Issue 50: mu* within tol of the reference, but the watch at the certified mu_lo
+    sticks (d1: 0.1516406 sticks at 171 s). A watch that stays undetermined contradicts
+    nothing; an uncertified bracket makes no claim to count."""
+    default = found(0.15168, [(0.1516406, False), (0.1517188, True)])
+    default = dataclasses.replace(default, mu_lo=0.1516406, mu_hi=0.1517188)
+    reference = found(0.15163, [(0.15162, False), (0.15164, True)])
+    assert not judge.disagrees(default, reference)
+    row = {"seed": 0, "index": 0, "default": default, "reference": reference, "settled": []}
+    assert study.watched_mu(row) == ([], [], [0.1516406, 0.1517188])
+    row["ends"] = [{"mu": 0.1516406, "sticks": True}, {"mu": 0.1517188, "sticks": True}]
+    assert judge.end_contradicted(row) and judge.silent_errors([row]) == 1
+    row["ends"][0]["sticks"] = None
+    assert not judge.end_contradicted(row) and judge.silent_errors([row]) == 0
+    row["ends"][1]["sticks"] = False  # the stick end that does not stick
+    assert judge.end_contradicted(row)
+    uncertain = {**row, "default": dataclasses.replace(default, certification="uncertain")}
+    assert study.watched_mu(uncertain)[2] == [] and judge.silent_errors([uncertain]) == 0
 
 
 @pytest.mark.slow

@@ -259,6 +259,15 @@ class Numerics(BaseModel):
         "extrapolates to nothing (shakedown); observe = only what the run shows: it sticks, "
         "or its section repeats (for settling disputes with long runs)",
     )
+    observe_until: float = _field(
+        0.0,
+        "s",
+        "evidence extrapolate: decide only on what the run shows (as evidence observe) until "
+        "this time, then by the rules; no not-stick verdict before it (a certification run's "
+        "watch of an extrapolated verdict, docs/model.md section 7). 0: no watch",
+        ge=0,
+        le=MAX_HORIZON,
+    )
     horizon_budget: float = _field(
         8.0,
         "1",
@@ -328,6 +337,17 @@ class SceneConfig(BaseModel):
                 "the exact Coulomb model exists for scene pin only",
                 {"path": "numerics.method", "value": "coulomb", "scene": self.scene},
             )
+        if self.numerics.method == "coulomb" and self.numerics.observe_until > 0.0:
+            raise PydanticCustomError(
+                "scene_rule",
+                "the exact Coulomb pin has no watch: numerics.observe_until needs method "
+                "rodas4, rodas4-fixed or scipy-radau (or numerics.evidence: observe)",
+                {
+                    "path": "numerics.observe_until",
+                    "value": self.numerics.observe_until,
+                    "scene": self.scene,
+                },
+            )
         return self
 
     @model_validator(mode="wrap")
@@ -393,6 +413,8 @@ class SceneConfig(BaseModel):
             data["contact"]["weights"] = [1.0] * self.n_contacts
         # the preset is resolved into concrete values; its name is not content
         del data["numerics"]["preset"]
+        if not data["numerics"]["observe_until"]:  # absent when off: run keys stay as they were
+            del data["numerics"]["observe_until"]
         return _sorted(data)
 
     def content_hash(self) -> str:

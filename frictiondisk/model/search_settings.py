@@ -39,6 +39,16 @@ class Certify(BaseModel):
         "section 7)",
     )
 
+    watch: float = field(
+        2.0,
+        "1",
+        "a stricter run at a bracket end whose run before it was decided by an extrapolation "
+        "(a trend or section read ahead) watches (numerics.observe_until) until this factor "
+        "times that run's decision time, within its horizon budget, before it may "
+        "extrapolate; 0: off (docs/model.md section 7)",
+        ge=0,
+    )
+
     @model_validator(mode="before")
     @classmethod
     def _switch(cls, value: Any) -> Any:
@@ -57,6 +67,8 @@ class Certify(BaseModel):
         }
         if self.observe:  # absent when off: the journals of earlier campaigns stay valid
             found["observe"] = True
+        if self.watch:
+            found["watch"] = self.watch
         return found
 
 

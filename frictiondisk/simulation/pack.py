@@ -95,7 +95,8 @@ def fill_rules(rules: np.void, config) -> None:
     rules["corotation"] = num.stick_rule == "corotation"
     rules["converge"] = num.mode == "converge"
     rules["stop_on_stick"] = num.stop_on_stick
-    rules["observe"] = num.evidence == "observe"
+    rules["observe"] = num.evidence == "observe" or num.observe_until > 0.0
+    rules["watch"] = num.observe_until if num.evidence == "extrapolate" else 0.0
     rules["bound"] = bound_applies(config)
     rules["hold"] = revolution(config.params.omega_m)
     rules["horizon"] = horizon

@@ -105,6 +105,9 @@ class SimulationResult:
     slip_total: float = math.nan  # net plastic slip over the whole run [m]
     # mu - demand(R1) / F_n: > 0 where the first sticking circle holds (verdict/reserve.py)
     reserve: float = math.nan  # [1]
+    # the rule that decided the outcome (verdict/deciding_rule.py DECIDING_RULES; "" where
+    # the integrator has its own rules: the exact Coulomb pin)
+    decided_by: str = ""
 
     def summary(self) -> dict[str, Any]:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""

@@ -64,6 +64,7 @@ def build_result(
         sections=section_log(run.phases, motion),
         slip_total=run.slip_total,
         reserve=friction_reserve(config, R1),
+        decided_by=named.rule,
         **_revolution_measures(facts.revs),
         **(energy or {}),
     )
@@ -138,6 +139,8 @@ def _evidence(vs: np.void) -> Evidence:
         limit=float(vs["ev_limit"]),
         lag=int(vs["ev_lag"]),
         points=int(vs["ev_points"]),
+        sliding_revs=int(vs["sliding_revs"]),
+        envelope_revs=int(vs["envelope_revs"]),
     )
 
 

@@ -80,6 +80,7 @@ def run_columns(campaign, points, run_points, results, keys) -> dict[str, Any]:
     columns: dict[str, Any] = {
         "outcome": ("run", np.asarray([r["outcome"] for r in results], str), {}),
         "reason": ("run", np.asarray([r.get("reason", "") for r in results], str), {}),
+        "decided_by": ("run", np.asarray([r.get("decided_by", "") for r in results], str), {}),
         "key": (
             "run",
             np.asarray(keys, str),

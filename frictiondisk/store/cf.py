@@ -50,6 +50,11 @@ FLAGS: dict[str, Flag] = {
 TEXT: dict[str, tuple[str, str]] = {
     "outcome": ("outcome of the run", f"one of: {OUTCOMES} (docs/model.md section 6)"),
     "reason": ("why this outcome", "free text; for undetermined: what went wrong"),
+    "decided_by": (
+        "the rule that decided the outcome",
+        "one of frictiondisk/verdict/deciding_rule.py DECIDING_RULES; empty: the exact "
+        "Coulomb pin, or a run journaled before NUMERICS_VERSION 8",
+    ),
     "status": (
         "status of the point",
         "converged (mu* found), no_jump (no value of the prescan grid sticks, each decided) "

@@ -51,6 +51,8 @@ class Evidence:
     limit: float  # slip limit [m] (EV_SHAKEDOWN) or travel still to come [m] (EV_CONTRACT)
     lag: int  # sticking phases (revolutions) per period of a repeating cycle
     points: int  # section points read
+    sliding_revs: int = 0  # revolutions slid as a whole at the last sliding check
+    envelope_revs: int = 0  # H of its lowest-slip comparison (verdict/sliding.py)
 
     @property
     def step(self) -> str:
@@ -87,8 +89,10 @@ class Evidence:
             )
         if kind == EV_SLIDING:
             return (
-                "slides as a whole, its slip per revolution not falling revolution after "
-                "revolution (no approach to sticking)"
+                f"slides as a whole for {self.sliding_revs} revolutions, its slip per "
+                "revolution not falling revolution after revolution and its lowest over the "
+                f"newest {self.envelope_revs} revolutions not below the lowest of the "
+                f"{self.envelope_revs} before (no approach to sticking)"
             )
         if kind == EV_CANNOT:
             return (
@@ -102,10 +106,22 @@ class Evidence:
                 f"of {self.limit:.3g} m"
             )
         if math.isnan(self.ratio):
-            return f"no evidence from its section yet ({self.points} section points)"
+            return f"no evidence from its section yet ({self.points} section points){self._sliding}"
         return (
             f"no evidence from its section: contraction {self.ratio:.3g} per step "
-            f"(bound {self.ratio_bound:.3g}), newest step {self.distance:.3g} m"
+            f"(bound {self.ratio_bound:.3g}), newest step {self.distance:.3g} m{self._sliding}"
+        )
+
+    @property
+    def _sliding(self) -> str:
+        """Why a slave sliding as a whole is no sliding state yet ("" if it is not one)."""
+        if self.sliding_revs == 0:
+            return ""
+        return (
+            f"; slides as a whole for {self.sliding_revs} revolutions, but its slip per "
+            "revolution falls, or its lowest over the newest "
+            f"{self.envelope_revs} revolutions is below the lowest of the "
+            f"{self.envelope_revs} before (or fewer than {2 * self.envelope_revs} to compare)"
         )
 
 

@@ -90,7 +90,7 @@ def horizon_evidence(vp, rules, motion, vs, phases, revs, omega, seq):
             best = ev
             vs.ev_source = source
             break
-    if best == EV_NONE and not rules.observe and steady_sliding(vp, rules, motion, revs):
+    if best == EV_NONE and not rules.observe and steady_sliding(vp, rules, motion, vs, revs):
         best = EV_SLIDING
         vs.ev_source = SOURCE_REVOLUTIONS
     vs.evidence = best

@@ -13,6 +13,7 @@ import math
 from frictiondisk.kernel import status as st
 
 from . import records as rc
+from .deciding_rule import deciding_rule
 from .facts import Revolutions, RunFacts
 from .params import VerdictParams
 from .shakedown_verdict import decide as bound_decides
@@ -36,20 +37,25 @@ class Label:
     reason: str
     size: float  # sticking-circle radius (stick) or a converged cycle's segment radius [m]
     a: float  # largest excess of a converged cycle's sliding over its segment [m]
+    rule: str = ""  # the rule that decided it (verdict/deciding_rule.py DECIDING_RULES)
 
 
 def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
     """The outcome, reason and measures of a finished run (module docstring)."""
     outcome, reason = _classify(facts, vp)
+    rule = deciding_rule(facts)
     if facts.status in BOUND_RECONSIDERS:
         stopped = facts.status == rc.BOUND_DECIDED
+        ruled = (outcome, reason)
         outcome, reason = bound_decides(
             config, outcome, reason, facts.revolution_log, facts.floor, vp, stopped
         )
+        rule = rule if (outcome, reason) == ruled else "bound"
     if outcome == "stick" and facts.steps == 0:
         # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
         # itself (a revolution shorter than round-off); never report it (issue 14)
         outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
+        rule = "error"
     size = math.nan
     a = math.nan
     if outcome == "stick":
@@ -60,7 +66,7 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
         # final cycle
         size = facts.cycle_size
         a = facts.cycle_excess
-    return Label(outcome, reason, size, a)
+    return Label(outcome, reason, size, a, rule)
 
 
 def _rates(r: Revolutions) -> str:

@@ -75,10 +75,22 @@ def begin(vp, rules, p, pts, motion, vs):
     vs.ev_ratio = math.nan
     vs.ev_ratio_bound = math.nan
     vs.ev_limit = math.nan
-    vs.t_stop = rules.horizon
+    vs.sliding_revs = 0
+    vs.envelope_revs = 0
+    vs.t_stop = max(rules.horizon, rules.watch)  # no not-stick verdict within the watch
     vs.extension = NOT_EXTENDED
     vs.settle_revs = 0
     vs.budget_spent = False
+
+
+@kernel_jit
+def end_watch(rules, t):
+    """At t >= rules.watch (numerics.observe_until) the watch is over: the rules may
+    extrapolate again (rules.observe is the evidence in force now; the only field of RULES
+    the machine changes)."""
+    if rules.watch > 0.0 and t >= rules.watch:
+        rules.observe = False
+        rules.watch = 0.0
 
 
 @kernel_jit
@@ -120,6 +132,7 @@ def revolution_closed(vp, rules, p, pts, y, motion, vs, revs, phases, seq, value
     section's shakedown and the bound: vs.news and vs.bound_says hold what they say at
     this instant, vs.state the verdict so far. seq, values: scratch."""
     row = revs[(motion.n_rev - 1) % revs.shape[0]]
+    end_watch(rules, row.t)
     row.still = still(rules, motion, row, steps)
     says = 0
     if rules.bound:
@@ -152,6 +165,7 @@ def check(vp, rules, p, pts, t, motion, vs, revs, phases, seq):
     """The stop rules at time t: STOP (vs.state: how the run ended), RECHECK (the horizon
     moved) or STEP_ON. A revolution verdict counts at the instant its revolution closed."""
     t_eps = 1e-12 * max(1.0, abs(t))
+    end_watch(rules, t + t_eps)
     news = vs.news
     says = vs.bound_says
     vs.news = SETTLING

@@ -47,6 +47,19 @@ class VerdictParams:
         "revolutions of whole-body sliding behind the sliding evidence: a slip that fell at "
         "every one of them is an approach to sticking",
     )
+    envelope_periods: float = _param(
+        2.0,
+        "oscillation periods",
+        "each window of the sliding evidence's lowest-slip comparison spans this many periods "
+        "of the slip's oscillation (read from its troughs), so that each holds a trough: an "
+        "oscillating slip whose troughs fall cannot pass (issue 50)",
+    )
+    envelope_min_revs: int = _param(
+        8,
+        "revolutions",
+        "least revolutions in each window of that comparison (the sliding evidence's own "
+        "slide_revs): a slip that does not oscillate still shows its lowest value over 8",
+    )
     verdict_z: float = _param(
         2.0, "standard errors", "by how much a decay must be established (~97.5 % one-sided)"
     )

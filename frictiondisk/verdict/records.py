@@ -42,7 +42,7 @@ EV_CONTRACT = 2  # the section contracts geometrically to a cycle with slip (not
 EV_DEPART = 3  # slip grows and sticking time shrinks step after step (not stick)
 EV_SHAKEDOWN = 4  # slip per step falls to an extrapolated limit <= tolerance (stick)
 EV_CANNOT = 5  # no co-rotating state can be held: mu F_n below the spring's or brake's pull
-EV_SLIDING = 6  # slides as a whole, its slip per revolution not falling revolution by revolution
+EV_SLIDING = 6  # slides as a whole, its slip per revolution and its lowest value not falling
 SOURCE_CYCLES = 1  # the section of the onsets of whole-body sticking phases
 SOURCE_REVOLUTIONS = 2  # the section of the state at every whole master revolution
 
@@ -51,7 +51,8 @@ RULES = np.dtype(
         ("corotation", np.bool_),  # stick_rule corotation (else contacts)
         ("converge", np.bool_),  # mode converge: run until the limit cycle converged
         ("stop_on_stick", np.bool_),  # stop at a stick verdict
-        ("observe", np.bool_),  # evidence observe: verdicts only on what the run shows
+        ("observe", np.bool_),  # evidence observe (now): verdicts only on what the run shows
+        ("watch", np.float64),  # observe until this time, then extrapolate [s] (0: no watch)
         ("bound", np.bool_),  # the shakedown bound decides this braked disk too
         ("hold", np.float64),  # one master revolution T [s]
         ("horizon", np.float64),  # t_decide or t_max [s]
@@ -87,6 +88,8 @@ VERDICT = np.dtype(
         ("ev_ratio", np.float64),  # its contraction ratio per step
         ("ev_ratio_bound", np.float64),  # the extrapolated bound on that ratio (EV_CONTRACT)
         ("ev_limit", np.float64),  # slip limit (EV_SHAKEDOWN) or travel still to come [m]
+        ("sliding_revs", np.int64),  # revolutions slid as a whole at the last sliding check
+        ("envelope_revs", np.int64),  # H of its lowest-slip comparison (verdict/sliding.py)
         # the horizon
         ("t_stop", np.float64),  # where the run stops unless a rule decides earlier [s]
         ("extension", np.int64),  # NOT_EXTENDED, FINISHING_PHASE or PHASE_BROKE

@@ -1,5 +1,14 @@
 """Is a slave that slides as a whole in a sliding state, or on its way to sticking? (numba)
-The EV_SLIDING evidence, read from the revolution ring; thresholds from VerdictParams."""
+The EV_SLIDING evidence, read from the revolution ring; thresholds from VerdictParams.
+
+A slip per revolution can oscillate by a few per cent from one revolution to the next (the
+revolution samples the slave's own spring-mass oscillation: their beat) while its lower
+envelope falls towards sticking. A trend fitted over a few revolutions then never
+establishes the fall, and "not established" is no evidence of "not falling" (issue 50: a
+Stribeck disk from rest read as sliding at 91 s sticks at 171 s). So the sliding state
+must also show its lowest slip per revolution not falling, compared over windows of at
+least two of the oscillation's periods (`lowest_slip_holds`).
+"""
 
 import math
 
@@ -30,18 +39,57 @@ def _spinning_up(vp, rules, motion, revs):
 
 
 @kernel_jit
-def steady_sliding(vp, rules, motion, revs):
-    """Whether the run has slid as a whole (no whole-body stick) for vp.slide_revs
-    revolutions at a slip per revolution that did not fall at every one of them (a slip
-    falling revolution after revolution is an approach to sticking, however slowly it
-    falls), whose decay is not established at vp.verdict_z standard errors, neither by the
-    slope of ln(slip) over the vp.slide_revs revolutions nor over the last vp.verdict_revs
-    (a slip that alternates on its way down is still a fall): a sliding orbit whose slip
-    wanders about a level (its period not the master's) or grows."""
-    if sliding_revolutions(motion, revs) < vp.slide_revs:
+def trough_spacing(motion, revs, count):
+    """The oscillation period of the slip per revolution [revolutions], read from its
+    troughs among the newest `count` revolutions: half the distance from the third-newest
+    trough to the newest; 1.0 with fewer than three troughs. A trough is a revolution whose
+    slip is below the one before and not above the one after (so the newest revolution,
+    not yet confirmed, is none)."""
+    found = 0
+    newest = 0
+    for back in range(1, count - 1):
+        slip = revs[_row(motion, back)].slip
+        if slip < revs[_row(motion, back + 1)].slip and slip <= revs[_row(motion, back - 1)].slip:
+            if found == 0:
+                newest = back
+            found += 1
+            if found == 3:
+                return (back - newest) / 2.0
+    return 1.0
+
+
+@kernel_jit
+def envelope_window(vp, motion, revs, count):
+    """Revolutions H in each half of the lowest-slip comparison: vp.envelope_periods
+    oscillation periods (trough_spacing over the `count` sliding revolutions), at least
+    vp.envelope_min_revs."""
+    period = trough_spacing(motion, revs, count)
+    return max(vp.envelope_min_revs, int(math.ceil(vp.envelope_periods * period)))
+
+
+@kernel_jit
+def lowest_slip_holds(vp, rules, motion, revs, count, window):
+    """Whether the lowest slip per revolution of the newest `window` revolutions is not
+    below the lowest of the `window` before, less the integrator's tolerance atol + rtol s
+    on that slip s; False with fewer than 2 `window` of the `count` sliding revolutions.
+    Over a whole oscillation period each window holds a trough, so an oscillation cannot
+    lift the newer window's lowest slip above a falling envelope."""
+    if count < 2 * window:
         return False
-    if _spinning_up(vp, rules, motion, revs):
-        return False
+    newer = math.inf
+    older = math.inf
+    for back in range(window):
+        newer = min(newer, revs[_row(motion, back)].slip)
+        older = min(older, revs[_row(motion, back + window)].slip)
+    return newer >= older - (rules.atol + rules.rtol * older)
+
+
+@kernel_jit
+def _trend_not_falling(vp, motion, revs):
+    """Whether the slip per revolution did not fall at every one of the last vp.slide_revs
+    revolutions and its decay is not established at vp.verdict_z standard errors, neither by
+    the slope of ln(slip) over them nor over the last vp.verdict_revs (a slip that
+    alternates on its way down is still a fall)."""
     falling = True
     for back in range(vp.slide_revs - 1):
         falling = falling and revs[_row(motion, back)].slip < revs[_row(motion, back + 1)].slip
@@ -52,3 +100,27 @@ def steady_sliding(vp, rules, motion, revs):
         return False  # falls over the window, alternating on the way
     lam, se = slip_trend(vp, motion, revs)
     return math.isnan(lam) or lam + vp.verdict_z * se >= 0.0
+
+
+@kernel_jit
+def steady_sliding(vp, rules, motion, vs, revs):
+    """Whether the run has slid as a whole (no whole-body stick) for vp.slide_revs
+    revolutions, not spinning up towards co-rotation, at a slip per revolution whose fall
+    is not established over the last revolutions (`_trend_not_falling`), and whose lowest
+    value over the newest H revolutions is not below the lowest of the H before
+    (`lowest_slip_holds`, H = envelope_window): a sliding orbit whose slip wanders about a
+    level or grows. Writes the sliding revolutions and H it read into vs.sliding_revs and
+    vs.envelope_revs (0, 0 where it did not slide as a whole for vp.slide_revs or spun up:
+    for the label's reason)."""
+    vs.sliding_revs = 0
+    vs.envelope_revs = 0
+    count = sliding_revolutions(motion, revs)
+    if count < vp.slide_revs:
+        return False
+    if _spinning_up(vp, rules, motion, revs):
+        return False
+    vs.sliding_revs = count
+    vs.envelope_revs = envelope_window(vp, motion, revs, count)
+    if not _trend_not_falling(vp, motion, revs):
+        return False
+    return lowest_slip_holds(vp, rules, motion, revs, count, vs.envelope_revs)

@@ -3,11 +3,13 @@
     python -m frictiondisk.studies.wellposed -o out/wellposed            # seeds 1-10, 50 scenes each
     python -m frictiondisk.studies.wellposed -o out/wp --seeds 1 --scenes 4
     python -m frictiondisk.studies.wellposed -o out/wp --scene 1/43 --scene 2/0
+    python -m frictiondisk.studies.wellposed -o out/wellposed2 --generator 2 --seeds 1-4
     # a change to the default's rules against the references an earlier run located:
     python -m frictiondisk.studies.wellposed -o out/d --reference-from out/wellposed
 
 Prints the report (also written to OUT/report.txt); exit 1 if any default verdict is
-settled against a certified default (a silent error).
+settled against a certified default, or a certified bracket end contradicted by its
+watch (a silent error).
 """
 
 from __future__ import annotations
@@ -19,7 +21,13 @@ from pathlib import Path
 
 from frictiondisk.studies.wellposed.judge import silent_errors
 from frictiondisk.studies.wellposed.report import report
-from frictiondisk.studies.wellposed.scenes import braked, draw_scene, parse_scene, parse_seeds
+from frictiondisk.studies.wellposed.scenes import (
+    GENERATORS,
+    braked,
+    draw,
+    parse_scene,
+    parse_seeds,
+)
 from frictiondisk.studies.wellposed.settings import DEFAULT_STEP
 from frictiondisk.studies.wellposed.study import Options, run_study
 
@@ -39,6 +47,14 @@ def parser() -> argparse.ArgumentParser:
         default=[],
         metavar="SEED/INDEX",
         help="these scenes only, e.g. --scene 1/43 --scene 2/0 (repeatable)",
+    )
+    p.add_argument(
+        "--generator",
+        type=int,
+        choices=sorted(GENERATORS),
+        default=1,
+        help="scene generator: 1 the study's own (the rules were tuned on it), 2 an "
+        "independent one with wider ranges (issue 50; scenes.draw_scene2)",
     )
     p.add_argument("--workers", type=int, default=2, help="engine workers")
     p.add_argument(
@@ -87,7 +103,7 @@ def jobs_of(args: argparse.Namespace) -> list[tuple[int, int]]:
     else:
         jobs = [(seed, k) for seed in parse_seeds(args.seeds) for k in range(args.scenes)]
     if args.braked_only or args.unbraked_only:
-        jobs = [job for job in jobs if braked(draw_scene(*job)) == args.braked_only]
+        jobs = [job for job in jobs if braked(draw(args.generator, *job)) == args.braked_only]
     return jobs
 
 
@@ -100,6 +116,7 @@ def main(argv: list[str] | None = None) -> int:
         step=args.default_step,
         reference_from=args.reference_from,
         settled_from=tuple(args.settled_from),
+        generator=args.generator,
     )
     t0 = time.perf_counter()
     rows = run_study(jobs_of(args), args.out, options)

@@ -133,14 +133,39 @@ def verdict(row: dict) -> str:
     return "both"
 
 
-def silent(row: dict) -> bool:
-    """A disagreement settled against a default that calls its point certified."""
-    return (
-        "reference" in row
-        and disagrees(row["default"], row["reference"])
-        and verdict(row) in ("reference", "neither")
-        and row["default"].certified
+def certified_ends(found: Found) -> list[float]:
+    """The ends of a certified headline bracket (none without one)."""
+    if not found.certified or not math.isfinite(found.mu_star):
+        return []
+    return [found.mu_lo, found.mu_hi]
+
+
+def end_contradicted(row: dict) -> bool:
+    """A certified headline bracket whose end its watch contradicts: the watch at mu_lo
+    sticks, or the one at mu_hi shows it does not (a watch that stays undetermined
+    contradicts nothing). An error even where mu* lies within tol of the reference's
+    (issue 50: a certified mu_lo that sticks at 171 s, mu* 0.4 tol off)."""
+    ends = certified_ends(row["default"])
+    if not ends:
+        return False
+    claims = {ends[0]: False, ends[1]: True}
+    return any(
+        run["sticks"] is not None and run["sticks"] != claims[run["mu"]]
+        for run in row.get("ends", [])
+        if run["mu"] in claims
     )
+
+
+def silent(row: dict) -> bool:
+    """A default that calls its point certified, wrong: a disagreement settled against it,
+    or an end of its bracket contradicted by its watch (`end_contradicted`)."""
+    if "reference" not in row or not row["default"].certified:
+        return False
+    settled_against = disagrees(row["default"], row["reference"]) and verdict(row) in (
+        "reference",
+        "neither",
+    )
+    return settled_against or end_contradicted(row)
 
 
 def silent_errors(rows: list[dict]) -> int:

@@ -25,7 +25,6 @@ from frictiondisk.studies import campaigns
 from frictiondisk.studies.wellposed.judge import combine_watches, disagrees, verdict
 from frictiondisk.studies.wellposed.report import report
 from frictiondisk.studies.wellposed.rows import read_rows
-from frictiondisk.studies.wellposed.scenes import draw_scene
 from frictiondisk.studies.wellposed.settings import (
     locate_campaign,
     watch_campaign,
@@ -57,12 +56,17 @@ def with_longer(row: dict, longer: dict[float, dict]) -> dict:
     def swap(runs):
         return [longer.get(run["mu"], run) if run["sticks"] is None else run for run in runs]
 
-    return {**row, "settled": swap(row["settled"]), "persisted": swap(row.get("persisted", []))}
+    return {
+        **row,
+        "settled": swap(row["settled"]),
+        "persisted": swap(row.get("persisted", [])),
+        "ends": swap(row.get("ends", [])),
+    }
 
 
-def default_scene(seed: int, index: int):
-    """The default's point scene of a study scene (validated, nothing run)."""
-    data = locate_campaign("longer", draw_scene(seed, index), "default")
+def default_scene(scene: dict):
+    """The default's point scene of a study scene dict (validated, nothing run)."""
+    data = locate_campaign("longer", scene, "default")
     return campaigns.campaign(data).points()[0].config
 
 
@@ -79,7 +83,7 @@ def watch_longer(rows: list[dict], out: Path, longer: int, workers: int) -> dict
                 if longer != 1 or earlier_watch(run, watch) is None
             ]
             if todo:
-                scene = watch_scene(default_scene(*key), longer, exact=watch == "coulomb")
+                scene = watch_scene(default_scene(row["scene"]), longer, exact=watch == "coulomb")
                 scans[(*key, watch)] = watch_campaign(watch_prefix(*key, watch, scene), scene, todo)
     campaigns.run(scans.values(), out, workers)
     shown = {where: read_watches(out / scan["name"]) for where, scan in scans.items()}

@@ -7,7 +7,13 @@ from collections import Counter
 
 import numpy as np
 
-from frictiondisk.studies.wellposed.judge import disagrees, missed_jump, silent, verdict
+from frictiondisk.studies.wellposed.judge import (
+    disagrees,
+    end_contradicted,
+    missed_jump,
+    silent,
+    verdict,
+)
 from frictiondisk.studies.wellposed.scenes import describe
 from frictiondisk.studies.wellposed.settings import PERSIST_STEPS, SETTINGS, TOL
 from frictiondisk.tasks.jump_search.jump_result import NO_JUMP
@@ -20,27 +26,33 @@ def report(rows: list[dict], wall_s: float) -> list[str]:
         r for r in rows if "reference" in settings and disagrees(r["default"], r["reference"])
     ]
     lines = [f"well-posedness study: {len(rows)} scenes, tol {TOL:g}, {wall_s:.0f} s"]
-    lines += settled_lines(differ)
+    lines += settled_lines(rows, differ)
     lines += answer_lines(rows, settings)
     lines += cost_lines(rows, settings)
     lines += row_lines(rows, differ)
     return lines
 
 
-def settled_lines(differ: list[dict]) -> list[str]:
-    """Disagreements by who was right, silent errors, missed jumps."""
+def settled_lines(rows: list[dict], differ: list[dict]) -> list[str]:
+    """Disagreements by who was right, silent errors (bracket ends contradicted by their
+    watches among them), missed jumps."""
     counts = Counter(verdict(r) for r in differ)
     missed = [r for r in differ if missed_jump(r)]
+    watched = [r for r in rows if r.get("ends")]
+    contradicted = [r for r in watched if end_contradicted(r)]
     return [
         f"  default against the dense reference: {len(differ)} disagree; settled run by run: "
         + ", ".join(
             f"{k} right {v}" if k in ("default", "reference", "both") else f"{k} {v}"
             for k, v in sorted(counts.items())
         ),
-        f"  silent errors (settled against a certified default): {sum(map(silent, differ))}",
+        f"  silent errors (settled against a certified default, or a certified bracket end "
+        f"contradicted by its watch): {sum(map(silent, rows))}",
         f"  missed jumps (sticking at the reference's lower mu_hi and at mu_hi + "
         f"{', '.join(map(str, PERSIST_STEPS))} tol): {len(missed)}, "
         f"{sum(1 for r in missed if r['default'].certified)} of them certified by the default",
+        f"  certified brackets whose ends were watched: {len(watched)}; an end contradicted "
+        f"by its watch: {len(contradicted)}",
     ]
 
 
@@ -102,6 +114,15 @@ def row_lines(rows: list[dict], differ: list[dict]) -> list[str]:
             f"{describe(r['scene'])}; runs: {runs_text}"
         )
     for r in rows:
+        if "reference" in r and end_contradicted(r):
+            d = r["default"]
+            runs_text = "; ".join(
+                f"{s['mu']:.7g} {s['outcome']} at {s['t_end']:.0f} s" for s in r["ends"]
+            )
+            lines.append(
+                f"    end contradicted {r['seed']}/{r['index']}: [{d.mu_lo:.7g}, {d.mu_hi:.7g}] "
+                f"[{d.certification}]; watches: {runs_text}; {describe(r['scene'])}"
+            )
         if r["default"].status == "failed":
             lines.append(
                 f"    failed {r['seed']}/{r['index']}: {r['default'].reason}; "

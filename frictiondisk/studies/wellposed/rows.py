@@ -64,7 +64,7 @@ def known_watches(paths: list[Path]) -> dict[tuple[int, int], dict[float, dict]]
     known: dict[tuple[int, int], dict[float, dict]] = {}
     for path in paths:
         for key, row in read_rows(path).items():
-            runs = row.get("settled", []) + row.get("persisted", [])
+            runs = row.get("settled", []) + row.get("persisted", []) + row.get("ends", [])
             scene = known.setdefault(key, {})
             for run in runs:
                 scene[float(run["mu"])] = {k: v for k, v in run.items() if k != "reused"}

@@ -9,6 +9,8 @@ Per scene and setting one find_jump campaign of one point (along its own x_ms):
 * `reference`: every prescan value run (stride 1), horizon x 8, rtol and atol / 100 of
   the default's numerics, no certification.
 
+The ends of every certified default bracket are watched too (a certified end that its
+watch contradicts is a silent error even where mu* agrees with the reference, issue 50).
 A watch is a scan campaign over the disputed mu of one scene: t_decide SETTLE_HORIZON,
 horizon budget SETTLE_BUDGET, rtol, atol and eps / 100, `numerics.evidence: observe`
 (only what a run shows counts); on a Coulomb pin the exact Coulomb integrator watches too
@@ -49,14 +51,17 @@ def default_grid(step: float) -> tuple[float, ...]:
     return tuple(round(0.02 + step * k, 5) for k in range(n_values))
 
 
-def scene_name(seed: int, index: int) -> str:
-    return f"s{seed}-{index}"
+def scene_name(seed: int, index: int, generator: int = 1) -> str:
+    """s<seed>-<index> (generator 1, the names of earlier studies), g<k>-s<seed>-<index>."""
+    return f"s{seed}-{index}" if generator == 1 else f"g{generator}-s{seed}-{index}"
 
 
-def locate_name(seed: int, index: int, setting: str, step: float, observe: bool) -> str:
+def locate_name(
+    seed: int, index: int, setting: str, step: float, observe: bool, generator: int = 1
+) -> str:
     """The campaign name of a setting; a variant of the default (its step, observe) is
     a campaign of its own name, so that one output folder can hold several."""
-    name = f"{scene_name(seed, index)}-{setting}"
+    name = f"{scene_name(seed, index, generator)}-{setting}"
     if setting != "reference" and step != DEFAULT_STEP:
         name += f"-step{name_part(step)}"
     if setting == "default" and observe:
@@ -125,11 +130,13 @@ def watch_scene(default_scene, longer: int = 1, exact: bool = False) -> dict[str
     return config.canonical()
 
 
-def watch_prefix(seed: int, index: int, watch: str, scene: dict[str, Any]) -> str:
+def watch_prefix(
+    seed: int, index: int, watch: str, scene: dict[str, Any], generator: int = 1
+) -> str:
     """The name every watch campaign of this scene, watch and numerics starts with: a
     hash of the watch's scene, so that watches under other numerics never mix."""
     digest = hashlib.sha256(json.dumps(scene, sort_keys=True).encode()).hexdigest()[:10]
-    return f"{scene_name(seed, index)}-watch-{watch}-{digest}"
+    return f"{scene_name(seed, index, generator)}-watch-{watch}-{digest}"
 
 
 def watch_campaign(prefix: str, scene: dict[str, Any], mus: list[float]) -> dict[str, Any]:

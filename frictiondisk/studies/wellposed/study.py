@@ -13,13 +13,14 @@ from pathlib import Path
 from frictiondisk.studies import campaigns
 from frictiondisk.studies.wellposed.found import read_found
 from frictiondisk.studies.wellposed.judge import (
+    certified_ends,
     combine_watches,
     disagrees,
     disputed,
     lower_reference,
 )
 from frictiondisk.studies.wellposed.rows import known_watches, read_rows, write_rows
-from frictiondisk.studies.wellposed.scenes import coulomb_pin, draw_scene
+from frictiondisk.studies.wellposed.scenes import coulomb_pin, draw
 from frictiondisk.studies.wellposed.settings import (
     DEFAULT_STEP,
     PERSIST_STEPS,
@@ -41,7 +42,8 @@ class Options:
     (certify.observe). step: the default's prescan step. reference_from: a rows file or
     study folder whose references are taken instead of located again (the reference
     dominates the study's cost). settled_from: rows files or study folders whose settling
-    runs are taken where the same scene and mu are disputed again."""
+    runs are taken where the same scene and mu are disputed again. generator: the scene
+    generator (scenes.GENERATORS)."""
 
     workers: int = 2
     reference: bool = True
@@ -49,6 +51,7 @@ class Options:
     step: float = DEFAULT_STEP
     reference_from: Path | None = None
     settled_from: tuple[Path, ...] = ()
+    generator: int = 1
 
 
 def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options()) -> list[dict]:
@@ -65,7 +68,8 @@ def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options
         rows += located
         scenes.update(defaults)
     if options.reference:
-        settle(rows, scenes, out, options.workers, known_watches(list(options.settled_from)))
+        known = known_watches(list(options.settled_from))
+        settle(rows, scenes, out, options.workers, known, options.generator)
     write_rows(out, rows)
     return rows
 
@@ -75,12 +79,13 @@ def locate(jobs, out: Path, options: Options, references: dict):
     (the watches start from it)."""
     settings = ("default", "uncertified") + (("reference",) if options.reference else ())
     planned = {}  # (seed, index, setting) -> validated campaign
+    generator = options.generator
     for seed, index in jobs:
-        scene = draw_scene(seed, index)
+        scene = draw(generator, seed, index)
         for setting in settings:
             if setting == "reference" and (seed, index) in references:
                 continue
-            name = locate_name(seed, index, setting, options.step, options.observe)
+            name = locate_name(seed, index, setting, options.step, options.observe, generator)
             numerics = None
             if setting == "reference":
                 num = planned[(seed, index, "default")].base.numerics
@@ -90,28 +95,32 @@ def locate(jobs, out: Path, options: Options, references: dict):
     campaigns.run(planned.values(), out, options.workers)
     rows, defaults = [], {}
     for seed, index in jobs:
-        row = {"seed": seed, "index": index, "scene": draw_scene(seed, index)}
+        row = {"seed": seed, "index": index, "scene": draw(generator, seed, index)}
+        if generator != 1:
+            row["generator"] = generator
         for setting in settings:
             campaign = planned.get((seed, index, setting))
             if campaign is None:
                 row[setting] = references[(seed, index)]["reference"]
             else:
                 row[setting] = read_found(out / campaign.name, campaign)
-        row["settled"], row["persisted"] = [], []
+        row["settled"], row["persisted"], row["ends"] = [], [], []
         rows.append(row)
         defaults[(seed, index)] = planned[(seed, index, "default")].points()[0].config
     return rows, defaults
 
 
-def watched_mu(row: dict) -> tuple[list[float], list[float]]:
-    """The disputed mu of a disagreeing row, and those above the reference's lower mu_hi
-    watched for a jump the default missed (none where the scenes agree)."""
+def watched_mu(row: dict) -> tuple[list[float], list[float], list[float]]:
+    """The disputed mu of a disagreeing row, those above the reference's lower mu_hi
+    watched for a jump the default missed (none where the scenes agree), and the ends of
+    the default's headline bracket where it is certified (judge.end_contradicted)."""
+    ends = certified_ends(row["default"])
     if not disagrees(row["default"], row["reference"]):
-        return [], []
+        return [], [], ends
     persist = []
     if lower_reference(row):
         persist = [row["reference"].mu_hi + k * TOL for k in PERSIST_STEPS]
-    return disputed(row["default"], row["reference"]), persist
+    return disputed(row["default"], row["reference"]), persist, ends
 
 
 def watches_of(scene: dict) -> tuple[str, ...]:
@@ -120,9 +129,12 @@ def watches_of(scene: dict) -> tuple[str, ...]:
     return ("regularized", "coulomb") if coulomb_pin(scene) else ("regularized",)
 
 
-def settle(rows: list[dict], scenes: dict, out: Path, workers: int, known: dict) -> None:
-    """Watch every disagreement at its disputed mu (a scan campaign per scene and watch,
-    of the mu no earlier study watched), then give each row its settling runs."""
+def settle(
+    rows: list[dict], scenes: dict, out: Path, workers: int, known: dict, generator: int = 1
+) -> None:
+    """Watch every disagreement at its disputed mu and every certified bracket's ends (a
+    scan campaign per scene and watch, of the mu no earlier study watched), then give each
+    row its settling runs."""
     scans = {}  # (seed, index, watch) -> the scan campaign of the mu it watches here
     for row in rows:
         key = (row["seed"], row["index"])
@@ -132,13 +144,15 @@ def settle(rows: list[dict], scenes: dict, out: Path, workers: int, known: dict)
             todo = [mu for mu in wanted if earlier_watch(earlier.get(mu), watch) is None]
             if todo:
                 scene = watch_scene(scenes[key], exact=watch == "coulomb")
-                scans[(*key, watch)] = watch_campaign(watch_prefix(*key, watch, scene), scene, todo)
+                prefix = watch_prefix(*key, watch, scene, generator)
+                scans[(*key, watch)] = watch_campaign(prefix, scene, todo)
     campaigns.run(scans.values(), out, workers)
     shown = {where: read_watches(out / scan["name"]) for where, scan in scans.items()}
     for row in rows:
-        settled, persisted = watched_mu(row)
+        settled, persisted, ends = watched_mu(row)
         row["settled"] = [settling_run(row, mu, shown, known) for mu in settled]
         row["persisted"] = [settling_run(row, mu, shown, known) for mu in persisted]
+        row["ends"] = [settling_run(row, mu, shown, known) for mu in ends]
 
 
 def earlier_watch(run: dict | None, watch: str) -> dict | None:

@@ -40,6 +40,7 @@ from frictiondisk.tasks.jump_search.bisection import (
     RunRequest,
 )
 from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
+from frictiondisk.verdict.deciding_rule import EXTRAPOLATED
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
@@ -116,13 +117,25 @@ class CertifiedBisection:
             return self.search.pending()
         strict = self.search.strict + 1
         requests = [
-            RunRequest(mu, self._check_level.get(mu, 0), strict=strict)
+            RunRequest(mu, self._check_level.get(mu, 0), strict=strict, watch=self._watch(mu))
             for mu in (self.search.lo, self.search.hi)
             if mu not in self._checks
         ]
         for request in requests:
             self._issued.setdefault(request, (len(self.searches), request.level, request.mu))
         return requests
+
+    def _watch(self, mu: float) -> float:
+        """How long [s] the check of bracket end `mu` watches before it may extrapolate:
+        `certify.watch` times the decision time of the run that decided that end, where an
+        extrapolation decided it (verdict/deciding_rule.py EXTRAPOLATED); 0 otherwise. The
+        same rule on later motion is a test of the verdict, not a repetition of it."""
+        if not self.certify.watch or self.certify.observe:
+            return 0.0
+        decided = [r for r in self.search.runs if r.request.mu == mu and r.outcome != UNDETERMINED]
+        if not decided or decided[-1].result.get("decided_by") not in EXTRAPOLATED:
+            return 0.0
+        return self.certify.watch * float(decided[-1].result["t_end"])
 
     def schedule_key(self, request: RunRequest) -> tuple | None:
         for index, search in enumerate(self.searches):

@@ -41,6 +41,11 @@ def run_config(point_config, request: RunRequest, horizon_factor: float, certify
             # it decides only on what it sees (a repeating section, a stick): an
             # extrapolated verdict is then a prediction that certification checks
             overrides["numerics.evidence"] = "observe"
+        elif request.watch > 0.0:
+            # it watches before it may extrapolate (certify.py), within its budget
+            reach = horizon_of(point_config, mode) * (horizon_factor**request.level)
+            reach *= overrides["numerics.horizon_budget"]
+            overrides["numerics.observe_until"] = min(request.watch, reach)
     return point_config.with_overrides(overrides)
 
 

@@ -23,6 +23,7 @@ class RunRequest:
     level: int = 0
     mode: str | None = None  # numerics.mode of the run; None: the point's own
     strict: int = 0  # certification level of the numerics (0: the point's own)
+    watch: float = 0.0  # watch (observe) until this time before extrapolating [s] (certify.py)
 
 
 @dataclasses.dataclass(frozen=True)
