@@ -87,6 +87,9 @@ class SimulationResult:
     revolutions: np.ndarray | None = None
     # the last whole-body sticking phases, oldest first (kernel/records.py PHASE rows)
     sections: np.ndarray | None = None
+    # the motion's own section, oldest first (kernel/records.py OWN_STEP rows; None for
+    # integrators without the step loop)
+    own_section: np.ndarray | None = None
     # Energy balance E(t_end) - E(0) = energy_in - energy_dissipated (kernel/energy.py);
     # NaN for integrators without the diagnostic (scipy-radau, coulomb).
     energy_in: float = math.nan  # work the driven master put in [J]
@@ -110,7 +113,7 @@ class SimulationResult:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
         out: dict[str, Any] = {}
         for field in dataclasses.fields(self):
-            if field.name in ("trajectory", "revolutions", "sections"):
+            if field.name in ("trajectory", "revolutions", "sections", "own_section"):
                 continue
             value = getattr(self, field.name)
             if isinstance(value, float) and not math.isfinite(value):

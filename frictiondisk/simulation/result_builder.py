@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from frictiondisk.kernel import monitor
-from frictiondisk.kernel.records import REV_RING
+from frictiondisk.kernel.records import OWN_RING, REV_RING
 from frictiondisk.simulation.buffers import RunBuffers
 from frictiondisk.simulation.result import SimulationResult, Trajectory
 from frictiondisk.verdict.facts import Evidence, Revolutions, RunFacts
@@ -62,6 +62,7 @@ def build_result(
         trajectory=trajectory,
         revolutions=facts.revolution_log,
         sections=section_log(run.phases, motion),
+        own_section=own_log(run.own_steps, run.own) if run.own_steps is not None else None,
         slip_total=run.slip_total,
         reserve=friction_reserve(config, R1),
         **_revolution_measures(facts.revs),
@@ -160,6 +161,14 @@ def revolution_log(revs: np.ndarray, motion: np.void) -> np.ndarray:
     keep = min(n, REV_RING)
     order = [(n - keep + j) % REV_RING for j in range(keep)]
     return revs[order].copy()
+
+
+def own_log(steps: np.ndarray, own: np.void) -> np.ndarray:
+    """The kept rows of the own section (kernel/records.py OWN_STEP), oldest first."""
+    n = int(own["n"])
+    keep = min(n, OWN_RING)
+    order = [(n - keep + j) % OWN_RING for j in range(keep)]
+    return steps[order].copy()
 
 
 def section_log(phases: np.ndarray, motion: np.void, keep: int = 256) -> np.ndarray:
