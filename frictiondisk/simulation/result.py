@@ -108,6 +108,20 @@ class SimulationResult:
     slip_total: float = math.nan  # net plastic slip over the whole run [m]
     # mu - demand(R1) / F_n: > 0 where the first sticking circle holds (verdict/reserve.py)
     reserve: float = math.nan  # [1]
+    # The pure-sliding motion's measures (verdict/motion_evidence.py), read from the own
+    # section of runs that slide; NaN where they do not apply.
+    own_period: float = math.nan  # the motion's own period (velocity phase turning 2 pi) [s]
+    mean_radius: float = math.nan  # time mean of |r| over the newest own period [m]
+    amplitude: float = math.nan  # (max |r| - min |r|) / 2 over it [m]
+    spin_rate: float = math.nan  # mean phidot over it [rad/s] (NaN for the pin)
+    floquet_ratio: float = math.nan  # contraction of the own section per own period [1]
+    decay_rate: float = math.nan  # -ln(floquet_ratio) / own_period [1/s]
+    r_eq_x: float = math.nan  # self-centring: the rest point x [m]
+    r_eq_y: float = math.nan  # ... y [m]
+    r_eq: float = math.nan  # ... its radius [m]
+    r_eq_angle: float = math.nan  # ... its angle from +x, counter-clockwise [rad]
+    envelope_period: float = math.nan  # modulated: the envelope's period [s]
+    envelope_depth: float = math.nan  # ... half the range of the step-mean |r| [m]
 
     def summary(self) -> dict[str, Any]:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
