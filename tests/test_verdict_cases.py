@@ -422,6 +422,95 @@ CASES = (
     ),
 )
 
+
+SELF_CENTRING_PIN = {"scene": "pin", "params": {"mu": 0.095, "omega_m": 0.8}}
+LARGE_CYCLE_PIN = {"scene": "pin", "params": {"mu": 0.05, "omega_m": 1.5, "x0": 0.4, "vy0": 0.5}}
+CONVERGE_60 = {"mode": "converge", "t_max": 60.0}
+CONVERGE_90 = {"mode": "converge", "t_max": 90.0}
+MOTION_TEST = "tests/test_motion_evidence.py::"
+
+# The pure-sliding motions (verdict/motion_evidence.py): each was `slide` before issue 49
+MOTION_CASES = (
+    Case(
+        "self-centring pin (issue 49), 60 s",
+        at(SELF_CENTRING_PIN, 0.095, **CONVERGE_60),
+        "motion_evidence._rest",
+        "own_rest_zero",
+        "self_centring",
+        "self-centres",
+        "its largest speed per own period falls by a steady 0.730 to rest at |r| = 0.0312238 "
+        "m, where it still slips: the old rules had no name for it and said `slide`",
+        loosened=(("own_rest_zero", 0.0),),
+        loosened_outcome="slide",
+        loosened_says="neither comes to rest",
+    ),
+    Case(
+        "large sliding cycle of the pin (issue 49), 90 s",
+        at(LARGE_CYCLE_PIN, 0.05, **CONVERGE_90),
+        "motion_evidence._cycle",
+        "own_motion_keep",
+        "slide_cycle",
+        "contracts by 0.79",
+        "its own section contracts by 0.794 a period towards a whirl at the support's own "
+        "frequency, while the master-revolution section steps 0.75 m a revolution",
+        loosened=(("own_motion_keep", 2.0),),
+        loosened_outcome="slide",
+        loosened_says="neither comes to rest",
+    ),
+    Case(
+        "the default pin departing from sticking at the 30 s horizon",
+        {"scene": "pin", "params": {"mu": 0.12}},
+        "label._refine",
+        "depart_steps",
+        "slide",
+        "a departure from sticking alone names no motion",
+        "a departure is evidence of not-stick, not of a stick-slip cycle: in the pin maps of "
+        "issue 49, 32 runs so named at 30 s go on to the large sliding cycle and 15 "
+        "self-centre (this one does reach the stick-slip cycle: converge mode names it)",
+    ),
+    Case(
+        "the modulated braked disk (issue 49), J_s 0.3, 48 points",
+        None,
+        "motion_evidence._envelope",
+        "env_tol",
+        "modulated",
+        "",
+        "three envelopes of 136.5 s agree in period and depth (0.0312 m)",
+        covered_by=MOTION_TEST + "test_the_example_disk_is_a_modulated_cycle",
+    ),
+    Case(
+        "the circular whirl of the braked disk, J_s 0.1, 48 points",
+        None,
+        "motion_evidence._envelope",
+        "env_min_depth",
+        "slide_cycle",
+        "",
+        "its ring's ripple of 1e-5 m keeps its section from repeating within cycle_tol",
+        covered_by=MOTION_TEST + "test_the_whirl_below_the_torus_bifurcation_is_a_sliding_cycle",
+    ),
+    Case(
+        "the 12-point whirl's layout ripple",
+        None,
+        "motion_evidence._aliased_ripple",
+        "layout_alias",
+        "slide_cycle",
+        "",
+        "0.69 % ripple at N |Omega - phidot| aliased into a 19.5 s beat: not a modulation",
+        covered_by=MOTION_TEST + "test_the_ripple_of_a_12_point_ring_is_no_modulation",
+    ),
+    Case(
+        "a sliding regime shorter than its evidence",
+        None,
+        "motion_evidence.judge",
+        "own_slide_steps",
+        "slide",
+        "",
+        "a sticking phase ends the regime; too few own periods after it name nothing",
+        covered_by=MOTION_TEST + "test_too_few_sliding_rows_are_no_evidence",
+    ),
+)
+CASES = CASES + MOTION_CASES
+
 RUN_HERE = [case for case in CASES if not case.covered_by]
 
 

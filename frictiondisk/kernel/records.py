@@ -7,7 +7,7 @@ the caller sees every write. Ring buffers are arrays of records (REVOLUTION, PHA
 INTERVAL rows). The parameter record of the equations is model.PARAMETERS, the energy
 record energy.ENERGY. Units: SI (s, m, rad).
 
-REV_RING and RING are capacities (how many rows a ring keeps), not thresholds.
+REV_RING, RING and OWN_RING are capacities (how many rows a ring keeps), not thresholds.
 """
 
 from __future__ import annotations
@@ -19,6 +19,9 @@ import numpy as np
 REV_RING = 512
 # Sticking phases (and intervals with some contact stuck) kept
 RING = 16384
+# Steps of the motion's own section kept (kernel/own_section.py): at least 4 envelopes of a
+# modulated cycle at 20-100 whirls an envelope
+OWN_RING = 512
 
 # The integrator's options for one run (filled from numerics by simulation/pack.py)
 OPTIONS = np.dtype(
@@ -144,6 +147,52 @@ PHASE = np.dtype(
 
 # One closed interval with some contact stuck (row of the interval ring)
 INTERVAL = np.dtype([("t0", np.float64), ("t1", np.float64)])
+
+
+# The motion's own section (kernel/own_section.py): where the unwrapped velocity phase
+# psi = atan2(ydot, xdot) has turned a whole turn since the last row, and what the motion did
+# over that step. Its state between rows:
+OWN = np.dtype(
+    [
+        ("n", np.int64),  # rows closed (newest at (n - 1) % OWN_RING)
+        ("start", np.int64),  # first row of the current sliding regime (rows since a lock)
+        ("psi", np.float64),  # unwrapped velocity phase at the last instant [rad] (NaN: at rest)
+        ("level", np.float64),  # unwrapped phase of the last row, a multiple of 2 pi [rad] (NaN)
+        ("t0", np.float64),  # start of the open step [s]
+        ("slip0", np.float64),  # slip integral at its start [m]
+        ("phi0", np.float64),  # spin angle at its start [rad] (0 for the pin)
+        ("switches0", np.int64),  # contact mode switches before it
+        ("r_int", np.float64),  # integral of |r| dt over it so far [m s]
+        ("r_min", np.float64),  # smallest |r| in it so far [m]
+        ("r_max", np.float64),  # largest |r| in it so far [m]
+        ("v_max", np.float64),  # largest |rdot| in it so far [m/s]
+        ("locked", np.bool_),  # every contact stuck at some instant of it
+    ]
+)
+
+# One step of the own section (row of the own ring; newest at (n - 1) % OWN_RING)
+OWN_STEP = np.dtype(
+    [
+        ("t", np.float64),  # end of the step: psi reached the next multiple of 2 pi [s]
+        ("dt", np.float64),  # its duration, the motion's own period [s]
+        ("x", np.float64),  # slave centre x at its end [m]
+        ("y", np.float64),  # ... y [m]
+        ("xd", np.float64),  # velocity x [m/s] (ydot = 0 there, xdot > 0)
+        ("yd", np.float64),  # velocity y [m/s]
+        ("phid", np.float64),  # spin rate [rad/s] (0 for the pin)
+        ("r_mean", np.float64),  # time mean of |r| over the step [m]
+        ("r_min", np.float64),  # smallest |r| over it [m]
+        ("r_max", np.float64),  # largest |r| over it [m]
+        ("v_max", np.float64),  # largest |rdot| over it [m/s]
+        ("spin", np.float64),  # integral of phidot dt over it [rad] (0 for the pin)
+        ("slip", np.float64),  # net plastic slip of the mean contact over it [m]
+        ("stick_all_t", np.float64),  # time with every contact stuck [s]
+        ("stick_any_t", np.float64),  # time with some contact stuck [s]
+        ("switches", np.int64),  # contact mode switches in it
+        ("turn", np.int64),  # +1: psi turned forwards a whole turn, -1: backwards
+        ("locked", np.bool_),  # every contact stuck at some instant: not a sliding step
+    ]
+)
 
 
 def one(dtype: np.dtype):

@@ -24,6 +24,9 @@ from frictiondisk.kernel.records import (
     INTERVAL,
     MOTION,
     OPTIONS,
+    OWN,
+    OWN_RING,
+    OWN_STEP,
     PHASE,
     REV_RING,
     REVOLUTION,
@@ -40,6 +43,7 @@ RUN_STATE = np.dtype(
         ("counters", COUNTERS),
         ("energy", ENERGY),
         ("motion", MOTION),
+        ("own", OWN),
         ("verdict", VERDICT),
     ]
 )
@@ -53,7 +57,8 @@ class RunBuffers:
     options (OPTIONS), rules (RULES), thresholds (VerdictParams); y (n) the state, initial
     then final [SI]; modes (N, int8). state: the RUN_STATE record. Rings: revolutions
     (REV_RING REVOLUTION rows; None for an integrator without them), phases (RING PHASE
-    rows), intervals (RING INTERVAL rows). Recording: rec_t (cap) [s], rec_y (cap, n),
+    rows), intervals (RING INTERVAL rows), own_steps (OWN_RING OWN_STEP rows: the motion's
+    own section, kernel/own_section.py; None without the loop). Recording: rec_t (cap) [s], rec_y (cap, n),
     rec_m (cap, N). status (kernel/status.py or the verdict's final state; 0 before the
     run) and t_end [s].
     """
@@ -69,6 +74,7 @@ class RunBuffers:
     revolutions: np.ndarray | None
     phases: np.ndarray
     intervals: np.ndarray
+    own_steps: np.ndarray | None
     rec_t: np.ndarray
     rec_y: np.ndarray
     rec_m: np.ndarray
@@ -104,6 +110,7 @@ class RunBuffers:
             revolutions=np.zeros(REV_RING, dtype=REVOLUTION) if revolutions else None,
             phases=np.empty(RING, dtype=PHASE),
             intervals=np.empty(RING, dtype=INTERVAL),
+            own_steps=np.zeros(OWN_RING, dtype=OWN_STEP) if revolutions else None,
             rec_t=np.empty(cap),
             rec_y=np.empty((cap, n)),
             rec_m=np.empty((cap, ncon), dtype=np.int8),
@@ -114,7 +121,7 @@ class RunBuffers:
         state, status and t_end [s] are set. Returns self."""
         from frictiondisk.simulation.loop import run
 
-        if self.p is None or self.pts is None or self.revolutions is None:
+        if self.p is None or self.pts is None or self.revolutions is None or self.own_steps is None:
             raise ValueError("these RunBuffers were allocated without the loop's inputs")
         status, t_end = run(
             self.p,
@@ -125,7 +132,7 @@ class RunBuffers:
             self.y,
             self.modes,
             self.state,
-            (self.revolutions, self.phases, self.intervals),
+            (self.revolutions, self.phases, self.intervals, self.own_steps),
             (self.rec_t, self.rec_y, self.rec_m),
         )
         self.status, self.t_end = int(status), float(t_end)
@@ -150,6 +157,11 @@ class RunBuffers:
     def motion(self) -> np.void:
         """The MOTION record (kernel/records.py)."""
         return self.state["motion"]
+
+    @property
+    def own(self) -> np.void:
+        """The OWN record: the own section's state (kernel/records.py)."""
+        return self.state["own"]
 
     @property
     def verdict(self) -> np.void:

@@ -12,8 +12,8 @@ simulation/buffers.py: stepper, counters, energy, motion, verdict) and each pass
 4. events and switching inside the step (kernel/switching.py): at the earliest event the
    step is cut, the contacts switch, the monitor records it and the machine hears of a
    whole-body sticking phase that opened; otherwise the whole step is accepted;
-5. saving: the energy integrals (kernel/energy.py), the monitor, the trajectory
-   (kernel/recording.py).
+5. saving: the energy integrals (kernel/energy.py), the monitor, the motion's own section
+   (kernel/own_section.py), the trajectory (kernel/recording.py).
 
 The loop imports the machine directly (not as an argument) so that numba caches it.
 It never raises: it returns (status, t_end), the verdict's final state
@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from frictiondisk.kernel import controller, monitor, switching
+from frictiondisk.kernel import controller, monitor, own_section, switching
 from frictiondisk.kernel import energy as en
 from frictiondisk.kernel import status as st
 from frictiondisk.kernel.events import SAME_TIME, T_TOL_ABS
@@ -46,7 +46,7 @@ def _workspace(p, y, modes, options, vp):
     one watch per contact, the state one revolution back, a section sequence, the bound's
     history."""
     n = y.shape[0]
-    vectors = np.empty((6, n))  # y1, f, f1, ftmp, ybuf, ymid
+    vectors = np.empty((8, n))  # y1, f, f1, ftmp, ybuf, ymid, and the own section's two
     jac, lu, piv = stage_workspace(n, n_coords(p), options.dense_lu)
     wk = np.empty((N_WORK_ROWS, n))
     watch = np.empty(modes.shape[0], dtype=switching.CONTACT_WATCH)
@@ -59,7 +59,7 @@ def _workspace(p, y, modes, options, vp):
 def _begin(p, pts, options, rules, vp, y, modes, state, rings, recording, ws):
     """Everything at t = 0: rates, energy, band flags, the monitor, the machine, the first
     revolution, the first recorded row, the controller."""
-    _, phases, intervals = rings
+    _, phases, intervals, _ = rings
     vectors, _, _, _, _, watch, yrev, _, _ = ws
     step = state.step
     counters = state.counters
@@ -79,6 +79,7 @@ def _begin(p, pts, options, rules, vp, y, modes, state, rings, recording, ws):
         for i in range(pts.shape[0]):
             arm = max(arm, math.hypot(pts[i, 0], pts[i, 1]))
     monitor.begin(state.motion, phases, intervals, step.t, y, modes, nq, arm)
+    own_section.begin(state.own, step.t, y, nq, state.energy.slip, state.motion.all_stuck)
     machine.begin(vp, rules, p, pts, state.motion, state.verdict)
     if state.motion.opened:
         machine.phase_opened(rules, state.motion, state.verdict)
@@ -95,7 +96,7 @@ def _begin(p, pts, options, rules, vp, y, modes, state, rings, recording, ws):
 def _stop_check(p, pts, rules, vp, y, state, rings, ws):
     """Close the revolution that ends at the current instant, if one does, and ask the
     machine what to do (verdict/records.py STEP_ON, RECHECK, STOP)."""
-    revs, phases, _ = rings
+    revs, phases, _, _ = rings
     _, _, _, _, _, _, yrev, seq, values = ws
     step = state.step
     motion = state.motion
@@ -144,7 +145,7 @@ def _attempt(p, pts, options, rules, y, modes, state, rings, recording, ws):
     )
     if s_event <= 1.0:
         return _switch(p, pts, options, rules, y, modes, state, rings, recording, ws, s_event, stol)
-    _accept(p, pts, options, y, modes, state, recording, ws, h_free)
+    _accept(p, pts, options, y, modes, state, rings, recording, ws, h_free)
     return st.RUNNING
 
 
@@ -152,7 +153,7 @@ def _attempt(p, pts, options, rules, y, modes, state, rings, recording, ws):
 def _switch(p, pts, options, rules, y, modes, state, rings, recording, ws, s_event, stol):
     """Cut the step at its earliest event (fraction s_event of it), switch the contacts
     there and record it: st.RUNNING, or st.ZENO after endless switching at one instant."""
-    _, phases, intervals = rings
+    _, phases, intervals, own_steps = rings
     vectors, _, _, _, wk, watch, _, _, _ = ws
     y1, f, ybuf, ymid = vectors[0], vectors[1], vectors[4], vectors[5]
     step = state.step
@@ -163,8 +164,13 @@ def _switch(p, pts, options, rules, y, modes, state, rings, recording, ws, s_eve
     if options.record and options.dt_out > 0.0:
         record_dense(recording, counters, t, h, s_event, y, y1, wk, modes, options.dt_out, ybuf)
     dense_eval(y, y1, wk, s_event, ybuf)
+    slip = state.energy.slip
     en.integrate_piece(p, pts, modes, y, y1, wk, s_event, h, ybuf, ymid, state.energy)
     monitor.step(state.motion, y, ybuf, s_event * h)
+    own_section.piece(
+        state.own, own_steps, state.motion, phases, intervals, y, y1, wk, s_event, t, h,
+        ybuf, ymid, vectors[6:8], slip, state.energy.slip,
+    )  # fmt: skip
     if options.record:
         record_state(recording, counters, t_ev, ybuf, modes)
     y[:] = ybuf
@@ -191,8 +197,9 @@ def _switch(p, pts, options, rules, y, modes, state, rings, recording, ws, s_eve
 
 
 @kernel_jit
-def _accept(p, pts, options, y, modes, state, recording, ws, h_free):
+def _accept(p, pts, options, y, modes, state, rings, recording, ws, h_free):
     """Accept the whole step (no event inside it) and choose the next."""
+    _, phases, intervals, own_steps = rings
     vectors, _, _, _, wk, watch, _, _, _ = ws
     y1, f, f1, ybuf, ymid = vectors[0], vectors[1], vectors[2], vectors[4], vectors[5]
     step = state.step
@@ -200,8 +207,13 @@ def _accept(p, pts, options, y, modes, state, recording, ws, h_free):
     h = step.h
     if options.record and options.dt_out > 0.0:
         record_dense(recording, state.counters, t, h, 1.0, y, y1, wk, modes, options.dt_out, ybuf)
+    slip = state.energy.slip
     en.integrate_piece(p, pts, modes, y, y1, wk, 1.0, h, y1, ymid, state.energy)
     monitor.step(state.motion, y, y1, h)
+    own_section.piece(
+        state.own, own_steps, state.motion, phases, intervals, y, y1, wk, 1.0, t, h,
+        y1, ymid, vectors[6:8], slip, state.energy.slip,
+    )  # fmt: skip
     step.t = t + h
     y[:] = y1
     f[:] = f1
@@ -221,7 +233,7 @@ def run(p, pts, options, rules, vp, y, modes, state, rings, recording):
     (verdict/params.py PARAMS): the run's inputs. y (initial state) and modes (int8, one
     per contact) are updated in place and hold the final state and modes. state
     (RUN_STATE, simulation/buffers.py) receives every named measure of the run; rings =
-    (revolutions, phases, intervals) its ring buffers (kernel/records.py); recording =
+    (revolutions, phases, intervals, own steps) its ring buffers (kernel/records.py); recording =
     (rec_t, rec_y, rec_m) the trajectory buffers (kernel/recording.py). Steps end exactly
     at every whole master revolution, where the machine reads it.
     """

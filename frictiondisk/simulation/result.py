@@ -87,6 +87,9 @@ class SimulationResult:
     revolutions: np.ndarray | None = None
     # the last whole-body sticking phases, oldest first (kernel/records.py PHASE rows)
     sections: np.ndarray | None = None
+    # the motion's own section, oldest first (kernel/records.py OWN_STEP rows; None for
+    # integrators without the step loop)
+    own_section: np.ndarray | None = None
     # Energy balance E(t_end) - E(0) = energy_in - energy_dissipated (kernel/energy.py);
     # NaN for integrators without the diagnostic (scipy-radau, coulomb).
     energy_in: float = math.nan  # work the driven master put in [J]
@@ -108,12 +111,26 @@ class SimulationResult:
     # the rule that decided the outcome (verdict/deciding_rule.py DECIDING_RULES; "" where
     # the integrator has its own rules: the exact Coulomb pin)
     decided_by: str = ""
+    # The pure-sliding motion's measures (verdict/motion_evidence.py), read from the own
+    # section of runs that slide; NaN where they do not apply.
+    own_period: float = math.nan  # the motion's own period (velocity phase turning 2 pi) [s]
+    mean_radius: float = math.nan  # time mean of |r| over the newest own period [m]
+    amplitude: float = math.nan  # (max |r| - min |r|) / 2 over it [m]
+    spin_rate: float = math.nan  # mean phidot over it [rad/s] (NaN for the pin)
+    floquet_ratio: float = math.nan  # contraction of the own section per own period [1]
+    decay_rate: float = math.nan  # -ln(floquet_ratio) / own_period [1/s]
+    r_eq_x: float = math.nan  # self-centring: the rest point x [m]
+    r_eq_y: float = math.nan  # ... y [m]
+    r_eq: float = math.nan  # ... its radius [m]
+    r_eq_angle: float = math.nan  # ... its angle from +x, counter-clockwise [rad]
+    envelope_period: float = math.nan  # modulated: the envelope's period [s]
+    envelope_depth: float = math.nan  # ... half the range of the step-mean |r| [m]
 
     def summary(self) -> dict[str, Any]:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
         out: dict[str, Any] = {}
         for field in dataclasses.fields(self):
-            if field.name in ("trajectory", "revolutions", "sections"):
+            if field.name in ("trajectory", "revolutions", "sections", "own_section"):
                 continue
             value = getattr(self, field.name)
             if isinstance(value, float) and not math.isfinite(value):

@@ -12,12 +12,13 @@ import math
 import numpy as np
 
 from frictiondisk.kernel import monitor
-from frictiondisk.kernel.records import REV_RING
+from frictiondisk.kernel.records import OWN_RING, REV_RING
 from frictiondisk.simulation.buffers import RunBuffers
 from frictiondisk.simulation.result import SimulationResult, Trajectory
 from frictiondisk.verdict.facts import Evidence, Revolutions, RunFacts
 from frictiondisk.verdict.horizon import revolution
 from frictiondisk.verdict.label import BOUND_RECONSIDERS, label
+from frictiondisk.verdict.motion_evidence import MotionEvidence, OwnScene
 from frictiondisk.verdict.params import VerdictParams
 from frictiondisk.verdict.reserve import friction_reserve
 from frictiondisk.verdict.shakedown_bound import floor_reserve
@@ -56,16 +57,18 @@ def build_result(
         n_steps=run.steps,
         n_rejected=run.rejected,
         n_refused=run.refused,
-        cycle_converged=facts.cycle_converged,
+        cycle_converged=named.converged,
         wall_s=wall,
         method=config.numerics.method,
         trajectory=trajectory,
         revolutions=facts.revolution_log,
         sections=section_log(run.phases, motion),
+        own_section=facts.own_rows,
         slip_total=run.slip_total,
         reserve=friction_reserve(config, R1),
         decided_by=named.rule,
         **_revolution_measures(facts.revs),
+        **_motion_measures(named.motion),
         **(energy or {}),
     )
 
@@ -103,7 +106,47 @@ def run_facts(config, run: RunBuffers, verdict: VerdictParams) -> RunFacts:
         cycle_converged=bool(vs["agree"] >= num.cycle_count),
         cycle_size=float(motion["size"]),
         cycle_excess=float(motion["a"]),
+        own_rows=own_log(run.own_steps, run.own) if run.own_steps is not None else None,
+        own_scene=own_scene(config, run) if run.own_steps is not None else None,
     )
+
+
+def own_scene(config, run: RunBuffers) -> OwnScene:
+    """What the own section's evidence needs of the scene (verdict/motion_evidence.py)."""
+    p = config.params
+    rules = run.rules
+    omega0 = math.sqrt(p.c_s / p.m_s) if p.c_s > 0.0 else abs(p.omega_m)
+    return OwnScene(
+        omega0=omega0 if omega0 > 0.0 else 1.0,
+        arm=float(run.motion["arm"]),
+        eps=config.contact.eps,
+        n_contacts=int(run.modes.shape[0]),
+        cycle_tol=float(rules["cycle_tol"]),
+        atol=float(rules["atol"]),
+        rtol=float(rules["rtol"]),
+        observe=bool(rules["observe"]),
+    )
+
+
+MOTION_MEASURES = (
+    "own_period",
+    "mean_radius",
+    "amplitude",
+    "spin_rate",
+    "floquet_ratio",
+    "decay_rate",
+    "r_eq_x",
+    "r_eq_y",
+    "r_eq",
+    "r_eq_angle",
+    "envelope_period",
+    "envelope_depth",
+)
+
+
+def _motion_measures(motion: MotionEvidence | None) -> dict[str, float]:
+    """The pure-sliding motion's measures (NaN where none was read)."""
+    return {name: getattr(motion, name) if motion else math.nan for name in MOTION_MEASURES}
 
 
 def _revolutions(config, run: RunBuffers) -> Revolutions:
@@ -163,6 +206,14 @@ def revolution_log(revs: np.ndarray, motion: np.void) -> np.ndarray:
     keep = min(n, REV_RING)
     order = [(n - keep + j) % REV_RING for j in range(keep)]
     return revs[order].copy()
+
+
+def own_log(steps: np.ndarray, own: np.void) -> np.ndarray:
+    """The kept rows of the own section (kernel/records.py OWN_STEP), oldest first."""
+    n = int(own["n"])
+    keep = min(n, OWN_RING)
+    order = [(n - keep + j) % OWN_RING for j in range(keep)]
+    return steps[order].copy()
 
 
 def section_log(phases: np.ndarray, motion: np.void, keep: int = 256) -> np.ndarray:

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from .motion_evidence import OwnScene
 from .records import (
     EV_CANNOT,
     EV_CONTRACT,
@@ -150,3 +151,7 @@ class RunFacts:
     cycle_converged: bool = False  # the converge test's section points agreed
     cycle_size: float = math.nan  # radius of the last sticking segment [m]
     cycle_excess: float = math.nan  # excess of the last sliding phase over its onset [m]
+    # the motion's own section, oldest first (kernel/records.py OWN_STEP rows; None for an
+    # integrator without it) and what reading it needs (verdict/motion_evidence.py)
+    own_rows: np.ndarray | None = None
+    own_scene: OwnScene | None = None

@@ -15,6 +15,7 @@ from frictiondisk.kernel import status as st
 from . import records as rc
 from .deciding_rule import deciding_rule
 from .facts import Revolutions, RunFacts
+from .motion_evidence import MotionEvidence, judge
 from .params import VerdictParams
 from .shakedown_verdict import decide as bound_decides
 
@@ -38,6 +39,8 @@ class Label:
     size: float  # sticking-circle radius (stick) or a converged cycle's segment radius [m]
     a: float  # largest excess of a converged cycle's sliding over its segment [m]
     rule: str = ""  # the rule that decided it (verdict/deciding_rule.py DECIDING_RULES)
+    converged: bool = False  # the motion settled (a cycle, a rest state, a modulation)
+    motion: MotionEvidence | None = None  # the pure-sliding motion's evidence and measures
 
 
 def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
@@ -56,6 +59,10 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
         # itself (a revolution shorter than round-off); never report it (issue 14)
         outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
         rule = "error"
+    motion = None
+    if _refinable(facts, outcome):
+        motion = judge(facts.own_rows, facts.own_scene, vp)
+        outcome, reason = _refine(facts, outcome, reason, motion)
     size = math.nan
     a = math.nan
     if outcome == "stick":
@@ -66,7 +73,37 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
         # final cycle
         size = facts.cycle_size
         a = facts.cycle_excess
-    return Label(outcome, reason, size, a, rule)
+    converged = facts.cycle_converged or (
+        motion is not None and motion.motion == outcome and motion.converged
+    )
+    return Label(outcome, reason, size, a, rule, converged, motion)
+
+
+def _departs_only(facts: RunFacts) -> bool:
+    """A `stick_slip` at the horizon whose only evidence is a departure from sticking."""
+    ev = facts.evidence
+    return facts.status == rc.AT_HORIZON and ev is not None and ev.kind == rc.EV_DEPART
+
+
+def _refinable(facts: RunFacts, outcome: str) -> bool:
+    """Whether the own section may name the motion: a run that slides in its final window,
+    or a `stick_slip` named by a departure alone (docs/model.md section 6)."""
+    if facts.own_scene is None:
+        return False
+    return outcome == "slide" or (outcome == "stick_slip" and _departs_only(facts))
+
+
+def _refine(facts: RunFacts, outcome: str, reason: str, motion: MotionEvidence):
+    """(outcome, reason): the pure-sliding motion the own section shows; without one a
+    departure from sticking is `slide` (not stick, its motion not named)."""
+    if motion.motion:
+        return motion.motion, f"{motion.reason} ({reason})"
+    if outcome == "stick_slip":
+        return "slide", (
+            f"not stick, its motion not settled: {reason}; a departure from sticking alone "
+            "names no motion"
+        )
+    return outcome, f"{reason}; {motion.reason}"
 
 
 def _rates(r: Revolutions) -> str:

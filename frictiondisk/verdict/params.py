@@ -205,6 +205,74 @@ class VerdictParams:
         0.1, "1", "the fitted limit may lie above the rim by this share of the newest gap"
     )
 
+    # --- the motion's own section: the pure-sliding motions (verdict/motion_evidence.py) --
+    own_slide_steps: int = _param(
+        3,
+        "own periods",
+        "own-section steps without whole-body sticking before a motion counts as sliding "
+        "(a sticking phase ends the regime and its rows)",
+    )
+    own_ratios: int = _param(
+        4,
+        "ratios",
+        "successive ratios of the own section behind a geometric decay (as contract_distances)",
+    )
+    own_rest_zero: float = _param(
+        0.01,
+        "1",
+        "Aitken's limit of the largest speed per own period at most this share of the newest "
+        "one: the motion comes to rest (as shakedown_zero)",
+    )
+    own_motion_keep: float = _param(
+        0.5,
+        "1",
+        "Aitken's limit of the largest speed per own period at least this share of the newest "
+        "one: the limit still moves (a cycle, not rest)",
+    )
+    own_rest_slip: float = _param(
+        10.0,
+        "eps",
+        "slip rate of the mean contact over the newest own period above this many eps: the "
+        "rest state slides (a state at rest that does not slip is sticking)",
+    )
+    own_window: int = _param(
+        32,
+        "own periods",
+        "window over which the band of the step-mean |r| of a disk's whirl is compared with "
+        "its ring's ripple within an own period, and with the band of the window before",
+    )
+    band_change: float = _param(
+        2.0,
+        "1",
+        "a whirl's band of the step-mean |r| is steady while it changes by less than this "
+        "factor from one window to the next (the ripple's aliasing beats it by less)",
+    )
+    env_count: int = _param(
+        3,
+        "envelopes",
+        "whole envelopes of the step-mean |r| behind a modulation (amplitudes A_j and A_j-1 "
+        "compared twice)",
+    )
+    env_tol: float = _param(
+        0.01,
+        "1",
+        "envelopes agree within this share of their period and depth: sampled once a whirl "
+        "(~20 samples an envelope) the extremes read from a parabola jitter ~1e-4, the "
+        "layout ripple adds ~1e-5 m",
+    )
+    env_min_depth: float = _param(
+        0.001,
+        "1",
+        "a modulation needs a depth of at least this share of the mean radius (and 10 "
+        "cycle_tol): less is the whirl with its ripple",
+    )
+    layout_alias: float = _param(
+        0.05,
+        "1",
+        "an envelope frequency within this share of the layout ripple N |Omega - phidot| "
+        "aliased to the own period is the discrete ring, not a modulation",
+    )
+
     def record(self) -> np.void:
         """The record the numba state machine reads (dtype PARAMS; one per distinct set
         of values, made once: the machine only reads it)."""

@@ -1,0 +1,401 @@
+"""What a pure-sliding motion is, from its own section (docs/model.md section 6, "The
+pure-sliding motions"): self-centring, a sliding limit cycle, a modulated cycle, or not
+settled.
+
+It reads the rows of kernel/own_section.py (one per whole turn of the velocity phase psi =
+atan2(ydot, xdot)) of the current sliding regime: the rows after the last one in which the
+body stuck as a whole. Section point p_k = (x, y, xdot / w0, ydot / w0, l phidot / w0) [m]
+(w0 = sqrt(c_s / m_s) the support's own frequency, or omega_m without a spring; l the
+longest arm), d_k = |p_k - p_k-1|, tol_k = max(cycle_tol, atol + rtol |p_k|_inf) (as the
+section evidence), V_k the largest speed |rdot| over step k.
+
+* self_centring: V_k falls by a steady ratio q <= q_max (own_ratios ratios within q_steady
+  of each other), Aitken's limit of V is at most own_rest_zero V_k (it comes to rest), and
+  the mean contact still slips there faster than own_rest_slip eps (a sliding rest state,
+  not sticking). Converged where the travel left, d_k q / (1 - q), is within tol_k.
+* slide_cycle: V keeps moving (Aitken's limit at least own_motion_keep V_k) and the section
+  repeats (repeat_count distances within tol_k) or contracts by a steady ratio q <= q_max
+  (converged where the travel left is within tol_k); or the envelope of the step-mean |r|
+  is steady with a depth below env_min_depth of the mean radius (a whirl with the ripple
+  of its discrete ring) or at the layout ripple's aliased frequency.
+* modulated: env_count whole envelopes of the step-mean |r| (between its upward crossings
+  of its mean) agree in period and depth within env_tol, the depth at least env_min_depth
+  of the mean radius and 10 cycle_tol, and not at the layout's aliased ripple frequency
+  (the layout guard: a ring of N contacts makes |r| ripple at N |Omega - phidot|, which a
+  section taken once a whirl aliases into a slow beat). Or the depths settle geometrically
+  towards a limit that keeps that depth (Aitken), converged where the rest is within tol.
+  An envelope that dies out geometrically is the approach to a whirl: slide_cycle.
+
+Anything else is no evidence: the run stays `slide` (not stick, not settled). Plain numpy
+on at most OWN_RING rows, once per run after it ends: no compile cost for the kernel.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .params import VerdictParams
+
+SELF_CENTRING = "self_centring"
+SLIDE_CYCLE = "slide_cycle"
+MODULATED = "modulated"
+
+
+@dataclasses.dataclass(frozen=True)
+class OwnScene:
+    """What the evidence needs of the scene and its numerics (SI units)."""
+
+    omega0: float  # the support's own frequency sqrt(c_s / m_s), or omega_m [rad/s]
+    arm: float  # longest contact arm [m] (0 for the pin)
+    eps: float  # the friction law's slide->stick threshold [m/s]
+    n_contacts: int
+    cycle_tol: float  # numerics.cycle_tol [m]
+    atol: float
+    rtol: float
+    observe: bool = False  # numerics.evidence observe: no extrapolation
+
+
+@dataclasses.dataclass(frozen=True)
+class MotionEvidence:
+    """A pure-sliding motion and its measures (NaN where a measure does not apply)."""
+
+    motion: str  # SELF_CENTRING, SLIDE_CYCLE, MODULATED, or "" (no evidence)
+    converged: bool
+    reason: str
+    own_period: float = math.nan  # mean duration of the newest own steps [s]
+    mean_radius: float = math.nan  # time mean of |r| over the newest own step (modulated:
+    # over the envelopes) [m]
+    amplitude: float = math.nan  # (max |r| - min |r|) / 2 over the newest own step [m]
+    spin_rate: float = math.nan  # mean phidot over the newest own step [rad/s] (NaN: pin)
+    floquet_ratio: float = math.nan  # contraction of the own section per own period [1]
+    decay_rate: float = math.nan  # -ln(ratio) / own period [1/s]
+    r_eq_x: float = math.nan  # the rest point (self-centring) [m]
+    r_eq_y: float = math.nan
+    r_eq: float = math.nan  # its radius [m]
+    r_eq_angle: float = math.nan  # its angle from +x, counter-clockwise [rad]
+    envelope_period: float = math.nan  # the modulation's period [s]
+    envelope_depth: float = math.nan  # half its range of the step-mean |r| [m]
+
+
+def sliding_rows(rows: np.ndarray) -> np.ndarray:
+    """The rows of the current sliding regime: those after the newest locked row."""
+    locked = np.flatnonzero(rows["locked"])
+    return rows[locked[-1] + 1 :] if locked.size else rows
+
+
+def section_points(rows: np.ndarray, scene: OwnScene) -> np.ndarray:
+    """(k, 5) section points in metres (module docstring)."""
+    w0 = scene.omega0
+    return np.column_stack(
+        (rows["x"], rows["y"], rows["xd"] / w0, rows["yd"] / w0, scene.arm * rows["phid"] / w0)
+    )
+
+
+def aitken(values: np.ndarray) -> float:
+    """Aitken's limit of the newest three values (NaN where their steps do not shrink)."""
+    a, b, c = (float(v) for v in values[-3:])
+    denominator = (c - b) - (b - a)
+    if denominator == 0.0 or abs(c - b) >= abs(b - a):
+        return math.nan
+    return c - (c - b) ** 2 / denominator
+
+
+def steady_ratio(values: np.ndarray, count: int, vp: VerdictParams) -> float:
+    """The ratio of successive values where the newest `count` ratios are all <= q_max and
+    within q_steady of each other; NaN otherwise."""
+    if values.shape[0] < count + 1 or np.any(values[-count - 1 : -1] <= 0.0):
+        return math.nan
+    ratios = values[-count:] / values[-count - 1 : -1]
+    if np.max(ratios) > vp.q_max or np.ptp(ratios) > vp.q_steady:
+        return math.nan
+    return float(ratios[-1])
+
+
+def _measures(rows: np.ndarray, scene: OwnScene) -> dict[str, float]:
+    last = rows[-1]
+    newest = rows[-min(rows.shape[0], 4) :]
+    spin = float(last["spin"] / last["dt"]) if scene.arm > 0.0 else math.nan
+    return {
+        "own_period": float(np.mean(newest["dt"])),
+        "mean_radius": float(last["r_mean"]),
+        "amplitude": 0.5 * float(last["r_max"] - last["r_min"]),
+        "spin_rate": spin,
+    }
+
+
+def _tolerance(point: np.ndarray, scene: OwnScene) -> float:
+    return max(scene.cycle_tol, scene.atol + scene.rtol * float(np.max(np.abs(point))))
+
+
+def _rest(rows, pts, dist, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None:
+    """self_centring, where the evidence holds (module docstring)."""
+    speed = rows["v_max"]
+    q = steady_ratio(speed, vp.own_ratios, vp)
+    if math.isnan(q):
+        return None
+    limit = aitken(speed)
+    newest = float(speed[-1])
+    if math.isnan(limit) or abs(limit) > vp.own_rest_zero * newest:
+        return None
+    last = rows[-1]
+    slip_rate = float(last["slip"] / last["dt"])
+    if slip_rate <= vp.own_rest_slip * scene.eps:
+        return None
+    tail = float(dist[-1]) * q / (1.0 - q)
+    rest = pts[-1, :2] + (pts[-1, :2] - pts[-2, :2]) * q / (1.0 - q)
+    tol = _tolerance(pts[-1], scene)
+    shown = bool(np.all(dist[-vp.repeat_count :] <= tol))
+    converged = shown if scene.observe else tail <= tol
+    measures = _measures(rows, scene)
+    rate = -math.log(q) / measures["own_period"]
+    radius = float(np.hypot(*rest))
+    return MotionEvidence(
+        SELF_CENTRING,
+        converged,
+        f"self-centres: its largest speed per own period ({measures['own_period']:.4g} s) "
+        f"falls by {q:.4g} (rate {rate:.4g} 1/s) to rest at |r| = {radius:.6g} m, where it "
+        f"still slips at {slip_rate:.3g} m/s; travel left {tail:.3g} m (tolerance {tol:.3g} m)",
+        floquet_ratio=q,
+        decay_rate=rate,
+        r_eq_x=float(rest[0]),
+        r_eq_y=float(rest[1]),
+        r_eq=radius,
+        r_eq_angle=math.atan2(float(rest[1]), float(rest[0])),
+        **measures,
+    )
+
+
+def _cycle(rows, pts, dist, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None:
+    """slide_cycle from a repeating or contracting section (module docstring)."""
+    speed = rows["v_max"]
+    limit = aitken(speed)
+    moving = math.isnan(limit) or limit >= vp.own_motion_keep * float(speed[-1])
+    if not moving or float(speed[-1]) <= 0.0:
+        return None
+    tol = _tolerance(pts[-1], scene)
+    measures = _measures(rows, scene)
+    if dist.shape[0] >= vp.repeat_count and np.all(dist[-vp.repeat_count :] <= tol):
+        how = f"its own section repeats within {float(np.max(dist[-vp.repeat_count :])):.3g} m"
+        return MotionEvidence(SLIDE_CYCLE, True, _cycle_reason(how, measures), **measures)
+    q = steady_ratio(dist, vp.own_ratios, vp)
+    if math.isnan(q) or scene.observe:
+        return None
+    tail = float(dist[-1]) * q / (1.0 - q)
+    rate = -math.log(q) / measures["own_period"]
+    how = (
+        f"its own section contracts by {q:.4g} per own period (Floquet rate {rate:.4g} 1/s), "
+        f"travel left {tail:.3g} m (tolerance {tol:.3g} m)"
+    )
+    return MotionEvidence(
+        SLIDE_CYCLE,
+        tail <= tol,
+        _cycle_reason(how, measures),
+        floquet_ratio=q,
+        decay_rate=rate,
+        **measures,
+    )
+
+
+def _cycle_reason(how: str, measures: dict[str, float]) -> str:
+    return (
+        f"a pure-sliding limit cycle: {how}; own period {measures['own_period']:.6g} s, mean "
+        f"radius {measures['mean_radius']:.6g} m, amplitude {measures['amplitude']:.4g} m"
+    )
+
+
+@dataclasses.dataclass(frozen=True)
+class Envelopes:
+    """The whole envelopes of the step-mean |r| (oldest first)."""
+
+    periods: np.ndarray  # [s]
+    depths: np.ndarray  # half the range of the step-mean |r| over each [m]
+    level: float  # the level whose upward crossings bound them [m]
+    bounds: np.ndarray  # row index where each envelope starts, and where the last ends
+
+    def mean(self, rows: np.ndarray, count: int) -> float:
+        """Time mean of |r| over the newest `count` envelopes [m]."""
+        part = rows[self.bounds[-count - 1] : self.bounds[-1]]
+        return float(np.sum(part["r_mean"] * part["dt"]) / np.sum(part["dt"]))
+
+
+def _peak(values: np.ndarray, i: int) -> float:
+    """The vertex of the parabola through values[i - 1 : i + 2] (sampled once a whirl)."""
+    if i <= 0 or i >= values.shape[0] - 1:
+        return float(values[i])
+    a, b, c = (float(v) for v in values[i - 1 : i + 2])
+    curvature = a - 2.0 * b + c
+    return b if curvature == 0.0 else b - (c - a) ** 2 / (8.0 * curvature)
+
+
+def envelopes(rows: np.ndarray) -> Envelopes | None:
+    """The envelopes between upward crossings of the step-mean |r| through its mean over
+    the newer half of the regime; None with fewer than two crossings."""
+    s = rows["r_mean"]
+    t = rows["t"] - 0.5 * rows["dt"]
+    mean = float(np.mean(s[s.shape[0] // 2 :]))
+    up = np.flatnonzero((s[:-1] < mean) & (s[1:] >= mean)) + 1
+    if up.shape[0] < 2:
+        return None
+    times = t[up - 1] + (mean - s[up - 1]) / (s[up] - s[up - 1]) * (t[up] - t[up - 1])
+    depths = []
+    for a, b in zip(up[:-1], up[1:], strict=True):
+        part = s[a - 1 : b + 1]
+        top = _peak(part, int(np.argmax(part)))
+        low = -_peak(-part, int(np.argmin(part)))
+        depths.append(0.5 * (top - low))
+    return Envelopes(np.diff(times), np.array(depths), mean, up)
+
+
+def _aliased_ripple(rows: np.ndarray, scene: OwnScene) -> float:
+    """Frequency [Hz] at which the layout ripple N |Omega - phidot| appears in a section
+    taken once a whirl (NaN for the pin)."""
+    if scene.arm <= 0.0 or scene.n_contacts < 2:
+        return math.nan
+    period = float(np.mean(rows["dt"]))
+    spin = float(np.sum(rows["spin"]) / np.sum(rows["dt"]))
+    ripple = scene.n_contacts * abs(2.0 * math.pi / period - spin) / (2.0 * math.pi)
+    sampling = 1.0 / period
+    return abs(ripple - round(ripple / sampling) * sampling)
+
+
+def _band(rows: np.ndarray) -> tuple[float, float]:
+    """(half the range of the step-mean |r|, the median half-range of |r| within a step)."""
+    return 0.5 * float(np.ptp(rows["r_mean"])), float(np.median(rows["r_max"] - rows["r_min"])) / 2
+
+
+def _ripple(rows, pts, dist, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None:
+    """slide_cycle for a disk's whirl whose step-mean |r| stays, over the newest own_window
+    steps, within the ripple of |r| inside one step (its discrete ring's, N |Omega - phidot|;
+    averaged over a step a ripple can only shrink, while a modulation moves the step mean
+    further than |r| moves within a step). Converged where that band is steady: within
+    band_change of the band of the window before."""
+    window = vp.own_window
+    if scene.arm <= 0.0 or scene.n_contacts < 2 or rows.shape[0] < window:
+        return None
+    band, ripple = _band(rows[-window:])
+    if band > ripple:
+        return None
+    converged = False
+    how = f"its step-mean |r| stays within {band:.3g} m, inside the ripple of its ring"
+    if rows.shape[0] >= 2 * window:
+        before, _ = _band(rows[-2 * window : -window])
+        converged = before <= vp.band_change * band and band <= vp.band_change * before
+        how += f" ({ripple:.3g} m within an own period; {before:.3g} m the window before)"
+    measures = _measures(rows, scene)
+    measures["mean_radius"] = float(np.mean(rows["r_mean"][-window:]))
+    return MotionEvidence(SLIDE_CYCLE, converged, _cycle_reason(how, measures), **measures)
+
+
+def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None:
+    """modulated, or slide_cycle for a ripple or a dying envelope (module docstring)."""
+    env = envelopes(rows)
+    if env is None or env.periods.shape[0] < vp.env_count:
+        return None
+    periods = env.periods[-vp.env_count :]
+    depths = env.depths[-vp.env_count :]
+    depth = float(depths[-1])
+    period = float(periods[-1])
+    mean = env.mean(rows, vp.env_count)
+    depth_tol = max(scene.cycle_tol, vp.env_tol * depth)
+    steady_period = np.ptp(periods) <= vp.env_tol * period
+    steady_depth = np.ptp(depths) <= depth_tol
+    deep = depth >= max(vp.env_min_depth * mean, 10.0 * scene.cycle_tol)
+    alias = _aliased_ripple(rows[-max(8, int(period / rows["dt"][-1])) :], scene)
+    layout = not math.isnan(alias) and abs(1.0 / period - alias) <= vp.layout_alias / period
+    measures = _measures(rows, scene)
+    shape = f"envelope period {period:.5g} s, depth {depth:.4g} m about {mean:.5g} m"
+    if steady_period and steady_depth and (not deep or layout):
+        why = "the layout ripple of the discrete ring" if layout else "a ripple"
+        return MotionEvidence(
+            SLIDE_CYCLE,
+            True,
+            _cycle_reason(f"its step-mean |r| only shows {why} ({shape})", measures),
+            envelope_period=period,
+            envelope_depth=depth,
+            **measures,
+        )
+    if not deep or layout:
+        return None
+    measures["mean_radius"] = mean  # of the cycle, not of the newest whirl
+    if steady_period and steady_depth:
+        return MotionEvidence(
+            MODULATED,
+            True,
+            f"a modulated cycle: {vp.env_count} envelopes agree within {vp.env_tol:.3g} of "
+            f"their period and depth ({shape}; own period {measures['own_period']:.5g} s)",
+            envelope_period=period,
+            envelope_depth=depth,
+            **measures,
+        )
+    return _settling_envelope(env, depth_tol, measures, scene, vp)
+
+
+def _settling_envelope(env: Envelopes, tol, measures, scene, vp) -> MotionEvidence | None:
+    """Envelope depths that settle geometrically: towards a depth (modulated) or to none
+    (the approach to a whirl, slide_cycle); None otherwise or under evidence observe."""
+    depths = env.depths
+    if depths.shape[0] < 3 or scene.observe:
+        return None
+    limit = aitken(depths)
+    if math.isnan(limit):
+        return None
+    rest = abs(float(depths[-1]) - limit)
+    period = float(env.periods[-1])
+    if limit <= vp.own_rest_zero * float(depths[-1]):
+        ratio = float(depths[-1] / depths[-2])
+        return MotionEvidence(
+            SLIDE_CYCLE,
+            float(depths[-1]) <= tol,
+            _cycle_reason(
+                f"its envelope dies out by {ratio:.3g} per envelope of {period:.5g} s", measures
+            ),
+            floquet_ratio=ratio,
+            decay_rate=-math.log(ratio) / period,
+            **measures,
+        )
+    if limit < max(vp.env_min_depth * measures["mean_radius"], 10.0 * scene.cycle_tol):
+        return None
+    return MotionEvidence(
+        MODULATED,
+        rest <= tol,
+        f"a modulated cycle: its envelope depth settles towards {limit:.4g} m (newest "
+        f"{float(depths[-1]):.4g} m, envelope period {period:.5g} s)",
+        envelope_period=period,
+        envelope_depth=limit,
+        **measures,
+    )
+
+
+def judge(rows: np.ndarray | None, scene: OwnScene, vp: VerdictParams) -> MotionEvidence:
+    """The pure-sliding motion shown by the own-section rows (module docstring)."""
+    if rows is None:
+        return MotionEvidence("", False, "no own section (this integrator keeps none)")
+    regime = sliding_rows(rows)
+    need = max(vp.own_slide_steps, vp.own_ratios + 1, 3)
+    if regime.shape[0] < need:
+        return MotionEvidence(
+            "",
+            False,
+            f"{regime.shape[0]} own periods of sliding ({need} needed to read its own section)",
+        )
+    pts = section_points(regime, scene)
+    dist = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    for rule in (_rest, _cycle, _ripple):
+        found = rule(regime, pts, dist, scene, vp)
+        if found is not None:
+            return found
+    found = _envelope(regime, scene, vp)
+    if found is not None:
+        return found
+    m = _measures(regime, scene)
+    return MotionEvidence(
+        "",
+        False,
+        f"its own section neither comes to rest, repeats, contracts steadily nor shows "
+        f"steady envelopes over {regime.shape[0]} own periods (newest {m['own_period']:.4g} s, "
+        f"mean radius {m['mean_radius']:.4g} m, newest step {float(dist[-1]):.3g} m)",
+        **m,
+    )
