@@ -383,13 +383,13 @@ def test_both_tasks():
     data = {**find_jump(), "scan": {"mu": [0.1]}}
     assert problems(data) == [
         "(top level): find_jump and scan given: give exactly one task "
-        "(find_jump, scan, trajectory, basin, trace)"
+        "(find_jump, scan, trajectory, basin, trace, map)"
     ]
 
 
 def test_no_task():
     assert problems({"name": "t", "scene": "pin"}) == [
-        "(top level): no task: give exactly one of find_jump, scan, trajectory, basin, trace"
+        "(top level): no task: give exactly one of find_jump, scan, trajectory, basin, trace, map"
     ]
 
 

@@ -1,0 +1,61 @@
+"""The map's refinement (frictiondisk/tasks/map/cells.py): a boundary between motions is
+resolved to the grid step as a dense map shows it, with fewer runs, whatever the order the
+motions come back in; an undetermined cell is refined around."""
+
+from __future__ import annotations
+
+import itertools
+import random
+
+from frictiondisk.tasks.map.cells import CellRefinement
+
+
+def motion_of(cell):
+    """A plane with a curved boundary between two motions and a third in a corner."""
+    i, j = cell
+    if i > 25 and j > 25:
+        return "modulated"
+    return "stick" if (i - 8) ** 2 + 0.5 * (j - 12) ** 2 < 90 else "slide_cycle"
+
+
+def refined_map(shape, strides, seed=None, motion=motion_of):
+    cells = CellRefinement(shape, strides)
+    rng = random.Random(seed)
+    while cells.waiting:
+        waiting = sorted(cells.waiting)
+        if seed is not None:
+            rng.shuffle(waiting)
+        for cell in waiting:
+            cells.settle(cell, motion(cell))
+        cells.refine()
+    found = {**cells.inferred(), **cells.motions}
+    return found, len(cells.motions)
+
+
+def test_the_refined_map_equals_the_dense_map_with_fewer_runs():
+    shape = (33, 31)
+    found, runs = refined_map(shape, (8, 6))
+    dense = {c: motion_of(c) for c in itertools.product(*(range(n) for n in shape))}
+    assert found == dense
+    assert runs < 0.5 * len(dense)
+
+
+def test_the_map_does_not_depend_on_the_order_motions_arrive_in():
+    reference = refined_map((20, 17), (5, 4))
+    for seed in range(3):
+        assert refined_map((20, 17), (5, 4), seed) == reference
+
+
+def test_an_undetermined_cell_is_refined_around_never_inferred_over():
+    def motion(cell):
+        return "undetermined" if cell == (8, 8) else "stick"
+
+    cells = CellRefinement((9, 9), (8, 8))
+    while cells.waiting:
+        for cell in sorted(cells.waiting):
+            cells.settle(cell, motion(cell))
+        cells.refine()
+    assert cells.motions[(8, 8)] == "undetermined"
+    # the blocks around it were split to the grid step: its neighbours ran
+    assert {(7, 7), (7, 8), (8, 7)} <= cells.motions.keys()
+    assert set(cells.inferred().values()) == {"stick"}
