@@ -20,6 +20,7 @@ from frictiondisk.store.campaign_datasets import (
 )
 from frictiondisk.store.measures import num
 from frictiondisk.store.partial import PENDING, PENDING_REASON
+from frictiondisk.tasks.find_jump.coexistence import with_coexistence
 from frictiondisk.tasks.find_jump.jump_datasets import all_jumps
 from frictiondisk.tasks.jump_search.jump_result import RUN_ROLES, run_role
 from frictiondisk.tasks.jump_search.requests import run_config
@@ -198,7 +199,19 @@ def _jump_results(snapshot) -> xr.Dataset:
             )
         )
         ds.attrs["prescan_mode"] = task.prescan.mode
+    if not task.sides.is_default:
+        ds = _between(ds, task.sides, task.tol)
     return ds
+
+
+def _between(ds: xr.Dataset, sides, tol: float) -> xr.Dataset:
+    """A boundary other than the stick jump: its sides named in the attributes and long
+    names, and where the two motions coexist (coexistence.py)."""
+    ds.attrs["between"] = f"[{sides.low}, {sides.high}]: {sides.low} below mu*, {sides.high} above"
+    ds["mu_star"].attrs["long_name"] = f"boundary {sides.label()} in mu (bracket midpoint)"
+    ds["mu_lo"].attrs["long_name"] = f"largest mu found {sides.low} (side A)"
+    ds["mu_hi"].attrs["long_name"] = f"smallest mu found {sides.high} (side B)"
+    return with_coexistence(ds, sides.label(), tol)
 
 
 def runs_dataset(snapshot, key_of) -> xr.Dataset:

@@ -221,8 +221,9 @@ class JumpPlanner(Planner):
                 self.task.split,
                 self.task.certify,
                 self.task.root_finder,
-                stride_of(prescan, self.points[i].config.numerics.stick_rule),
+                stride_of(prescan, self.points[i].config.numerics.stick_rule, self.task.sides),
                 prescan.persist,
+                self.task.sides,
             )
             return
         bracket = self._predicted_bracket(i)
@@ -236,6 +237,7 @@ class JumpPlanner(Planner):
             certify=self.task.certify,
             root_finder=self.task.root_finder,
             guided=bracket is None,  # cold: open with the stick end and its reserve
+            between=self.task.sides,
         )
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:

@@ -29,6 +29,12 @@ from frictiondisk.model.axes import (
 )
 from frictiondisk.model.schema import Spec, field, joined, rule, within
 from frictiondisk.model.search_settings import DEFAULT_MAX_RETRIES, Certify
+from frictiondisk.tasks.jump_search.sides import (
+    DEFAULT_BETWEEN,
+    Between,
+    BetweenPair,
+    between_must,
+)
 from frictiondisk.tasks.spec import TaskSpec
 
 MAX_SPLIT = 64
@@ -98,7 +104,7 @@ class FindJump(TaskSpec):
 
     kind: ClassVar[str] = "find_jump"
     # only when not the default in the canonical form: older campaigns keep their hash
-    OMIT_DEFAULT: ClassVar[tuple[str, ...]] = ("split", "certify", "root_finder")
+    OMIT_DEFAULT: ClassVar[tuple[str, ...]] = ("split", "certify", "root_finder", "between")
 
     parameter: Literal["mu"] = field("mu", None, "the bisected scene key: params.mu")
     bracket: Bracket = field(
@@ -132,6 +138,18 @@ class FindJump(TaskSpec):
     root_finder: Literal["itp", "bisect"] = field(
         DEFAULT_ROOT_FINDER, None, "itp: interpolate on the friction reserve; bisect: halve"
     )
+    between: BetweenPair = field(
+        DEFAULT_BETWEEN,
+        None,
+        "[A, B]: the boundary located, A expected below (bracket lo) and B above (bracket hi); "
+        "each an outcome or a class of outcomes (tasks/jump_search/sides.py)",
+        between_must(),
+    )
+
+    @property
+    def sides(self) -> Between:
+        """The boundary's two sides (`between`)."""
+        return Between(*self.between)
 
     @model_validator(mode="wrap")
     @classmethod
