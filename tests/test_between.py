@@ -140,3 +140,42 @@ find_jump:
         lo, hi = float(ds["coexist_lo"].squeeze()), float(ds["coexist_hi"].squeeze())
         assert "hysteresis" in ds.attrs["coexistence"]
     assert lo == pytest.approx(0.12, abs=1e-3) and hi == pytest.approx(0.15, abs=1e-3)
+
+
+def test_find_jump_bisects_another_scene_key_with_its_units(tmp_path, monkeypatch):
+    """The fake sticks where mu >= 1.2 x_ms: at mu 0.15, stick below x_ms = 0.125 and
+    stick_slip above; a find_jump in params.x_ms between [stick, stick_slip] finds it."""
+    import sys
+
+    sys.path.insert(0, "tests")
+    from fake_simulate import install
+
+    install(monkeypatch)
+    text = """\
+name: in_xms
+scene: pin
+find_jump:
+  parameter: params.x_ms
+  bracket: [0.05, 0.2]
+  tol: 1.0e-4
+  between: [stick, stick_slip]
+  along: {params.mu: [0.15, 0.18]}
+"""
+    run_campaign(campaign_from_text(text), tmp_path, workers=1, progress=False)
+    with (
+        xr.open_dataset(tmp_path / "results.nc") as ds,
+        xr.open_dataset(tmp_path / "runs.nc") as runs,
+    ):
+        assert ds["mu_star"].attrs["units"] == "m" and ds.attrs["parameter"] == "params.x_ms"
+        star = ds["mu_star"].values
+        assert runs["mu"].attrs["units"] == "m"
+    assert np.allclose(star, [0.15 / 1.2, 0.18 / 1.2], atol=1e-4)
+
+
+def test_an_unknown_parameter_is_refused():
+    text = (
+        "name: t\nscene: pin\nfind_jump:\n  parameter: params.bogus\n  bracket: [0.03, 0.4]\n"
+        "  along: {params.x_ms: [0.1]}\n"
+    )
+    with pytest.raises(ConfigError, match="find_jump.parameter"):
+        campaign_from_text(text)

@@ -535,7 +535,11 @@ def test_limits_may_equal_the_bracket():
         ("max_retries", -1, "find_jump.max_retries: -1 is out of range: must be >= 0 and <= 10"),
         ("max_retries", 11, "find_jump.max_retries: 11 is out of range"),
         ("horizon_factor", 1.0, "find_jump.horizon_factor: 1.0 is out of range: must be > 1"),
-        ("parameter", "x_ms", "find_jump.parameter: 'x_ms' is not allowed: must be 'mu'"),
+        (
+            "parameter",
+            "x_ms",
+            "find_jump.parameter: 'x_ms' is not allowed: must be mu or a dotted numeric scene key",
+        ),
     ],
 )
 def test_find_jump_settings(key, value, message):

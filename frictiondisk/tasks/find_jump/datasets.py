@@ -16,6 +16,7 @@ from frictiondisk.store.campaign_datasets import (
     campaign_attrs,
     coords,
     dim_names,
+    key_attrs,
     request_runs_dataset,
 )
 from frictiondisk.store.measures import num
@@ -201,6 +202,36 @@ def _jump_results(snapshot) -> xr.Dataset:
         ds.attrs["prescan_mode"] = task.prescan.mode
     if not task.sides.is_default:
         ds = _between(ds, task.sides, task.tol)
+    if task.parameter != "mu":
+        ds = _parameter(ds, task.parameter_key)
+    return ds
+
+
+# the variables that hold values of the bisected parameter (named after mu in every file)
+PARAMETER_VARS = (
+    "mu_star",
+    "mu_lo",
+    "mu_hi",
+    "scan_mu",
+    "jump_mu_lo",
+    "jump_mu_hi",
+    "jump_mu_star",
+)
+
+
+def _parameter(ds: xr.Dataset, key: str) -> xr.Dataset:
+    """A find_jump that bisects another scene key than mu: its variables keep mu's names
+    (mu_star, mu_lo, ...), with the key's units and a long name that says what they hold."""
+    attrs = key_attrs(key)
+    ds.attrs["parameter"] = key
+    for name in PARAMETER_VARS:
+        if name in ds.variables:
+            var = ds[name]
+            old = str(var.attrs.get("long_name", name))
+            var.attrs.update(
+                units=attrs.get("units", "1"),
+                long_name=f"{old.replace('friction coefficient ', '')} [values of {key}]",
+            )
     return ds
 
 
@@ -221,4 +252,11 @@ def runs_dataset(snapshot, key_of) -> xr.Dataset:
         for i, result in enumerate(snapshot.results)
         for run in result.runs
     ]
-    return request_runs_dataset(snapshot.campaign, snapshot.points, rows, key_of)
+    ds = request_runs_dataset(snapshot.campaign, snapshot.points, rows, key_of)
+    task = snapshot.campaign.task
+    if task.parameter != "mu":  # the column `mu` holds the bisected key's values
+        ds["mu"].attrs.update(
+            units=key_attrs(task.parameter_key).get("units", "1"),
+            long_name=f"value of {task.parameter_key}, the bisected parameter",
+        )
+    return ds

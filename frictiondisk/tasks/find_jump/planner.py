@@ -73,8 +73,9 @@ class JumpPlanner(Planner):
         self._canonicals[(i, request)] = canonical
 
     def config_for(self, i: int, request: RunRequest):
+        task = self.task
         return run_config(
-            self.points[i].config, request, self.task.horizon_factor, self.task.certify
+            self.points[i].config, request, task.horizon_factor, task.certify, task.parameter_key
         )
 
     @property
@@ -132,7 +133,9 @@ class JumpPlanner(Planner):
                 self.chained.add(i)
                 canonical = self.points[i].config.canonical()
                 budget = None if math.isinf(sizing.chain_s) else sizing.chain_s
-                scenes = PointScenes(canonical, self.task.horizon_factor, self.task.certify)
+                scenes = PointScenes(
+                    canonical, self.task.horizon_factor, self.task.certify, self.task.parameter_key
+                )
                 job = RunSearch(self.bisections[i], scenes, budget)
                 out.append((self._new_job("chain", i), job))
             else:

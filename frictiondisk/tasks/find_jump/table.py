@@ -19,6 +19,8 @@ def table_lines(results: xr.Dataset) -> list[str]:
     """The mu* table and the closing lines."""
     lines = [runs_summary(results), uncertain_summary(results)]
     between = [f"boundary between {results.attrs['between']}"] if "between" in results.attrs else []
+    if "parameter" in results.attrs:
+        between.append(f"bisected parameter: {results.attrs['parameter']} (mu* below is its value)")
     tail = [line for line in lines if line] + coexistence_lines(results)
     return between + mu_star_table(results) + tail
 

@@ -94,6 +94,7 @@ class Between:
 
     low: str = NOT_STICK
     high: str = STICK
+    reserve: bool = True  # the friction reserve may guide (a search in mu)
 
     def __post_init__(self):
         problems = between_problems([self.low, self.high])
@@ -106,8 +107,8 @@ class Between:
 
     @property
     def uses_reserve(self) -> bool:
-        """The friction reserve guides the search (the stick / not-stick jump only)."""
-        return self.is_default
+        """The friction reserve guides the search (the stick / not-stick jump in mu only)."""
+        return self.is_default and self.reserve
 
     def side(self, outcome: str) -> str | None:
         """HIGH, LOW, or None (undetermined, or a motion on neither side)."""
