@@ -24,6 +24,7 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.model.search_settings import CERTIFICATION_FLAGS
+from frictiondisk.verdict import outcomes
 from frictiondisk.version import NUMERICS_VERSION, __version__
 
 CONVENTIONS = "CF-1.10"
@@ -31,7 +32,7 @@ REFERENCES = (
     "W. Stamm and A. Fidlin, Radial dynamics of rigid friction disks with alternating "
     "sticking and sliding; model: docs/model.md in the frictiondisk repository"
 )
-OUTCOMES = "stick creep stick_slip slide undetermined"
+OUTCOMES = " ".join(outcomes.OUTCOMES)
 
 Flag = tuple[tuple[int, ...], str]  # (flag_values, flag_meanings)
 

@@ -1,0 +1,29 @@
+"""The outcome names and their class (frictiondisk/verdict/outcomes.py)."""
+
+import pytest
+
+from frictiondisk.store import cf
+from frictiondisk.verdict import outcomes as oc
+
+
+def test_every_outcome_has_one_class_and_only_stick_is_the_stick_side():
+    assert set(oc.OUTCOME_CLASS.values()) == set(oc.CLASSES)
+    assert [o for o in oc.OUTCOMES if oc.is_stick(o)] == ["stick"]
+    assert [o for o in oc.OUTCOMES if not oc.is_stick(o) and not oc.is_not_stick(o)] == [
+        "undetermined"
+    ]
+
+
+def test_the_sliding_motions_refine_not_stick():
+    for name in (*oc.SLIDING_MOTIONS, "slide", "stick_slip", "creep"):
+        assert oc.is_not_stick(name)
+    assert oc.OUTCOMES.index("slide") > max(oc.OUTCOMES.index(m) for m in oc.SLIDING_MOTIONS)
+
+
+def test_an_unknown_name_is_refused_not_guessed():
+    with pytest.raises(ValueError, match="unknown outcome 'whirl'"):
+        oc.outcome_class("whirl")
+
+
+def test_the_stored_attribute_lists_the_same_names():
+    assert cf.OUTCOMES.split() == list(oc.OUTCOMES)
