@@ -1,9 +1,9 @@
 """The two sides of a boundary a search locates (`between: [A, B]`): which side of it a run's
 outcome lies on. Pure Python.
 
-A side is a class of outcomes (`stick`; `not_stick`: every decided outcome but stick) or one
-outcome name (frictiondisk.verdict.outcomes.OUTCOMES, read as data: a motion the verdict
-adds is a side at once). The searches (bisection, certify, prescan, jumps, trace) keep
+A side is a class of outcomes (`stick`; `not_stick`: every decided outcome but stick, as
+frictiondisk.verdict.outcomes.outcome_class says) or one outcome name (OUTCOMES, read as
+data: a motion the verdict adds is a side at once). The searches (bisection, certify, prescan, jumps, trace) keep
 their two kinds, HIGH (B, expected above the boundary for a rising jump; `stick` by
 default) and LOW (A). A run whose outcome is on neither side (`undetermined`, or a third
 motion) is undecided for this boundary: retried with a longer horizon like an
@@ -24,7 +24,7 @@ import functools
 
 from frictiondisk.model.axes import pair
 from frictiondisk.model.schema import rule
-from frictiondisk.verdict.outcomes import OUTCOMES
+from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
 
 HIGH = "stick"  # the searches' kind of side B (the stick side of the default jump)
 LOW = "not stick"  # their kind of side A
@@ -38,10 +38,10 @@ DEFAULT_BETWEEN = (NOT_STICK, STICK)
 def side_members() -> dict[str, frozenset[str]]:
     """Every name `between` takes -> the outcomes it stands for: the classes, then each
     decided outcome."""
-    decided = [o for o in OUTCOMES if o != UNDETERMINED]
+    decided = [o for o in OUTCOMES if outcome_class(o) != UNDETERMINED]
     members = {
-        STICK: frozenset({STICK}),
-        NOT_STICK: frozenset(o for o in decided if o != STICK),
+        STICK: frozenset(o for o in decided if outcome_class(o) == STICK),
+        NOT_STICK: frozenset(o for o in decided if outcome_class(o) == NOT_STICK),
     }
     members.update({o: frozenset({o}) for o in decided if o not in members})
     return members
