@@ -179,3 +179,34 @@ def test_an_unknown_parameter_is_refused():
     )
     with pytest.raises(ConfigError, match="find_jump.parameter"):
         campaign_from_text(text)
+
+
+def test_a_trace_between_two_motions_follows_their_boundary(tmp_path, monkeypatch):
+    """The fake's stick_slip | stick boundary is the line mu = 1.2 x_ms; traced between the
+    two motions (on verdicts alone, no friction reserve) every point lies on it within
+    two tol."""
+    import sys
+
+    sys.path.insert(0, "tests")
+    from fake_simulate import install
+
+    install(monkeypatch)
+    text = """\
+name: trace_between
+scene: pin
+trace:
+  key: params.x_ms
+  range: [0.05, 0.15]
+  mu: [0.03, 0.3]
+  tol: 1.0e-3
+  resolution: 0.25
+  first_look: {keys: 2, mu: 8}
+  between: [stick_slip, stick]
+"""
+    run_campaign(campaign_from_text(text), tmp_path, workers=1, progress=False)
+    with xr.open_dataset(tmp_path / "results.nc") as ds:
+        assert ds.attrs["status"] == "converged", ds.attrs["reason"]
+        assert ds.attrs["between"].startswith("[stick_slip, stick]")
+        mu, x_ms = ds["mu_star"].values, ds["x_ms"].values
+    assert mu.size >= 3
+    assert np.all(np.abs(mu - 1.2 * x_ms) <= 2 * 1.0e-3)

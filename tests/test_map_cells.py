@@ -59,3 +59,44 @@ def test_an_undetermined_cell_is_refined_around_never_inferred_over():
     # the blocks around it were split to the grid step: its neighbours ran
     assert {(7, 7), (7, 8), (8, 7)} <= cells.motions.keys()
     assert set(cells.inferred().values()) == {"stick"}
+
+
+def _map_problems(body: str) -> str:
+    import pytest
+
+    from frictiondisk.model.scene import ConfigError
+    from frictiondisk.tasks.campaign import campaign_from_text
+
+    with pytest.raises(ConfigError) as info:
+        campaign_from_text(f"name: m\nscene: pin\nmap:\n{body}")
+    return str(info.value)
+
+
+def test_a_map_file_names_every_problem():
+    text = _map_problems(
+        "  over: {params.omega_m: [1.0, 1.5], params.bogus: [1]}\n  seed: 3\n  mode: fast\n"
+    )
+    assert "map.over.params.bogus" in text
+    assert "map.seed: only used with map.sample" in text
+    assert "map.mode" in text
+    text = _map_problems(
+        "  over: {params.omega_m: [1.0, 1.5], params.x0: [0.0, 0.1]}\n"
+        "  sample: {params.x0: {uniform: [0.0, 0.1]}}\n"
+    )
+    assert "map.samples: missing" in text and "cannot also be sampled" in text
+
+
+def test_a_sampled_map_draws_its_starts_as_a_basin_does():
+    from frictiondisk.tasks.basin.sampling import sample_values
+    from frictiondisk.tasks.campaign import campaign_from_text
+    from frictiondisk.tasks.map.planner import MapPlanner
+
+    campaign = campaign_from_text(
+        "name: m\nscene: pin\nmap:\n  over: {params.omega_m: [1.0, 1.5]}\n"
+        "  sample: {params.x0: {uniform: [0.0, 0.1]}}\n  samples: 3\n  seed: 5\n"
+    )
+    planner = MapPlanner(campaign)
+    assert len(planner.requests()) == 2 * 3
+    point = planner.points[1]
+    drawn = sample_values(campaign.task, point.coords, 2)
+    assert planner.config_for(1, planner.requests()[-1][1]).params.x0 == drawn["params.x0"]
