@@ -100,3 +100,26 @@ def test_a_sampled_map_draws_its_starts_as_a_basin_does():
     point = planner.points[1]
     drawn = sample_values(campaign.task, point.coords, 2)
     assert planner.config_for(1, planner.requests()[-1][1]).params.x0 == drawn["params.x0"]
+
+
+# SimulationResult fields that are no measure of the motion: timing, integration bookkeeping
+# and the energy balance's parts (runs.nc keeps its residual)
+NOT_MEASURES = {"wall_s", "n_rejected", "energy_in", "energy_dissipated", "slip_total"}
+
+
+def test_every_measure_a_run_reports_has_its_units_for_the_map():
+    """The map writes, per cell, every measure of store/measures.py RUN_MEASURES (the one
+    place their units live): a numeric field a verdict adds to SimulationResult appears in
+    the map (and runs.nc) once it is listed there, with no change to the map."""
+    import dataclasses
+
+    from frictiondisk.simulation.result import SimulationResult
+    from frictiondisk.store.measures import RUN_MEASURES
+
+    numeric = {
+        f.name
+        for f in dataclasses.fields(SimulationResult)
+        if f.type in ("float", "int", float, int)
+    }
+    missing = sorted(numeric - NOT_MEASURES - set(RUN_MEASURES))
+    assert not missing, f"give {missing} units and a long name in store/measures.py RUN_MEASURES"
