@@ -546,7 +546,7 @@ def test_axis_label_and_caption_from_attributes(line):
 
 def test_a_dataset_that_is_not_a_campaign_result_is_refused(line):
     with pytest.raises(
-        ValueError, match="expected one of find_jump, scan, trajectory, basin, trace"
+        ValueError, match="expected one of find_jump, scan, trajectory, basin, trace, map"
     ):
         plot_campaign(xr.Dataset(attrs={"task": "orbit"}))
     with pytest.raises(ValueError, match="lacks the variable"):

@@ -383,13 +383,13 @@ def test_both_tasks():
     data = {**find_jump(), "scan": {"mu": [0.1]}}
     assert problems(data) == [
         "(top level): find_jump and scan given: give exactly one task "
-        "(find_jump, scan, trajectory, basin, trace)"
+        "(find_jump, scan, trajectory, basin, trace, map)"
     ]
 
 
 def test_no_task():
     assert problems({"name": "t", "scene": "pin"}) == [
-        "(top level): no task: give exactly one of find_jump, scan, trajectory, basin, trace"
+        "(top level): no task: give exactly one of find_jump, scan, trajectory, basin, trace, map"
     ]
 
 
@@ -535,7 +535,11 @@ def test_limits_may_equal_the_bracket():
         ("max_retries", -1, "find_jump.max_retries: -1 is out of range: must be >= 0 and <= 10"),
         ("max_retries", 11, "find_jump.max_retries: 11 is out of range"),
         ("horizon_factor", 1.0, "find_jump.horizon_factor: 1.0 is out of range: must be > 1"),
-        ("parameter", "x_ms", "find_jump.parameter: 'x_ms' is not allowed: must be 'mu'"),
+        (
+            "parameter",
+            "x_ms",
+            "find_jump.parameter: 'x_ms' is not allowed: must be mu or a dotted numeric scene key",
+        ),
     ],
 )
 def test_find_jump_settings(key, value, message):

@@ -90,7 +90,9 @@ def _check_ran_cleanly(nb) -> None:
     assert _images(nb) >= 1, "the notebook drew no figure"
 
 
-@pytest.mark.parametrize("name", ["01_getting_started.ipynb", "02_paper_figures.ipynb"])
+@pytest.mark.parametrize(
+    "name", ["01_getting_started.ipynb", "02_paper_figures.ipynb", "03_motion_atlas.ipynb"]
+)
 def test_notebook_is_committed_without_outputs(name):
     nb = nbformat.read(NOTEBOOKS / name, as_version=4)
     nbformat.validate(nb)
@@ -120,3 +122,14 @@ def test_paper_figures_runs(tmp_path):
     # FAST mode always runs the demo campaigns: at least a jump line and a scan are drawn.
     assert "drawn: " in text and "demo_line" in text and "demo_scan" in text, text
     assert _images(nb) >= 2
+
+
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
+def test_motion_atlas_runs(tmp_path):
+    nb = run_notebook("03_motion_atlas.ipynb", tmp_path)
+    _check_ran_cleanly(nb)
+    summary = [cell for cell in _code_cells(nb) if "summary" in cell.metadata.get("tags", [])]
+    assert len(summary) == 1, "exactly one cell is tagged 'summary'"
+    text = _text(summary[0])
+    assert "map_pin_omega_mu: start rest" in text and "map_pin_omega_mu_cycle: start given" in text
+    assert _images(nb) >= 2  # the two maps

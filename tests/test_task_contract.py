@@ -15,7 +15,7 @@ A task without a journal (its files are its record: a trajectory) keeps the same
 its own way (test_a_task_without_a_journal_keeps_its_files_as_its_record).
 
 One end-to-end smoke test per task runs the real kernel (test_campaign_run.py,
-test_basin_run.py, test_trace_campaign.py, test_trajectory_campaign.py, and for scan
+test_basin_run.py, test_map_run.py, test_trace_campaign.py, test_trajectory_campaign.py, and for scan
 test_campaign_run.py::test_scan_shows_the_jump_in_size).
 """
 
@@ -86,6 +86,15 @@ trace:
   tol: 1.0e-3
   resolution: 0.25
   first_look: {keys: 2, mu: 8}
+""",
+    "map": """\
+name: contract_map
+scene: pin
+params: {x_ms: 0.1}
+map:
+  over: {params.mu: {start: 0.06, stop: 0.2, num: 8}, params.x0: [-0.1, 0.0, 0.1]}
+  mode: decide
+  stride: 4
 """,
     "trajectory": """\
 name: contract_orbit
@@ -185,6 +194,7 @@ FAULTS = {  # the runs whose worker keeps crashing (none of engine.worker.warm_u
     "scan": lambda p, record: p["x_ms"] == 0.06 and p["mu"] > 0.12,
     "basin": lambda p, record: p["mu"] == 0.16,
     "trace": lambda p, record: 0.11 < p["x_ms"] < 0.13,
+    "map": lambda p, record: p["mu"] > 0.19 and p["x0"] == 0.1,
 }
 
 

@@ -9,6 +9,7 @@ from frictiondisk.tasks.accuracy.entry import AccuracyEntry
 from frictiondisk.tasks.basin.entry import BasinEntry
 from frictiondisk.tasks.entry import TaskEntry
 from frictiondisk.tasks.find_jump.entry import FindJumpEntry
+from frictiondisk.tasks.map.entry import MapEntry
 from frictiondisk.tasks.scan.entry import ScanEntry
 from frictiondisk.tasks.trace.entry import TraceEntry
 from frictiondisk.tasks.trajectory.entry import TrajectoryEntry
@@ -21,6 +22,7 @@ TASKS: dict[str, TaskEntry] = {
         TrajectoryEntry(),
         BasinEntry(),
         TraceEntry(),
+        MapEntry(),
     )
 }
 

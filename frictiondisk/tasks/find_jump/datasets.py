@@ -16,10 +16,12 @@ from frictiondisk.store.campaign_datasets import (
     campaign_attrs,
     coords,
     dim_names,
+    key_attrs,
     request_runs_dataset,
 )
 from frictiondisk.store.measures import num
 from frictiondisk.store.partial import PENDING, PENDING_REASON
+from frictiondisk.tasks.find_jump.coexistence import with_coexistence
 from frictiondisk.tasks.find_jump.jump_datasets import all_jumps
 from frictiondisk.tasks.jump_search.jump_result import RUN_ROLES, run_role
 from frictiondisk.tasks.jump_search.requests import run_config
@@ -198,7 +200,49 @@ def _jump_results(snapshot) -> xr.Dataset:
             )
         )
         ds.attrs["prescan_mode"] = task.prescan.mode
+    if not task.sides.is_default:
+        ds = _between(ds, task.sides, task.tol)
+    if task.parameter != "mu":
+        ds = _parameter(ds, task.parameter_key)
     return ds
+
+
+# the variables that hold values of the bisected parameter (named after mu in every file)
+PARAMETER_VARS = (
+    "mu_star",
+    "mu_lo",
+    "mu_hi",
+    "scan_mu",
+    "jump_mu_lo",
+    "jump_mu_hi",
+    "jump_mu_star",
+)
+
+
+def _parameter(ds: xr.Dataset, key: str) -> xr.Dataset:
+    """A find_jump that bisects another scene key than mu: its variables keep mu's names
+    (mu_star, mu_lo, ...), with the key's units and a long name that says what they hold."""
+    attrs = key_attrs(key)
+    ds.attrs["parameter"] = key
+    for name in PARAMETER_VARS:
+        if name in ds.variables:
+            var = ds[name]
+            old = str(var.attrs.get("long_name", name))
+            var.attrs.update(
+                units=attrs.get("units", "1"),
+                long_name=f"{old.replace('friction coefficient ', '')} [values of {key}]",
+            )
+    return ds
+
+
+def _between(ds: xr.Dataset, sides, tol: float) -> xr.Dataset:
+    """A boundary other than the stick jump: its sides named in the attributes and long
+    names, and where the two motions coexist (coexistence.py)."""
+    ds.attrs["between"] = f"[{sides.low}, {sides.high}]: {sides.low} below mu*, {sides.high} above"
+    ds["mu_star"].attrs["long_name"] = f"boundary {sides.label()} in mu (bracket midpoint)"
+    ds["mu_lo"].attrs["long_name"] = f"largest mu found {sides.low} (side A)"
+    ds["mu_hi"].attrs["long_name"] = f"smallest mu found {sides.high} (side B)"
+    return with_coexistence(ds, sides.label(), tol)
 
 
 def runs_dataset(snapshot, key_of) -> xr.Dataset:
@@ -208,4 +252,11 @@ def runs_dataset(snapshot, key_of) -> xr.Dataset:
         for i, result in enumerate(snapshot.results)
         for run in result.runs
     ]
-    return request_runs_dataset(snapshot.campaign, snapshot.points, rows, key_of)
+    ds = request_runs_dataset(snapshot.campaign, snapshot.points, rows, key_of)
+    task = snapshot.campaign.task
+    if task.parameter != "mu":  # the column `mu` holds the bisected key's values
+        ds["mu"].attrs.update(
+            units=key_attrs(task.parameter_key).get("units", "1"),
+            long_name=f"value of {task.parameter_key}, the bisected parameter",
+        )
+    return ds

@@ -78,8 +78,9 @@ class JumpPlanner(Planner):
         self._canonicals[(i, request)] = canonical
 
     def config_for(self, i: int, request: RunRequest):
+        task = self.task
         return run_config(
-            self.points[i].config, request, self.task.horizon_factor, self.task.certify
+            self.points[i].config, request, task.horizon_factor, task.certify, task.parameter_key
         )
 
     @property
@@ -137,7 +138,9 @@ class JumpPlanner(Planner):
                 self.chained.add(i)
                 canonical = self.points[i].config.canonical()
                 budget = None if math.isinf(sizing.chain_s) else sizing.chain_s
-                scenes = PointScenes(canonical, self.task.horizon_factor, self.task.certify)
+                scenes = PointScenes(
+                    canonical, self.task.horizon_factor, self.task.certify, self.task.parameter_key
+                )
                 job = RunSearch(self.bisections[i], scenes, budget)
                 out.append((self._new_job("chain", i), job))
             else:
@@ -226,8 +229,9 @@ class JumpPlanner(Planner):
                 self.task.split,
                 self.task.certify,
                 self.task.root_finder,
-                stride_of(prescan, self.points[i].config.numerics.stick_rule),
+                stride_of(prescan, self.points[i].config.numerics.stick_rule, self.task.sides),
                 prescan.persist,
+                self.task.sides,
             )
             return
         bracket = self._predicted_bracket(i)
@@ -245,6 +249,7 @@ class JumpPlanner(Planner):
             # a prediction that misses widens x8, x64, ... up to the full bracket, and the
             # ladder waits where a probe elsewhere may make it unnecessary (expanding.py)
             expanding=dataclasses.replace(PREDICTED, full=full) if bracket else COLD,
+            between=self.task.sides,
         )
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:

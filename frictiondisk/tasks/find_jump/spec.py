@@ -29,6 +29,13 @@ from frictiondisk.model.axes import (
 )
 from frictiondisk.model.schema import Spec, field, joined, rule, within
 from frictiondisk.model.search_settings import DEFAULT_MAX_RETRIES, Certify
+from frictiondisk.model.varied import key_problem
+from frictiondisk.tasks.jump_search.sides import (
+    DEFAULT_BETWEEN,
+    Between,
+    BetweenPair,
+    between_must,
+)
 from frictiondisk.tasks.spec import TaskSpec
 
 MAX_SPLIT = 64
@@ -40,6 +47,11 @@ DEFAULT_LANES = 2  # warm-start chains
 DEFAULT_SPLIT = 2  # parts per bisection round: 2 = plain bisection (bisection.Bisection)
 DEFAULT_CERTIFY = Certify()  # horizon x 4, rtol and atol x 0.1 per level, up to level 2
 DEFAULT_ROOT_FINDER = "itp"  # interpolate on the friction reserve (bisection.Bisection)
+
+
+def parameter_key(parameter: str) -> str:
+    """The dotted scene key of a find_jump `parameter` ("mu" is params.mu)."""
+    return "params.mu" if parameter == "mu" else parameter
 
 
 class Prescan(Spec):
@@ -98,9 +110,15 @@ class FindJump(TaskSpec):
 
     kind: ClassVar[str] = "find_jump"
     # only when not the default in the canonical form: older campaigns keep their hash
-    OMIT_DEFAULT: ClassVar[tuple[str, ...]] = ("split", "certify", "root_finder")
+    OMIT_DEFAULT: ClassVar[tuple[str, ...]] = ("split", "certify", "root_finder", "between")
 
-    parameter: Literal["mu"] = field("mu", None, "the bisected scene key: params.mu")
+    parameter: str = field(
+        "mu",
+        None,
+        "the bisected scene key: mu (params.mu), or a dotted numeric scene key such as "
+        "params.J_s (bracket, limits, tol and prescan.mu then hold its values)",
+        "mu or a dotted numeric scene key, e.g. params.J_s",
+    )
     bracket: Bracket = field(
         ...,
         "1",
@@ -132,6 +150,19 @@ class FindJump(TaskSpec):
     root_finder: Literal["itp", "bisect"] = field(
         DEFAULT_ROOT_FINDER, None, "itp: interpolate on the friction reserve; bisect: halve"
     )
+    between: BetweenPair = field(
+        DEFAULT_BETWEEN,
+        None,
+        "[A, B]: the boundary located, A expected below (bracket lo) and B above (bracket hi); "
+        "each an outcome or a class of outcomes (tasks/jump_search/sides.py)",
+        between_must(),
+    )
+
+    @property
+    def sides(self) -> Between:
+        """The boundary's two sides (`between`); the friction reserve guides only a search
+        in mu."""
+        return Between(*self.between, reserve=self.parameter == "mu")
 
     @model_validator(mode="wrap")
     @classmethod
@@ -161,17 +192,36 @@ class FindJump(TaskSpec):
             raise rule(*problems)
         return spec
 
+    @field_validator("parameter")
+    @classmethod
+    def _parameter(cls, parameter: str, info: ValidationInfo) -> str:
+        if parameter in ("mu", "params.mu"):
+            return "mu"
+        text = key_problem(parameter, base_of(info))
+        if text:
+            raise rule(
+                f"{parameter!r} is not allowed: must be mu or a dotted numeric scene key, "
+                f"e.g. params.J_s ({text})"
+            )
+        return parameter
+
     @field_validator("along")
     @classmethod
     def _along(cls, along: Axes, info: ValidationInfo) -> Axes:
-        taken = {"params.mu": "params.mu is the bisected parameter; it cannot also be varied"}
+        key = parameter_key(info.data.get("parameter") or "mu")
+        taken = {key: f"{key} is the bisected parameter; it cannot also be varied"}
         return check_axes(along, base_of(info), (1, 2), taken)
+
+    @property
+    def parameter_key(self) -> str:
+        """The dotted scene key bisected (params.mu unless `parameter` names another)."""
+        return parameter_key(self.parameter)
 
     def axes(self) -> dict[str, tuple[float, ...]]:
         return dict(self.along)
 
     def unfixed_keys(self) -> set[str]:
-        return {"params.mu"}  # the bisected parameter
+        return {self.parameter_key}  # the bisected parameter
 
     def numerics_choice(self, base: Any, given: Any) -> NumericsChoice:
         """numerics auto: chosen from the tol (frictiondisk.model.auto_numerics)."""

@@ -20,13 +20,18 @@ from frictiondisk.store.tables import (
     point_rows,
     reasons,
 )
+from frictiondisk.tasks.find_jump.coexistence import coexistence_lines
 from frictiondisk.tasks.jump_search.jump_result import NO_JUMP, RUN_ROLES
 
 
 def table_lines(results: xr.Dataset) -> list[str]:
     """The mu* table and the closing lines."""
     lines = [runs_summary(results), uncertain_summary(results)]
-    return mu_star_table(results) + [line for line in lines if line]
+    between = [f"boundary between {results.attrs['between']}"] if "between" in results.attrs else []
+    if "parameter" in results.attrs:
+        between.append(f"bisected parameter: {results.attrs['parameter']} (mu* below is its value)")
+    tail = [line for line in lines if line] + coexistence_lines(results)
+    return between + mu_star_table(results) + tail
 
 
 def mu_star_table(results: xr.Dataset) -> list[str]:

@@ -56,6 +56,19 @@ from frictiondisk.tasks.jump_search.runs import (
     RunRecord,
     RunRequest,
 )
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
+
+# the run types are used from here by the searches built on a bisection
+__all__ = [
+    "STICK",
+    "UNDETERMINED",
+    "Bisection",
+    "BisectionResult",
+    "RunRecord",
+    "RunRequest",
+    "cold_run_count",
+    "zero_crossing",
+]
 
 ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
 UNDECIDED_SPAN = 10  # [tol] undecided mu a bracket may straddle: wider is a failure
@@ -73,7 +86,9 @@ def zero_crossing(mu_a: float, signal_a: float, mu_b: float, signal_b: float) ->
 
 
 class Bisection:
-    """Locate the jump between not-stick and stick in mu for one parameter point."""
+    """Locate the jump between not-stick and stick in mu for one parameter point (or, with
+    `between`, the boundary between any two sides: sides.py; "stick" then reads side B,
+    "not stick" side A, and a run on neither side is undecided like an undetermined one)."""
 
     def __init__(
         self,
@@ -86,6 +101,7 @@ class Bisection:
         strict: int = 0,
         root_finder: str = "itp",
         expanding: Expanding = PLAIN,
+        between: Between = NOT_STICK_STICK,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
@@ -95,6 +111,7 @@ class Bisection:
         if root_finder not in ROOT_FINDERS:
             raise ValueError(f"root_finder must be one of {ROOT_FINDERS}, got {root_finder!r}")
         self.root_finder = root_finder
+        self.between = between
         self.split = split
         self.strict = strict  # certification level of every run this bisection asks for
         self.lo = lo
@@ -286,9 +303,10 @@ class Bisection:
             raise ValueError(f"unexpected run {request}")
         self.runs.append(RunRecord(request, result))
         outcome = result["outcome"]
-        if outcome == UNDETERMINED and self._defer(request):
+        side = self.between.side(outcome)
+        if side is None and self._defer(request):
             return
-        if outcome == UNDETERMINED:
+        if side is None:
             # undecided mu inside the bracket are straddled while they span at most
             # UNDECIDED_SPAN tol: the jump's slow approach, bracketed from both sides
             straddle = self.phase == "bisect" and self.split == 2
@@ -305,15 +323,15 @@ class Bisection:
             if request.level >= self.max_retries:
                 self.stalled_at = request.mu
                 self._failure = (
-                    f"undetermined at mu = {request.mu:.10g} after {request.level} retries "
-                    f"with longer horizons: {result.get('reason', '')}"
+                    f"{self.between.undecided_text(outcome)} at mu = {request.mu:.10g} after "
+                    f"{request.level} retries with longer horizons: {result.get('reason', '')}"
                 )
             else:
                 self._level[request.mu] = request.level + 1
             return
-        self._known[request.mu] = STICK if outcome == STICK else "not stick"
+        self._known[request.mu] = side
         self._decided.append((self._issued[request], request.mu))
-        reserve = result.get("reserve")
+        reserve = result.get("reserve") if self.between.uses_reserve else None
         if reserve is not None and math.isfinite(reserve):
             self._signal[request.mu] = float(reserve)
         if self.phase == "check":
@@ -379,7 +397,7 @@ class Bisection:
             self._next_round(phase="bisect")
         elif lo_stick and not hi_stick:
             self._failure = (
-                f"bracket inverted: mu_lo = {self.lo:.10g} gave stick, "
+                f"bracket inverted: mu_lo = {self.lo:.10g} gave {self._outcome_at(self.lo)}, "
                 f"mu_hi = {self.hi:.10g} gave {self._outcome_at(self.hi)}"
             )
         else:  # both ends agree: the jump lies beyond the end that does not hold
@@ -392,7 +410,7 @@ class Bisection:
         if end == self.hi:
             if self.hi >= self.limits[1]:
                 self._failure = (
-                    f"no stick up to the limit: mu_lo = {self.lo:.10g} gave "
+                    f"no {self.between.high} up to the limit: mu_lo = {self.lo:.10g} gave "
                     f"{self._outcome_at(self.lo)}, mu_hi = {self.hi:.10g} (= limit) gave "
                     f"{self._outcome_at(self.hi)}"
                 )
@@ -401,8 +419,9 @@ class Bisection:
                 self._next_round(self.hi, self._guided_end(self.hi, far))
         elif self.lo <= self.limits[0]:
             self._failure = (
-                f"stick down to the limit: mu_lo = {self.lo:.10g} (= limit) gave stick, "
-                f"mu_hi = {self.hi:.10g} gave {self._outcome_at(self.hi)}"
+                f"{self.between.high} down to the limit: mu_lo = {self.lo:.10g} (= limit) "
+                f"gave {self._outcome_at(self.lo)}, mu_hi = {self.hi:.10g} gave "
+                f"{self._outcome_at(self.hi)}"
             )
         else:
             far = widened_end(self.lo, width, False, self.expanding, self.limits)

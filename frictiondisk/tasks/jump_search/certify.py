@@ -41,6 +41,7 @@ from frictiondisk.tasks.jump_search.bisection import (
 )
 from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
 from frictiondisk.verdict.deciding_rule import EXTRAPOLATED
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
@@ -68,8 +69,10 @@ class CertifiedBisection:
         guided: bool = False,
         outer: tuple[float, float] | None = None,
         expanding: Expanding = PLAIN,
+        between: Between = NOT_STICK_STICK,
     ):
         self.tol = tol
+        self.between = between  # the two sides of the boundary (sides.py)
         self.limits = limits
         # where a re-search at stricter numerics may look: a jump that leaves its prescan
         # cell (the cell's end flips too) is followed into the next cells, not lost
@@ -91,10 +94,13 @@ class CertifiedBisection:
             split,
             root_finder=root_finder,
             expanding=expanding,
+            between=between,
         )
         self.searches: list[Bisection] = [self.search]
         # the guided opening (module docstring): the stick end, then the reserve's zero
-        self._opening = guided and rising and split == 2 and root_finder == "itp"
+        self._opening = (
+            guided and rising and split == 2 and root_finder == "itp" and between.uses_reserve
+        )
         self._opened: list[RunRecord] = []  # its runs
         self._checks: dict[float, RunRecord] = {}  # mu -> decided strict run of this check
         self._check_level: dict[float, int] = {}  # mu -> retry level to ask for next
@@ -163,7 +169,7 @@ class CertifiedBisection:
             raise ValueError(f"unexpected run {request}")
         record = RunRecord(request, result)
         self._check_runs.append(record)
-        if result["outcome"] == UNDETERMINED:
+        if self.between.side(result["outcome"]) is None:
             if request.level < self.max_retries:
                 self._check_level[request.mu] = request.level + 1
                 return
@@ -206,6 +212,7 @@ class CertifiedBisection:
             self.split,
             root_finder=self.root_finder,
             expanding=self.expanding,
+            between=self.between,
         )
         self.searches = [self.search]
         for run in ends:
@@ -238,10 +245,10 @@ class CertifiedBisection:
     def _after_check(self) -> None:
         lo, hi = self.search.lo, self.search.hi
         runs = (self._checks[lo], self._checks[hi])
-        if any(run.outcome == UNDETERMINED for run in runs):
+        if any(self.between.side(run.outcome) is None for run in runs):
             self._finish("uncertain")
             return
-        lo_stick, hi_stick = (run.outcome == STICK for run in runs)
+        lo_stick, hi_stick = (self.between.is_high(run.outcome) for run in runs)
         want_lo, want_hi = (False, True) if self.rising else (True, False)
         lo_holds, hi_holds = lo_stick == want_lo, hi_stick == want_hi
         if lo_holds and hi_holds:
@@ -279,6 +286,7 @@ class CertifiedBisection:
             self.split,
             strict,
             self.root_finder,
+            self.between,
         )
         self.search = search
         self.searches.append(search)

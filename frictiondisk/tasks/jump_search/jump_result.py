@@ -8,14 +8,9 @@ import dataclasses
 import math
 from typing import Any
 
-from frictiondisk.tasks.jump_search.bisection import (
-    STICK,
-    UNDETERMINED,
-    BisectionResult,
-    RunRecord,
-    RunRequest,
-)
+from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.certify import point_certification
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 RUN_ROLES = ("search", "prescan", "certification")
 # a point's status: "converged" (a headline), NO_JUMP (no value of the whole grid sticks,
@@ -77,6 +72,7 @@ class JumpSearchState:
     runs: tuple[RunRecord, ...]  # every run, in the search's schedule order
     prescan_runs: tuple[RunRecord, ...]  # every prescan run, retries included, in order
     roles: dict[RunRequest, str]  # the role of every run
+    between: Between = NOT_STICK_STICK  # the boundary's sides ("stick" reads side B)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -171,8 +167,8 @@ def _grid_below(state: JumpSearchState, top: float) -> GridBelow:
     decided = {}
     for source in (state.last_scan, state.checks):
         for mu, run in source.items():
-            if run.outcome != UNDETERMINED:
-                decided[mu] = run.outcome == STICK
+            if state.between.side(run.outcome) is not None:
+                decided[mu] = state.between.is_high(run.outcome)
     below = [mu for mu in state.mus if mu < top]
     end = top if math.isfinite(top) else state.mus[-1]
     seen = sorted(mu for mu in decided if mu < top) + [end]
@@ -219,18 +215,20 @@ def compose_result(state: JumpSearchState) -> JumpSearchResult:
     unresolved = [j for j in jumps if j.status != "converged" and above_headline(j, head)]
     problems, undecided_note = _problems(state, jumps, scan, vanished, unresolved)
     no_jump = not jumps and not problems and state.never_sticks
+    high, low = state.between.high, state.between.low.replace("_", " ")
     if not jumps and not problems and not no_jump:
         problems.append(
             f"no jump: every prescan value from mu = {state.mus[0]:.6g} to "
-            f"{state.mus[-1]:.6g} gave stick (the jump lies below the prescan)"
+            f"{state.mus[-1]:.6g} gave {high} (the jump lies below the prescan)"
         )
     if no_jump:
         # an answer, not a failure: mu* lies above the grid, as far as the grid can tell
         grid = _grid_below(state, math.inf)
         status = NO_JUMP
+        sticks = "sticks" if state.between.is_default else f"gives {high}"
         reason = (
             f"no jump: no value from mu = {state.mus[0]:.6g} to {state.mus[-1]:.6g} "
-            f"sticks; {grid.decided} of {grid.total} grid values decided not stick "
+            f"{sticks}; {grid.decided} of {grid.total} grid values decided {low} "
             f"(resolution {grid.resolution:.3g})"
         )
     elif problems:
@@ -264,7 +262,7 @@ def _problems(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str],
     undetermined = [
         r.request.mu
         for r in scan
-        if r.outcome == UNDETERMINED
+        if state.between.side(r.outcome) is None
         and not any(j.status == "converged" and j.mu_lo < r.request.mu < j.mu_hi for j in jumps)
     ]
     problems = [state.failure] if state.failure else []
@@ -276,7 +274,8 @@ def _problems(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str],
     undecided_note = ""
     if undetermined:
         mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
-        undecided_note = f"prescan undetermined at mu = {mus} after every retry"
+        what = "undetermined" if state.between.is_default else "on neither side"
+        undecided_note = f"prescan {what} at mu = {mus} after every retry"
         if not jumps:
             problems.append(undecided_note)
     problems += [
@@ -304,7 +303,8 @@ def _converged_reason(state, jumps, unresolved, windows, grid, scan, vanished: i
     for j in unresolved:
         reason += f"; above mu*, a change in [{j.mu_lo:.6g}, {j.mu_hi:.6g}] failed: {j.reason}"
     if windows:
-        reason += "; sticking windows " + ", ".join(
+        sticking = "sticking" if state.between.is_default else state.between.high
+        reason += f"; {sticking} windows " + ", ".join(
             f"[{w.lo:.6g}, {w.hi:.6g}]" + (" (narrow)" if w.narrow else "") for w in windows
         )
     if grid is not None:

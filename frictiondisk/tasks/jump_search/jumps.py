@@ -38,7 +38,7 @@ from __future__ import annotations
 from typing import Any
 
 from frictiondisk.model.search_settings import OFF, Certify
-from frictiondisk.tasks.jump_search.bisection import STICK, UNDETERMINED, RunRecord, RunRequest
+from frictiondisk.tasks.jump_search.bisection import RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
 from frictiondisk.tasks.jump_search.jump_result import (
     RUN_ROLES,
@@ -48,6 +48,7 @@ from frictiondisk.tasks.jump_search.jump_result import (
     run_role,
 )
 from frictiondisk.tasks.jump_search.prescan import AdaptiveGrid
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 __all__ = ["RUN_ROLES", "JumpSearch", "JumpSearchResult", "run_role"]
 
@@ -68,6 +69,7 @@ class JumpSearch:
         root_finder: str = "itp",
         stride: int = 1,
         persist: float = 3.0,
+        between: Between = NOT_STICK_STICK,
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -81,10 +83,12 @@ class JumpSearch:
         )
         self.root_finder = root_finder  # how each jump's bisection picks its runs
         self.persist = persist  # [tol] a headline sticks this far above its bracket
+        # the boundary's two sides (sides.py): "stick" below reads side B, "not stick" A
+        self.between = between
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}  # mu -> retry level to ask for next
-        self._grid = AdaptiveGrid(self.mus, stride)  # which prescan values to run
+        self._grid = AdaptiveGrid(self.mus, stride, between)  # which prescan values to run
         self._index = {mu: k for k, mu in enumerate(self.mus)}
         self.bisections: list[CertifiedBisection] = []
         self._covered: set[tuple[float, float]] = set()  # pairs a bisection was started on
@@ -161,7 +165,8 @@ class JumpSearch:
 
     def _settled(self, request: RunRequest, result: dict[str, Any]) -> bool:
         """Determined, or undetermined after every retry; else the next retry is due."""
-        if result["outcome"] != UNDETERMINED or request.level >= self.max_retries:
+        decided = self.between.side(result["outcome"]) is not None
+        if decided or request.level >= self.max_retries:
             return True
         self._level[request.mu] = request.level + 1
         return False
@@ -202,14 +207,15 @@ class JumpSearch:
         persistence and fill runs, and the ends of the brackets the bisections converged to
         before certification; increasing in mu. (A certified bracket may have moved at
         stricter numerics; the changes between these values are all at one level.)"""
-        return sorted((mu, run["outcome"] == STICK) for mu, run in self._decided().items())
+        high = self.between.is_high
+        return sorted((mu, high(run["outcome"])) for mu, run in self._decided().items())
 
     def _decided(self) -> dict[float, dict[str, Any]]:
         """mu -> the decided run behind it (known)."""
         found: dict[float, dict[str, Any]] = {}
         for source in (self._last_scan(), self._checks):
             for mu, run in source.items():
-                if run.outcome != UNDETERMINED:
+                if self.between.side(run.outcome) is not None:
                     found[mu] = run.result
         for base in self._base_brackets():
             for mu, which in ((base.mu_lo, "lo"), (base.mu_hi, "hi")):
@@ -250,6 +256,7 @@ class JumpSearch:
             self.certify,
             self.root_finder,
             outer=(self.mus[0], self.mus[-1]),
+            between=self.between,
         )
         # its end checks are runs already made: fed, not run again
         decided = self._decided()
@@ -348,8 +355,8 @@ class JumpSearch:
         scan = self._last_scan().values()
         return (
             bool(scan)
-            and all(run.outcome not in (STICK, UNDETERMINED) for run in scan)
-            and all(run.outcome != STICK for run in self._checks.values())
+            and all(self.between.is_low(run.outcome) for run in scan)
+            and all(not self.between.is_high(run.outcome) for run in self._checks.values())
         )
 
     # ---- the answer -------------------------------------------------------------------
@@ -381,6 +388,7 @@ class JumpSearch:
             runs=runs,
             prescan_runs=tuple(sorted(self._scan_runs, key=self._order)),
             roles={run.request: self.role(run.request) for run in runs},
+            between=self.between,
         )
 
     def _last_scan(self) -> dict[float, RunRecord]:

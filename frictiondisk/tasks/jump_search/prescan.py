@@ -33,42 +33,54 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from frictiondisk.tasks.jump_search.bisection import STICK, UNDETERMINED, zero_crossing
+from frictiondisk.tasks.jump_search.bisection import zero_crossing
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 
-def default_stride(n_values: int, mode: str, stick_rule: str) -> int:
+def default_stride(
+    n_values: int, mode: str, stick_rule: str, between: Between = NOT_STICK_STICK
+) -> int:
     """The coarse stride a prescan of n_values gets unless its campaign sets one: about
     sqrt(n), so the coarse grid and one change's refinement stay small together. 1
     (dense) for a `converge` prescan, whose every value is data (size versus mu), for
     `stick_rule: contacts`, whose sticking islands the reserve does not show (a dense
-    disk_xms_at_rest line has one that an adaptive prescan misses), and below 6 values."""
-    if mode == "converge" or stick_rule == "contacts" or n_values < 6:
+    disk_xms_at_rest line has one that an adaptive prescan misses), for any boundary but
+    the stick / not-stick jump (no friction reserve vouches for an interval), and below 6
+    values."""
+    dense = mode == "converge" or stick_rule == "contacts" or not between.uses_reserve
+    if dense or n_values < 6:
         return 1
     return round(math.sqrt(n_values))
 
 
-def stride_of(prescan, stick_rule: str) -> int:
+def stride_of(prescan, stick_rule: str, between: Between = NOT_STICK_STICK) -> int:
     """The stride a point with this stick rule runs its campaign's `prescan` with: the
     campaign's own, else `default_stride`."""
     if prescan.stride is not None:
         return prescan.stride
-    return default_stride(len(prescan.mu), prescan.mode, stick_rule)
+    return default_stride(len(prescan.mu), prescan.mode, stick_rule, between)
 
 
-def needs_a_run_inside(a: dict[str, Any], b: dict[str, Any]) -> bool:
+def needs_a_run_inside(
+    a: dict[str, Any], b: dict[str, Any], between: Between = NOT_STICK_STICK
+) -> bool:
     """Whether the interval between run summaries `a` and `b` needs a grid value run
-    inside: its verdicts differ, or its ends do not explain it."""
-    outcomes = (a["outcome"], b["outcome"])
-    if UNDETERMINED in outcomes or (outcomes[0] == STICK) != (outcomes[1] == STICK):
+    inside: its verdicts differ (a side undecided counts as different), or its ends do not
+    explain it (for the stick / not-stick jump: their reserves; for another boundary
+    ends on one side are taken to hold no change)."""
+    sides = (between.side(a["outcome"]), between.side(b["outcome"]))
+    if None in sides or sides[0] != sides[1]:
         return True
-    return not all(reserve_explains(run) for run in (a, b))
+    if not between.uses_reserve:
+        return False
+    return not all(reserve_explains(run, between) for run in (a, b))
 
 
-def reserve_explains(run: dict[str, Any]) -> bool:
+def reserve_explains(run: dict[str, Any], between: Between = NOT_STICK_STICK) -> bool:
     """A run whose friction reserve agrees with its verdict: positive if it sticks,
     negative or NaN (never stuck) if not."""
     reserve = _finite(run.get("reserve"))
-    if run["outcome"] == STICK:
+    if between.is_high(run["outcome"]):
         return reserve is not None and reserve > 0
     return reserve is None or reserve <= 0
 
@@ -80,11 +92,12 @@ def _finite(value: Any) -> float | None:
 class AdaptiveGrid:
     """The grid indices to run, grown as run summaries come back (`settle`)."""
 
-    def __init__(self, mus: tuple[float, ...], stride: int):
+    def __init__(self, mus: tuple[float, ...], stride: int, between: Between = NOT_STICK_STICK):
         n_values = len(mus)
         if n_values < 2 or stride < 1:
             raise ValueError(f"need 2 or more values and stride >= 1, got {n_values}, {stride}")
         self.mus = mus  # the grid, increasing
+        self.between = between  # the boundary's two sides (sides.py)
         self.wanted: set[int] = set(range(0, n_values, stride)) | {n_values - 1}
         self._runs: dict[int, dict[str, Any]] = {}  # index -> its settled run's summary
 
@@ -108,7 +121,7 @@ class AdaptiveGrid:
         new = {
             self._split(i, j)
             for i, j in zip(ran, ran[1:], strict=False)
-            if j - i >= 2 and needs_a_run_inside(self._runs[i], self._runs[j])
+            if j - i >= 2 and needs_a_run_inside(self._runs[i], self._runs[j], self.between)
         }
         self.wanted |= new
         return new
@@ -117,6 +130,8 @@ class AdaptiveGrid:
         """The grid index to run inside (i, j): nearest the reserve's zero where both ends
         explain their verdicts, else the middle."""
         a, b = self._runs[i], self._runs[j]
+        if not self.between.uses_reserve:
+            return (i + j) // 2
         if not (reserve_explains(a) and reserve_explains(b)):
             return (i + j) // 2
         zero = _reserve_zero((self.mus[i], a), (self.mus[j], b))

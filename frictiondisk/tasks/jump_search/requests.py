@@ -15,8 +15,15 @@ from frictiondisk.tasks.jump_search.bisection import RunRequest
 from frictiondisk.verdict.horizon import horizon_key, horizon_of
 
 
-def run_config(point_config, request: RunRequest, horizon_factor: float, certify: Certify = OFF):
-    """The scene of one requested run: mu (and the request's numerics.mode, if it names one)
+def run_config(
+    point_config,
+    request: RunRequest,
+    horizon_factor: float,
+    certify: Certify = OFF,
+    parameter: str = "params.mu",
+):
+    """The scene of one requested run: `parameter` (mu unless a find_jump bisects another
+    scene key) = request.mu (and the request's numerics.mode, if it names one)
     set, horizon lengthened by the retry level; at certification level `request.strict`
     rtol and atol are multiplied by certify.rtol and the horizon budget by certify.horizon,
     once per level."""
@@ -24,7 +31,7 @@ def run_config(point_config, request: RunRequest, horizon_factor: float, certify
     mode = request.mode or num.mode
     key = f"numerics.{horizon_key(mode)}"
     horizon = horizon_of(point_config, mode)
-    overrides: dict[str, Any] = {"params.mu": request.mu}
+    overrides: dict[str, Any] = {parameter: request.mu}
     if mode != num.mode:
         overrides["numerics.mode"] = mode
     if request.level:
@@ -57,6 +64,7 @@ class PointScenes:
     point: dict[str, Any]
     horizon_factor: float
     certify: Certify = OFF
+    parameter: str = "params.mu"  # the bisected scene key
 
     @functools.cached_property
     def config(self) -> SceneConfig:
@@ -64,4 +72,4 @@ class PointScenes:
         return scene_from_dict(self.point)
 
     def __call__(self, request: RunRequest) -> SceneConfig:
-        return run_config(self.config, request, self.horizon_factor, self.certify)
+        return run_config(self.config, request, self.horizon_factor, self.certify, self.parameter)

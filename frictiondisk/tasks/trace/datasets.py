@@ -172,6 +172,12 @@ def results_dataset(snapshot) -> xr.Dataset:
         "status": trace.status,
         "reason": trace.reason,
     }
+    if not task.sides.is_default:  # a boundary between two motions, not the stick jump
+        sides = task.sides
+        attrs["between"] = (
+            f"[{sides.low}, {sides.high}]: each curve separates {sides.low} from {sides.high}; "
+            "a fold is where the two coexist on both sides of a window's tip"
+        )
     ds = xr.Dataset(data, attrs=attrs)
     return cf.complete(
         ds,

@@ -33,8 +33,9 @@ import math
 from typing import Any
 
 from frictiondisk.model.search_settings import OFF
-from frictiondisk.tasks.jump_search.bisection import STICK, UNDETERMINED
+from frictiondisk.tasks.jump_search.bisection import UNDETERMINED
 from frictiondisk.tasks.jump_search.certify import point_certification
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 from frictiondisk.tasks.trace.plane import (
     LineBracket,
     PlaneRequest,
@@ -66,8 +67,16 @@ EDGE_REACH = 8.0  # an edge's bracket may widen to this many initial half-widths
 class Probe:
     """One run at (key, mu), retried with longer horizons while undetermined."""
 
-    def __init__(self, key: float, mu: float, max_retries: int, strict: int = 0):
+    def __init__(
+        self,
+        key: float,
+        mu: float,
+        max_retries: int,
+        strict: int = 0,
+        between: Between = NOT_STICK_STICK,
+    ):
         self.key, self.mu = key, mu
+        self.between = between  # a run on neither side is retried like an undetermined one
         self.max_retries = max_retries
         self.strict = strict
         self.level = 0
@@ -85,7 +94,7 @@ class Probe:
 
     def feed(self, request: PlaneRequest, result: dict[str, Any]) -> None:
         self.made.append(request)
-        if result["outcome"] != UNDETERMINED or self.level >= self.max_retries:
+        if self.between.side(result["outcome"]) is not None or self.level >= self.max_retries:
             self.outcome = result["outcome"]
         else:
             self.level += 1
@@ -99,7 +108,9 @@ class Probe:
 
     @property
     def sticks(self) -> bool | None:
-        return None if self.outcome in (None, UNDETERMINED) else self.outcome == STICK
+        if self.outcome is None or self.between.side(self.outcome) is None:
+            return None
+        return self.between.is_high(self.outcome)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -182,7 +193,7 @@ class FoldLocator:
         if self.done:
             return []
         if self.phase == "start":
-            self.searches = [Probe(self.key_in, self.mu_in, self.task.max_retries)]
+            self.searches = [self._probe(self.key_in, self.mu_in)]
         elif self.phase == "edges":
             self.searches = [self._edge(lower=True), self._edge(lower=False)]
         elif self.phase == "check":  # the last window's jumps certified, and a probe beyond
@@ -190,11 +201,15 @@ class FoldLocator:
             _, lower, upper = self.windows[-1]
             self.searches = [
                 *(self._certified(edge) for edge in (lower, upper)),
-                Probe(self._probe_key, self._probe_mu, self.task.max_retries, strict),
+                self._probe(self._probe_key, self._probe_mu, strict),
             ]
         else:
-            self.searches = [Probe(self._probe_key, self._probe_mu, self.task.max_retries)]
+            self.searches = [self._probe(self._probe_key, self._probe_mu)]
         return self.searches
+
+    def _probe(self, key: float, mu: float, strict: int = 0) -> Probe:
+        between = getattr(self.task, "between", NOT_STICK_STICK)
+        return Probe(key, mu, self.task.max_retries, strict, between)
 
     def _certified(self, edge: LineBracket):
         """The certified bisection of a jump already bracketed to tol (its ends' runs are

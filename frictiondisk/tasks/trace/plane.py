@@ -31,6 +31,7 @@ from typing import Any
 from frictiondisk.model.search_settings import OFF
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRequest
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK
 
 
 @dataclasses.dataclass(frozen=True)
@@ -186,6 +187,7 @@ def line_bisection(
         split=settings.split,
         certify=getattr(settings, "certify", OFF),
         root_finder=settings.root_finder,
+        between=getattr(settings, "between", NOT_STICK_STICK),
     )
     return LineSearch(search, line)
 

@@ -38,7 +38,9 @@ def trace_settings(task, stick_rule: str) -> TraceSettings:
     keys = (0.5 * (low + high),) if look.keys == 1 else np.linspace(low, high, look.keys)
     mus = tuple(float(mu) for mu in np.linspace(task.mu[0], task.mu[1], look.mu))
     stride = (
-        look.stride if look.stride is not None else default_stride(len(mus), "decide", stick_rule)
+        look.stride
+        if look.stride is not None
+        else default_stride(len(mus), "decide", stick_rule, task.sides)
     )
     min_step = task.smallest_step
     return TraceSettings(
@@ -54,6 +56,7 @@ def trace_settings(task, stick_rule: str) -> TraceSettings:
         split=task.split,
         certify=task.certify,
         root_finder=task.root_finder,
+        between=task.sides,
     )
 
 

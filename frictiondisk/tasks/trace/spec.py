@@ -17,6 +17,12 @@ from frictiondisk.model.axes import LIMITS_MUST, Limits, base_of, check_mu, orde
 from frictiondisk.model.schema import Spec, field, joined, rule, show
 from frictiondisk.model.search_settings import DEFAULT_MAX_RETRIES, Certify
 from frictiondisk.model.varied import key_problem, retry_problem, value_problems
+from frictiondisk.tasks.jump_search.sides import (
+    DEFAULT_BETWEEN,
+    Between,
+    BetweenPair,
+    between_must,
+)
 from frictiondisk.tasks.spec import TaskSpec
 
 RANGE_MUST = "a list [low, high] of two finite numbers with low < high, in the key's unit"
@@ -55,6 +61,8 @@ class Trace(TaskSpec):
     """
 
     kind: ClassVar[str] = "trace"
+    # only when not the default in the canonical form: older campaigns keep their hash
+    OMIT_DEFAULT: ClassVar[tuple[str, ...]] = ("between",)
 
     key: str = field(
         ...,
@@ -97,6 +105,18 @@ class Trace(TaskSpec):
     root_finder: Literal["itp", "bisect"] = field(
         "itp", None, "itp: interpolate on the friction reserve; bisect: halve"
     )
+    between: BetweenPair = field(
+        DEFAULT_BETWEEN,
+        None,
+        "[A, B]: the boundary traced, A on the low-mu side of a rising jump and B on its high "
+        "side; each an outcome or a class of outcomes (tasks/jump_search/sides.py)",
+        between_must(),
+    )
+
+    @property
+    def sides(self) -> Between:
+        """The boundary's two sides (`between`)."""
+        return Between(*self.between)
 
     @field_validator("key")
     @classmethod

@@ -27,8 +27,8 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
-from frictiondisk.tasks.jump_search.bisection import UNDETERMINED
 from frictiondisk.tasks.jump_search.jumps import JumpSearch, run_role
+from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 from frictiondisk.tasks.trace.branch import Branch, Curve, CurvePoint
 from frictiondisk.tasks.trace.fold import Fold, FoldLocator, Probe
 from frictiondisk.tasks.trace.joins import approach_caps, find_join, join
@@ -52,6 +52,7 @@ class TraceSettings:
     split: int
     certify: Any
     root_finder: str
+    between: Between = NOT_STICK_STICK  # the boundary's two sides (jump_search/sides.py)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -103,6 +104,7 @@ class Tracer:
                 settings.certify,
                 settings.root_finder,
                 settings.stride,
+                between=settings.between,
             )
             self.look.append((key, LineSearch(search, Line("key", key))))
         self._current = [("first_look", s) for _, s in self.look]
@@ -297,7 +299,8 @@ class Tracer:
         for key, search in self.look:
             found = search.result()
             # a key where every prescan run is decided and none changes has no curve: fine
-            quiet = not found.jumps and all(r.outcome != UNDETERMINED for r in found.scan)
+            sides = self.settings.between
+            quiet = not found.jumps and all(sides.side(r.outcome) is not None for r in found.scan)
             if found.status != "converged" and not quiet:
                 problems.append(f"first look at key {key:.6g}: {found.reason}")
         number = {curve.id: n for n, curve in enumerate(self.curves)}  # as in results.nc

@@ -1,0 +1,116 @@
+"""The figure of a map campaign: its results.nc in, a matplotlib Figure out.
+
+Every cell coloured by its motion (the colours of frictiondisk.tasks.basin.figure.
+outcome_colors: the campaign figures' colours, then a fixed palette for any outcome they do
+not know), one legend for all motions with the share of cells of each; the cells that ran
+are marked with a dot (the others are inferred from a uniform block of the refinement), a
+cross where a run had not settled. A map over one key is one coloured strip.
+
+Like every figure: no backend, no pyplot, no kernel.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import xarray as xr
+from matplotlib.colors import BoundaryNorm, ListedColormap
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+
+from frictiondisk.figures.shared import (
+    axis_label,
+    cell_edges,
+    check_vars,
+    fitted_legend,
+    new_figure,
+)
+from frictiondisk.figures.style import styled
+from frictiondisk.tasks.basin.figure import outcome_colors
+
+_VARS = ("motion", "ran", "cycle_converged", "cell_fraction")
+
+
+@styled
+def plot_map(results: xr.Dataset) -> Figure:
+    """The motion of every cell of a map results.nc (see the module docstring)."""
+    check_vars(results, _VARS, "results (map)")
+    outcomes = [str(o) for o in results["outcome"].values]
+    colors = outcome_colors(outcomes)
+    motion = results["motion"]
+    dims = list(motion.dims)
+    fig, main, _ = new_figure(results, 7.2, 5.2, 0)
+    ax = main.add_subplot()
+    code = {o: k for k, o in enumerate(outcomes)}
+    values = np.vectorize(lambda o: code.get(str(o), -1), otypes=[float])(motion.values)
+    values[values < 0] = np.nan  # pending: left blank
+    cmap = ListedColormap([colors[o] for o in outcomes])
+    norm = BoundaryNorm(np.arange(len(outcomes) + 1) - 0.5, len(outcomes))
+    xs = np.asarray(results[dims[0]].values, float)
+    ix = np.argsort(xs)
+    if len(dims) == 1:
+        ys, iy = np.array([0.5]), np.array([0])
+        grid = values[ix][:, None]
+        y_edges = np.array([0.0, 1.0])
+        ax.set_yticks([])
+    else:
+        ys = np.asarray(results[dims[1]].values, float)
+        iy = np.argsort(ys)
+        grid = values[np.ix_(ix, iy)]
+        y_edges = cell_edges(ys[iy])
+        ax.set_ylabel(axis_label(results[dims[1]]))
+    mesh = ax.pcolormesh(cell_edges(xs[ix]), y_edges, grid.T, cmap=cmap, norm=norm)
+    mesh.set_gid("motion_map")
+    ax.set_xlabel(axis_label(results[dims[0]]))
+    handles = _legend_handles(results, outcomes, colors)
+    handles += _mark_runs(ax, results, dims, xs, ys)
+    fitted_legend(
+        ax,
+        min(3, len(handles)),
+        handles=handles,
+        loc="lower left",
+        bbox_to_anchor=(0.0, 1.01),
+        fontsize="small",
+        frameon=False,
+    )
+    ran = int((results["ran"] == 1).sum())
+    main.suptitle(
+        f"{results.attrs.get('campaign_name', '')}: motion map, {motion.size} cells "
+        f"({ran} run), start: {str(results.attrs.get('start', '?')).split(':')[0]}",
+        wrap=True,
+    )
+    return fig
+
+
+def _legend_handles(results: xr.Dataset, outcomes: list[str], colors) -> list[Any]:
+    """One patch per motion present, with its share of the known cells."""
+    shares = dict(zip(outcomes, np.asarray(results["cell_fraction"].values, float), strict=True))
+    return [
+        Patch(facecolor=colors[o], edgecolor="0.3", label=f"{o} ({100 * shares[o]:.1f} %)")
+        for o in outcomes
+        if np.isfinite(shares[o]) and shares[o] > 0
+    ]
+
+
+def _mark_runs(ax, results: xr.Dataset, dims: list[str], xs, ys) -> list[Any]:
+    """A dot on each cell that ran (a cross where its motion had not settled); their
+    legend handles. xs, ys: the cells' values in file order."""
+    ran = np.asarray(results["ran"].values)
+    settled = np.asarray(results["cycle_converged"].values)
+    if len(dims) == 1:
+        ran, settled = ran[:, None], settled[:, None]
+    handles = []
+    if results.attrs.get("mode") != "converge":  # a decide run does not say whether it settled
+        settled = np.ones_like(settled)
+    for flag, marker, label in ((1, ".", "cell run"), (0, "x", "run, not settled")):
+        mask = (ran == 1) & ((settled != 0) if flag else (settled == 0))
+        i, j = np.nonzero(mask)
+        if not i.size:
+            continue
+        size = 3 if flag else 5
+        points = ax.plot(xs[i], ys[j], marker, color="0.15", markersize=size, linestyle="none")
+        points[0].set_gid("cells_run" if flag else "cells_unsettled")
+        handles.append(Line2D([], [], marker=marker, color="0.15", linestyle="none", label=label))
+    return handles

@@ -1,0 +1,48 @@
+"""A map cell's runs and its motion: the outcome of its one run, or the leading outcome of
+its sampled starts. The outcome names are data (frictiondisk.verdict.outcomes.OUTCOMES,
+then any other name a run reported), so a motion the verdict adds plugs in unchanged."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections import Counter
+from typing import Any
+
+from frictiondisk.verdict.outcomes import OUTCOMES
+
+UNDETERMINED = "undetermined"
+
+
+@dataclasses.dataclass(frozen=True)
+class MapCellResult:
+    """The runs of one cell, in sample order (one from the scene's start)."""
+
+    status: str  # "converged" (every run came back) or "failed" (a job never came back)
+    reason: str
+    results: tuple[dict[str, Any], ...]
+
+    @property
+    def n(self) -> int:
+        return len(self.results)
+
+    def count(self, outcome: str) -> int:
+        return sum(1 for r in self.results if r["outcome"] == outcome)
+
+    @property
+    def motion(self) -> str:
+        return leading_motion(self.results)
+
+
+def leading_motion(results) -> str:
+    """The most frequent decided outcome of `results` (ties: the first in the listing
+    order); `undetermined` when no run decided."""
+    counts = Counter(r["outcome"] for r in results if r["outcome"] != UNDETERMINED)
+    if not counts:
+        return UNDETERMINED
+    order = {o: k for k, o in enumerate(outcome_order(counts))}
+    return max(counts, key=lambda o: (counts[o], -order[o]))
+
+
+def outcome_order(seen) -> tuple[str, ...]:
+    """OUTCOMES, then any other outcome in `seen` (sorted): nothing is dropped."""
+    return (*OUTCOMES, *sorted(set(seen) - set(OUTCOMES)))
