@@ -40,8 +40,8 @@ from frictiondisk.tasks.jump_search.bisection import (
     RunRequest,
 )
 from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
-from frictiondisk.verdict.deciding_rule import EXTRAPOLATED
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
+from frictiondisk.verdict.deciding_rule import EXTRAPOLATED
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
