@@ -286,7 +286,7 @@ class CertifiedBisection:
             self.split,
             strict,
             self.root_finder,
-            self.between,
+            between=self.between,
         )
         self.search = search
         self.searches.append(search)
