@@ -41,7 +41,10 @@
 
 VENV ?= .venv
 PYTHON ?= python3
-PYTEST_ARGS ?=
+# The suite runs on two processes (pytest-xdist; 2 cores is what CI has). worksteal: the
+# few long tests (cross-checks against scipy, exact Coulomb watches) do not hold up a worker
+# while the other has finished its share. PYTEST_ARGS= runs it in one process.
+PYTEST_ARGS ?= -n 2 --dist worksteal
 BENCH_SCALING_ARGS ?= --quick
 BENCH_TOGETHER_ARGS ?= --repeat 2
 STUDY_ARGS ?=
