@@ -86,6 +86,7 @@ class Bisection:
         strict: int = 0,
         root_finder: str = "itp",
         expanding: Expanding = PLAIN,
+        reserve_offset: float = 0.0,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
@@ -117,6 +118,9 @@ class Bisection:
         self.undecided: list[float] = []
         self.stalled_at: float | None = None  # the mu undetermined after every retry that failed it
         self._signal: dict[float, float] = {}  # mu -> friction reserve (decided runs, finite)
+        # the reserve at the jump per unit mu, learned from a finished point: each reserve is
+        # taken less offset x mu, so that its zero is the jump's (reserve_offset.py)
+        self.reserve_offset = reserve_offset
         # (schedule key, mu) of the decided runs: "the last two" never depend on timing
         self._decided: list[tuple[tuple[int, int, float], float]] = []
         self._itp: tuple[int, int] | None = None  # (first bisect round, its round budget)
@@ -315,7 +319,7 @@ class Bisection:
         self._decided.append((self._issued[request], request.mu))
         reserve = result.get("reserve")
         if reserve is not None and math.isfinite(reserve):
-            self._signal[request.mu] = float(reserve)
+            self._signal[request.mu] = float(reserve) - self.reserve_offset * request.mu
         if self.phase == "check":
             self._after_check()
         else:
