@@ -1,6 +1,7 @@
 """The friction reserve's offset at the jump, learned from a finished point
-(tasks/jump_search/reserve_offset.py, issue 48). Synthetic oracles, no simulation: the pin
-line at tol 1e-8, where contact compliance puts the reserve's zero 2.6e-6 x mu* above the jump
+(tasks/jump_search/reserve_offset.py, issue 48), and a deferred run's reserve as the aim of
+the next probe (Bisection._aim_past). Synthetic oracles, no simulation: the pin line at
+tol 1e-8, where contact compliance puts the reserve's zero 2.6e-6 x mu* above the jump
 (46 tol at x_ms = 0.14)."""
 
 import math
@@ -8,6 +9,8 @@ import math
 from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.find_jump.planner import JumpPlanner
 from frictiondisk.tasks.jobs import RunScenes, Sizing
+from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.expanding import Expanding
 from frictiondisk.tasks.jump_search.reserve_offset import learned_offset
 from frictiondisk.tasks.jump_search.runs import BisectionResult, RunRecord, RunRequest
 
@@ -87,3 +90,33 @@ def test_an_offset_under_tol_or_a_failed_point_teaches_nothing():
     assert learned_offset(result(0.1, 0.1 + TOL, 0.2 * TOL), TOL) == 0.0
     assert learned_offset(result(0.1, 0.1 + TOL, -4 * TOL, "failed"), TOL) == 0.0
     assert learned_offset(None, TOL) == 0.0
+
+
+def test_a_deferred_runs_reserve_aims_the_next_probe_at_the_jump():
+    """The ends' secant lands 150 tol below mu*, in a band no horizon decides (the pin's
+    x_ms = 0.14). The undetermined run there reads -150 tol: the next probe goes half a
+    tol past the jump, not 8, 72, ... tol from the band; without that reading, the steps
+    are geometric and cost more."""
+    mu_star, far_zero = 0.1774128219, 0.1774128219 - 150 * TOL
+    band = (far_zero - 20 * TOL, far_zero + 20 * TOL)
+
+    def run(request, read_undetermined=True):
+        mu = request.mu
+        near = abs(mu - mu_star) < 1e-5  # near the jump the reserve is mu - mu*
+        reserve = mu - mu_star if near else mu - far_zero  # far runs point at far_zero
+        if band[0] <= mu <= band[1]:
+            return {"outcome": "undetermined", "reserve": reserve if read_undetermined else None}
+        return {"outcome": "stick" if mu >= mu_star else "stick_slip", "reserve": reserve}
+
+    counts = []
+    for read in (True, False):
+        bis = Bisection((mu_star - 1e-4, mu_star + 1e-3), TOL, (1e-6, 10.0), 2,
+                        expanding=Expanding(defer=True))  # fmt: skip
+        while not bis.done:
+            request = bis.pending()[0]
+            bis.feed(request, run(request, read))
+        found = bis.result()
+        assert found.status == "converged" and found.mu_lo < mu_star <= found.mu_hi
+        assert not [r for r in found.runs if r.request.level and band[0] <= r.request.mu]
+        counts.append(len(found.runs))
+    assert counts[0] <= 5 and counts[0] < counts[1], counts
