@@ -17,8 +17,12 @@ were cut from, half-width tol / 2, or 2 |quadratic - linear| where that is large
 that a point of a smooth line costs two runs before certification. A prediction that
 misses widens x8, x64, ... up to the campaign bracket, and an undetermined run at a
 prediction waits for the horizon ladder until nothing else can close the bracket
-(jump_search/expanding.py). Which points a prediction uses is fixed by the
-campaign, never by timing, so 1 and 2 workers give identical results.
+(jump_search/expanding.py). The campaign's first point starts alone: every other point
+waits until it is done and corrects its friction reserves by the offset at the jump that
+point shows, so that its probes aim at the jump and not at the reserve's zero
+(jump_search/reserve_offset.py; an offset under tol is ignored). Which points a
+prediction or an offset uses is fixed by the campaign, never by timing, so 1 and 2
+workers give identical results.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from frictiondisk.tasks.jump_search.expanding import PREDICTED, Expanding
 from frictiondisk.tasks.jump_search.jumps import JumpSearch, JumpSearchResult, run_role
 from frictiondisk.tasks.jump_search.prescan import stride_of
 from frictiondisk.tasks.jump_search.requests import PointScenes, run_config
+from frictiondisk.tasks.jump_search.reserve_offset import learned_offset
 from frictiondisk.tasks.protocol import Planner
 
 WARM_ERROR_FACTOR = 2.0  # half-width of a quadratic prediction: this x |quadratic - linear|
@@ -205,6 +210,9 @@ class JumpPlanner(Planner):
     def _ready(self, i: int) -> bool:
         if self.task.prescan is not None:
             return True
+        first = self._start_order[0]
+        if i != first and first not in self.results:
+            return False  # every other point learns the reserve's offset from it
         row, pos = self._row_pos(i)
         first = row * self.shape[-1]
         bounds = self._tree[pos]
@@ -250,7 +258,14 @@ class JumpPlanner(Planner):
             # ladder waits where a probe elsewhere may make it unnecessary (expanding.py)
             expanding=dataclasses.replace(PREDICTED, full=full) if bracket else COLD,
             between=self.task.sides,
+            reserve_offset=self._reserve_offset(i),
         )
+
+    def _reserve_offset(self, i: int) -> float:
+        """The reserve's offset at the jump learned from the first point (reserve_offset.py):
+        0 for that point itself, which starts before any other."""
+        first = self._start_order[0]
+        return 0.0 if i == first else learned_offset(self.results.get(first), self.task.tol)
 
     def _predicted_bracket(self, i: int) -> tuple[float, float] | None:
         row, pos = self._row_pos(i)

@@ -102,6 +102,7 @@ class Bisection:
         root_finder: str = "itp",
         expanding: Expanding = PLAIN,
         between: Between = NOT_STICK_STICK,
+        reserve_offset: float = 0.0,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
@@ -134,6 +135,9 @@ class Bisection:
         self.undecided: list[float] = []
         self.stalled_at: float | None = None  # the mu undetermined after every retry that failed it
         self._signal: dict[float, float] = {}  # mu -> friction reserve (decided runs, finite)
+        # the reserve at the jump per unit mu, learned from a finished point: each reserve is
+        # taken less offset x mu, so that its zero is the jump's (reserve_offset.py)
+        self.reserve_offset = reserve_offset
         # (schedule key, mu) of the decided runs: "the last two" never depend on timing
         self._decided: list[tuple[tuple[int, int, float], float]] = []
         self._itp: tuple[int, int] | None = None  # (first bisect round, its round budget)
@@ -141,6 +145,7 @@ class Bisection:
         self.expanding = expanding if split == 2 else PLAIN
         self._deferred: list[float] = []  # their mu, in the order they were deferred
         self._steps: dict[float, int] = {}  # deferred mu -> probes made away from it
+        self._deferred_signal: dict[float, float] = {}  # deferred mu -> its reserve (a guide)
         self._expand_steps = 0  # the steps of this round's probe away from a deferred run
         self._laddered: set[float] = set()  # mu whose retry is due: never deferred again
         self._epoch = 0  # bumped on every deferral: the round's probes are chosen anew
@@ -188,7 +193,7 @@ class Bisection:
         return self._interior_cache[2]
 
     def _interior_kind(self) -> str | None:
-        """How this round's interior was chosen: straddle, ladder, expand, itp, mid or split."""
+        """How this round's interior was chosen: straddle, ladder, expand, aim, itp, mid or split."""
         key = (self._round, self._epoch)
         cache = self._interior_cache
         return cache[1] if cache is not None and cache[0] == key else None
@@ -233,9 +238,14 @@ class Bisection:
         return min(inside, key=lambda mu: abs(self._stick_end - mu))
 
     def _away_from(self, deferred: float) -> tuple[str, list[float]]:
-        """The next probe away from a deferred run towards the sticking end, or the run's
-        retry once that end lies within tol of it."""
+        """The next probe away from a deferred run towards the sticking end: at the
+        reserve's estimate of the jump where it has one, else a geometric step; or the
+        run's retry once that end lies within tol of it."""
         if not ladder_due(deferred, self._stick_end, self.tol):
+            aimed = self._aim_past(deferred)
+            if aimed is not None:
+                self._expand_steps = self._steps.get(deferred, 0)
+                return "aim", [aimed]
             steps = self._steps.get(deferred, 0) + 1
             probe = expanding_probe(deferred, self._stick_end, self.tol, steps)
             if self.lo < probe < self.hi and probe not in self._known:
@@ -243,6 +253,35 @@ class Bisection:
                 return "expand", [probe]
         self._laddered.add(deferred)
         return "ladder", [deferred]
+
+    def _aim_past(self, deferred: float) -> float | None:
+        """A probe between a deferred run and the sticking end aimed at the jump by the
+        reserve (unit slope from whichever of the two reads nearest zero: an undetermined
+        run's reserve is no verdict, but it says where the jump lies), nudged half a tol
+        towards the sticking end, or a tol from that end where the jump lies within a tol
+        of it; None where the reserve says nothing, contradicts the sticking end's verdict,
+        or aims no farther from the deferred run than the next geometric step (a probe
+        that near would land in the same slow band): then the steps are geometric."""
+        stick = self._stick_end
+        if not self.rising or (stick in self._signal and not self._agrees(stick)):
+            return None
+        readings = [(mu, self._signal[mu]) for mu in (stick,) if mu in self._signal]
+        if deferred in self._deferred_signal:
+            readings.append((deferred, self._deferred_signal[deferred]))
+        if not readings:
+            return None
+        mu, reading = min(readings, key=lambda pair: abs(pair[1]))
+        estimate = mu - reading
+        toward = 1.0 if stick > deferred else -1.0
+        if abs(stick - estimate) < self.tol:
+            probe = stick - toward * self.tol * (1.0 - 1e-6)
+        else:
+            probe = estimate + toward * 0.5 * self.tol
+        step = expanding_probe(deferred, stick, self.tol, self._steps.get(deferred, 0) + 1)
+        far_enough = (probe - deferred) * toward >= abs(step - deferred) * (1 - 1e-9)
+        if not far_enough or (stick - probe) * toward <= 0:
+            return None
+        return None if probe in self._known or probe in self._deferred else probe
 
     def _defer(self, request: RunRequest) -> bool:
         """Postpone the retry of an undetermined run (a predicted bracket's end, or a probe
@@ -253,10 +292,10 @@ class Bisection:
         if self.phase == "check":
             if not (self.expanding.predicted and mu in (self.lo, self.hi)):
                 return False
-        elif not (self.expanding.defer and self._interior_kind() in ("itp", "expand")):
+        elif not (self.expanding.defer and self._interior_kind() in ("itp", "expand", "aim")):
             return False
         self._deferred.append(mu)
-        if self._interior_kind() == "expand":  # the steps from it go on growing
+        if self._interior_kind() in ("expand", "aim"):  # the steps from it go on growing
             self._steps[mu] = self._expand_steps
         self._level[mu] = request.level + 1
         self._epoch += 1
@@ -305,6 +344,10 @@ class Bisection:
         outcome = result["outcome"]
         side = self.between.side(outcome)
         if side is None and self._defer(request):
+            reserve = result.get("reserve") if self.between.uses_reserve else None
+            if reserve is not None and math.isfinite(reserve):
+                corrected = float(reserve) - self.reserve_offset * request.mu
+                self._deferred_signal[request.mu] = corrected
             return
         if side is None:
             # undecided mu inside the bracket are straddled while they span at most
@@ -333,7 +376,7 @@ class Bisection:
         self._decided.append((self._issued[request], request.mu))
         reserve = result.get("reserve") if self.between.uses_reserve else None
         if reserve is not None and math.isfinite(reserve):
-            self._signal[request.mu] = float(reserve)
+            self._signal[request.mu] = float(reserve) - self.reserve_offset * request.mu
         if self.phase == "check":
             self._after_check()
         else:

@@ -70,6 +70,7 @@ class CertifiedBisection:
         outer: tuple[float, float] | None = None,
         expanding: Expanding = PLAIN,
         between: Between = NOT_STICK_STICK,
+        reserve_offset: float = 0.0,
     ):
         self.tol = tol
         self.between = between  # the two sides of the boundary (sides.py)
@@ -85,6 +86,7 @@ class CertifiedBisection:
         self.certify = certify
         self.root_finder = root_finder
         self.expanding = expanding  # how its first search reaches past a missed prediction
+        self.reserve_offset = reserve_offset  # the reserve at the jump per unit mu (learned)
         self.search = Bisection(
             bracket,
             tol,
@@ -95,6 +97,7 @@ class CertifiedBisection:
             root_finder=root_finder,
             expanding=expanding,
             between=between,
+            reserve_offset=reserve_offset,
         )
         self.searches: list[Bisection] = [self.search]
         # the guided opening (module docstring): the stick end, then the reserve's zero
@@ -183,7 +186,10 @@ class CertifiedBisection:
         hi = self._opened[0]
         lo, tol = self.search.lo, self.tol
         reserve = hi.result.get("reserve")
-        if hi.outcome != STICK or reserve is None or not math.isfinite(reserve) or reserve <= 0:
+        if hi.outcome != STICK or reserve is None or not math.isfinite(reserve):
+            return lo
+        reserve -= self.reserve_offset * hi.request.mu  # its zero at the jump (learned)
+        if reserve <= 0:
             return lo
         guide = min(hi.request.mu - reserve, hi.request.mu - tol * (1.0 - 1e-6))
         return guide if guide > lo else lo
@@ -213,6 +219,7 @@ class CertifiedBisection:
             root_finder=self.root_finder,
             expanding=self.expanding,
             between=self.between,
+            reserve_offset=self.reserve_offset,
         )
         self.searches = [self.search]
         for run in ends:
@@ -287,6 +294,7 @@ class CertifiedBisection:
             strict,
             self.root_finder,
             between=self.between,
+            reserve_offset=self.reserve_offset,
         )
         self.search = search
         self.searches.append(search)

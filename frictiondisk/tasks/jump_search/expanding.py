@@ -14,9 +14,11 @@ when the reserve is biased:
   holds within tol of it (then nothing else can close the bracket: the ladder is due);
 * an interpolating probe that comes back undetermined is deferred too, and the next probes
   step away from it towards the bracket's sticking end, tol x 8, x 64, ... (at most half
-  the way to that end): a decided not-stick beyond it leaves it outside the bracket, never
-  retried; a stick brings the sticking end to it, and once that end is within tol of it
-  its retry is due (`ladder_due`).
+  the way to that end), or, where the reserve (the undetermined run's own, or the
+  sticking end's) puts the jump farther away than that step, half a tol past the jump it
+  reads (Bisection._aim_past): a decided not-stick beyond it leaves it outside the
+  bracket, never retried; a stick brings the sticking end to it, and once that end is
+  within tol of it its retry is due (`ladder_due`).
 
 Verdicts alone move a bracket; a deferred run is no evidence either way. Plain bisection
 (`root_finder: bisect`) and multisection keep their fixed schedule.
