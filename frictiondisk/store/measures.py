@@ -30,6 +30,20 @@ RUN_MEASURES = {  # summary field -> (units, long name)
     "slip_limit": ("m", "extrapolated limit of the slip per revolution"),
     # the search's continuous signal (frictiondisk/verdict/reserve.py); NaN if never stuck
     "reserve": ("1", "friction reserve mu - demand(R1) / F_n of the first sticking circle"),
+    # the pure-sliding motion's measures from its own section (verdict/motion_evidence.py);
+    # NaN where the run does not slide or its motion is not named
+    "own_period": ("s", "the motion's own period: the velocity phase turning 2 pi"),
+    "mean_radius": ("m", "time mean of |r| over the newest own period"),
+    "amplitude": ("m", "half the range of |r| over the newest own period"),
+    "spin_rate": ("rad s-1", "mean spin phidot over the newest own period"),
+    "floquet_ratio": ("1", "contraction of the own section per own period"),
+    "decay_rate": ("s-1", "-ln(floquet_ratio) / own_period"),
+    "r_eq_x": ("m", "self-centring rest point, x"),
+    "r_eq_y": ("m", "self-centring rest point, y"),
+    "r_eq": ("m", "self-centring rest point, radius |r_eq|"),
+    "r_eq_angle": ("rad", "self-centring rest point, angle from +x counter-clockwise"),
+    "envelope_period": ("s", "modulated cycle: period of the envelope of |r|"),
+    "envelope_depth": ("m", "modulated cycle: half the range of the step-mean |r|"),
 }
 
 
