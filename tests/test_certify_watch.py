@@ -99,3 +99,8 @@ def test_an_end_that_flips_when_watched_leaves_the_point_uncertain_with_its_brac
     assert result.mu_lo < 0.13 <= result.mu_hi and result.width <= TOL * (1 + 1e-9)
     assert f"the end mu = {result.mu_lo:.10g} flipped" in result.reason
     assert all(run.request.strict <= 1 for run in result.runs)  # no re-search
+
+
+def test_the_watch_factor_survives_the_campaign_record():
+    for certify in (Certify(), Certify(watch=0.0), Certify(watch=3.0)):
+        assert Certify.model_validate(certify.canonical()) == certify
