@@ -82,3 +82,25 @@ def test_the_watch_stays_within_the_certification_budget():
     long = run_config(point, RunRequest(0.1, strict=1, watch=5000.0), 2.0, certify)
     assert long.numerics.observe_until == budget
     assert "observe_until" not in point.canonical()["numerics"]
+
+
+def test_an_end_that_flips_when_watched_leaves_the_point_uncertain_with_its_bracket():
+    """The extrapolation that decided mu_lo does not hold when watched (issue 50's d1: it
+    sticks): no re-search by the same rule beside it, the bracket is kept, flagged."""
+
+    def answer(mu, strict):
+        if mu >= 0.13 or (strict and mu >= 0.13 - TOL):
+            return {"outcome": "stick", "decided_by": "corotation", "t_end": 170.8}
+        return {"outcome": "slide", "decided_by": "sliding", "t_end": 91.5}
+
+    search = CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=Certify())
+    result = drive_results(search, answer)
+    assert result.certification == "uncertain"
+    assert result.mu_lo < 0.13 <= result.mu_hi and result.width <= TOL * (1 + 1e-9)
+    assert f"the end mu = {result.mu_lo:.10g} flipped" in result.reason
+    assert all(run.request.strict <= 1 for run in result.runs)  # no re-search
+
+
+def test_the_watch_factor_survives_the_campaign_record():
+    for certify in (Certify(), Certify(watch=0.0), Certify(watch=3.0)):
+        assert Certify.model_validate(certify.canonical()) == certify

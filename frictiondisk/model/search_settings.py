@@ -67,8 +67,7 @@ class Certify(BaseModel):
         }
         if self.observe:  # absent when off: the journals of earlier campaigns stay valid
             found["observe"] = True
-        if self.watch:
-            found["watch"] = self.watch
+        found["watch"] = self.watch  # on by default: 0 must survive a round trip
         return found
 
 

@@ -111,6 +111,7 @@ class CertifiedBisection:
         self._issued: dict[RunRequest, tuple] = {}
         self._checking = False
         self._verdict: str | None = None  # set when done
+        self._watched_flip: float | None = None  # an end whose watching check flipped
 
     # ---- what to run ------------------------------------------------------------------
     @property
@@ -265,6 +266,14 @@ class CertifiedBisection:
         if (not lo_holds and not hi_holds) or strict >= self.certify.levels:
             self._finish("uncertain")
             return
+        flipped = runs[1] if not hi_holds else runs[0]
+        if flipped.request.watch > 0.0:
+            # watching refuted the extrapolation that decided this end: a re-search would
+            # decide the values beside it by the same rule, unwatched (and bracket the
+            # difference between watching and not, not a jump)
+            self._watched_flip = flipped.request.mu
+            self._finish("uncertain")
+            return
         self._research(strict, hi_flipped=not hi_holds)
 
     def _research(self, strict: int, hi_flipped: bool) -> None:
@@ -333,6 +342,11 @@ class CertifiedBisection:
         reason = final.reason
         if self._verdict not in ("off", "failed"):
             reason = f"{reason}; {self._verdict} ({self._describe()})"
+        if self._watched_flip is not None:
+            reason = (
+                f"{reason}: watched, the end mu = {self._watched_flip:.10g} flipped, so the "
+                "extrapolation that decided it did not hold"
+            )
         return dataclasses.replace(
             final,
             reason=reason,
