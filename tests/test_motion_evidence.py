@@ -58,9 +58,22 @@ def test_the_self_centring_pin_decays_at_beta_s_over_2_m_s(self_centring):
     """The slowest mode is the tangential one friction does not touch: -beta_s / 2 m_s."""
     res = self_centring
     assert res.decay_rate == pytest.approx(0.1 / 2.0, rel=1e-3)
+    assert "beta_s/2m_s = 0.05 1/s" in res.reason
     assert res.floquet_ratio == pytest.approx(math.exp(-0.05 * res.own_period), rel=1e-3)
     # the damped frequency sqrt(c_s / m_s - 0.05^2) = 0.99875 rad/s sets the own period
     assert res.own_period == pytest.approx(2.0 * math.pi / 0.998749, rel=2e-3)
+
+
+def test_a_motion_shown_at_rest_self_centres_without_a_steady_ratio(self_centring):
+    """Near round-off the ratios of the speed scatter; at rest within tol it is shown."""
+    rows = self_centring.own_section.copy()
+    rows["v_max"][-3:] = (1e-9, 3e-10, 2e-10)  # ratios 0.3, 0.67: no steady fall
+    scene = me.OwnScene(1.0, 0.0, 1e-9, 1, CYCLE_TOL, 1e-9, 1e-6)
+    ev = me.judge(rows, scene, VerdictParams())
+    assert ev.motion == "self_centring" and ev.converged, ev.reason
+    assert math.isnan(ev.decay_rate) and ev.r_eq == pytest.approx(self_centring.r_eq, abs=1e-9)
+    rows["slip"][-1] = 0.0  # a rest that does not slip is sticking, not self-centring
+    assert me.judge(rows, scene, VerdictParams()).motion == ""  # nor a cycle: it rests
 
 
 def test_a_short_run_names_the_motion_before_it_has_settled():
