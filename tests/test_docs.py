@@ -12,6 +12,7 @@ from click.testing import CliRunner
 
 from frictiondisk.cli import main
 from frictiondisk.model.scene import Params, load_scene, scene_from_dict
+from frictiondisk.verdict.outcomes import OUTCOMES
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -22,8 +23,8 @@ def test_model_document_names_every_scene_parameter():
         assert section in text
     missing = [key for key in Params.model_fields if f"`params.{key}`" not in text]
     assert not missing, f"docs/model.md section 5 lacks {missing}"
-    for outcome in ("`stick`", "`creep`", "`stick_slip`", "`slide`", "`undetermined`"):
-        assert outcome in text
+    for outcome in OUTCOMES:
+        assert f"`{outcome}`" in text, outcome
 
 
 def test_nothing_points_outside_the_repository():
@@ -155,8 +156,8 @@ def test_the_readme_is_a_five_minute_start():
         assert must in quick, must
     for section in ("campaign", "outcome", "docs/user-guide.md"):
         assert section in text.lower() or section in text, section
-    for outcome in ("`stick`", "`creep`", "`stick_slip`", "`slide`", "`undetermined`"):
-        assert outcome in text, outcome
+    for outcome in OUTCOMES:
+        assert f"`{outcome}`" in text, outcome
     assert len(text) <= 12_000, f"README.md is {len(text)} characters"
 
 

@@ -2,9 +2,14 @@
 verdict/motion_evidence.py; docs/model.md section 6): one hand-checked scene per motion.
 
 The pins run here (a pin's 300 s take well under a second). The disks replay rows of the
-own section recorded from the issue-49 example scenes (tests/data/own_section_*.npz, made
-by `record_rows` below from /work/plan/r49/examples), so the suite does not integrate a
-48-contact disk for 3 000 s.
+own section recorded from the issue-49 example scenes (tests/data/own_section_*.npz: the
+newest 160 or 80 rows of `SimulationResult.own_section`, the fields the evidence reads),
+so the suite does not integrate a 48-contact disk for 1 500-3 000 s. The scenes: a braked
+disk x_ms 0, mu 0.05, omega_m 1.5, beta_s 0.3, beta_b 0.003, from x0 0.15, vy0 0.15,
+phidot0 1.5 on a ring of radius 0.1 m, mode converge: J_s 0.3 and 48 points for 3 000 s
+(modulated), J_s 0.1 and 48 points for 1 500 s (the whirl); J_s 0.1 and 12 points started
+on the whirl (x0 = vy0 = 0.117569, phidot0 0.94358) for 1 500 s (the layout ripple).
+The reference numbers were measured on recorded trajectories in the issue's study.
 """
 
 from __future__ import annotations
@@ -58,9 +63,23 @@ def test_the_self_centring_pin_decays_at_beta_s_over_2_m_s(self_centring):
     """The slowest mode is the tangential one friction does not touch: -beta_s / 2 m_s."""
     res = self_centring
     assert res.decay_rate == pytest.approx(0.1 / 2.0, rel=1e-3)
+    assert "beta_s/2m_s = 0.05 1/s" in res.reason
     assert res.floquet_ratio == pytest.approx(math.exp(-0.05 * res.own_period), rel=1e-3)
     # the damped frequency sqrt(c_s / m_s - 0.05^2) = 0.99875 rad/s sets the own period
     assert res.own_period == pytest.approx(2.0 * math.pi / 0.998749, rel=2e-3)
+
+
+def test_a_motion_shown_at_rest_self_centres_without_a_steady_ratio(self_centring):
+    """Near round-off the ratios of the speed scatter; at rest within tol it is shown."""
+    rows = self_centring.own_section.copy()
+    rows["v_max"][-3:] = (1e-9, 3e-10, 2e-10)  # ratios 0.3, 0.67: no steady fall
+    scene = me.OwnScene(1.0, 0.0, 1e-9, 1, CYCLE_TOL, 1e-9, 1e-6)
+    ev = me.judge(rows, scene, VerdictParams())
+    assert ev.motion == "self_centring" and ev.converged, ev.reason
+    assert math.isnan(ev.decay_rate)
+    assert ev.r_eq == pytest.approx(self_centring.r_eq, abs=CYCLE_TOL)  # at rest within tol
+    rows["slip"][-1] = 0.0  # a rest that does not slip is sticking, not self-centring
+    assert me.judge(rows, scene, VerdictParams()).motion == ""  # nor a cycle: it rests
 
 
 def test_a_short_run_names_the_motion_before_it_has_settled():
@@ -71,7 +90,7 @@ def test_a_short_run_names_the_motion_before_it_has_settled():
 
 def test_the_large_cycle_of_the_pin_turns_at_the_support_s_own_frequency():
     """mu 0.05, omega_m 1.5 from x0 0.4, vy0 0.5 (issue 49): period, mean radius and
-    contraction measured on the recorded trajectory (/work/plan/r49/REPORT.md section 2)."""
+    contraction measured on the recorded trajectory in the issue's study."""
     res = simulate(scene_from_dict(pin(0.05, 1.5, 300.0, x0=0.4, vy0=0.5)))
     assert res.outcome == "slide_cycle" and res.cycle_converged, res.reason
     assert res.own_period == pytest.approx(2.0 * math.pi, rel=1e-3)  # 6.28025 s

@@ -125,6 +125,7 @@ def own_scene(config, run: RunBuffers) -> OwnScene:
         atol=float(rules["atol"]),
         rtol=float(rules["rtol"]),
         observe=bool(rules["observe"]),
+        tangential_rate=p.beta_s / (2.0 * p.m_s),
     )
 
 

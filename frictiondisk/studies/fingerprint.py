@@ -99,6 +99,8 @@ def fingerprint(result) -> tuple[dict, float]:
             out[name] = _columns(value, REVOLUTION_COLUMNS)
         elif name == "sections":
             out[name] = _columns(value, SECTION_COLUMNS)
+        elif name == "own_section":  # the motion's own section (structured rows, issue 49)
+            out[name] = _columns(value, ())
         elif name == "trajectory":
             out[name] = (
                 None

@@ -56,6 +56,9 @@ class OwnScene:
     atol: float
     rtol: float
     observe: bool = False  # numerics.evidence observe: no extrapolation
+    # beta_s / 2 m_s [1/s]: the decay rate of a Coulomb pin's self-centring (its tangential
+    # mode, which friction does not touch), quoted beside the measured rate
+    tangential_rate: float = math.nan
 
 
 @dataclasses.dataclass(frozen=True)
@@ -131,34 +134,40 @@ def _tolerance(point: np.ndarray, scene: OwnScene) -> float:
 
 
 def _rest(rows, pts, dist, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None:
-    """self_centring, where the evidence holds (module docstring)."""
+    """self_centring, where the evidence holds (module docstring): a steady geometric fall
+    of the speed to an Aitken limit of nothing, or, shown, a motion that has come to rest
+    (it moved less than tol_k in each of the newest repeat_count own periods)."""
     speed = rows["v_max"]
+    tol = _tolerance(pts[-1], scene)
+    count = vp.repeat_count
+    at_rest = bool(np.all(speed[-count:] * rows["dt"][-count:] <= tol))
     q = steady_ratio(speed, vp.own_ratios, vp)
-    if math.isnan(q):
-        return None
-    limit = aitken(speed)
-    newest = float(speed[-1])
-    if math.isnan(limit) or abs(limit) > vp.own_rest_zero * newest:
+    limit = aitken(speed) if not math.isnan(q) else math.nan
+    falls = not math.isnan(limit) and abs(limit) <= vp.own_rest_zero * float(speed[-1])
+    if not falls and not at_rest:
         return None
     last = rows[-1]
     slip_rate = float(last["slip"] / last["dt"])
     if slip_rate <= vp.own_rest_slip * scene.eps:
         return None
-    tail = float(dist[-1]) * q / (1.0 - q)
-    rest = pts[-1, :2] + (pts[-1, :2] - pts[-2, :2]) * q / (1.0 - q)
-    tol = _tolerance(pts[-1], scene)
-    shown = bool(np.all(dist[-vp.repeat_count :] <= tol))
-    converged = shown if scene.observe else tail <= tol
+    rest, tail = pts[-1, :2], 0.0
+    if falls:
+        tail = float(dist[-1]) * q / (1.0 - q)
+        rest = pts[-1, :2] + (pts[-1, :2] - pts[-2, :2]) * q / (1.0 - q)
+    shown = at_rest or bool(np.all(dist[-count:] <= tol))
+    converged = shown if scene.observe else (shown or tail <= tol)
     measures = _measures(rows, scene)
-    rate = -math.log(q) / measures["own_period"]
+    rate = -math.log(q) / measures["own_period"] if falls else math.nan
     radius = float(np.hypot(*rest))
+    how = f"falls by {q:.4g} (rate {rate:.4g} 1/s)" if falls else "has fallen"
     return MotionEvidence(
         SELF_CENTRING,
         converged,
         f"self-centres: its largest speed per own period ({measures['own_period']:.4g} s) "
-        f"falls by {q:.4g} (rate {rate:.4g} 1/s) to rest at |r| = {radius:.6g} m, where it "
-        f"still slips at {slip_rate:.3g} m/s; travel left {tail:.3g} m (tolerance {tol:.3g} m)",
-        floquet_ratio=q,
+        f"{how} to rest at |r| = {radius:.6g} m, where it still slips at {slip_rate:.3g} m/s; "
+        f"travel left {tail:.3g} m (tolerance {tol:.3g} m; beta_s/2m_s = "
+        f"{scene.tangential_rate:.4g} 1/s)",
+        floquet_ratio=q if falls else math.nan,
         decay_rate=rate,
         r_eq_x=float(rest[0]),
         r_eq_y=float(rest[1]),
@@ -173,9 +182,9 @@ def _cycle(rows, pts, dist, scene: OwnScene, vp: VerdictParams) -> MotionEvidenc
     speed = rows["v_max"]
     limit = aitken(speed)
     moving = math.isnan(limit) or limit >= vp.own_motion_keep * float(speed[-1])
-    if not moving or float(speed[-1]) <= 0.0:
-        return None
     tol = _tolerance(pts[-1], scene)
+    if not moving or float(speed[-1] * rows["dt"][-1]) <= tol:
+        return None  # a motion that moves less than tol in a period is at rest
     measures = _measures(rows, scene)
     if dist.shape[0] >= vp.repeat_count and np.all(dist[-vp.repeat_count :] <= tol):
         how = f"its own section repeats within {float(np.max(dist[-vp.repeat_count :])):.3g} m"
@@ -275,6 +284,8 @@ def _ripple(rows, pts, dist, scene: OwnScene, vp: VerdictParams) -> MotionEviden
     window = vp.own_window
     if scene.arm <= 0.0 or scene.n_contacts < 2 or rows.shape[0] < window:
         return None
+    if float(rows["v_max"][-1] * rows["dt"][-1]) <= _tolerance(pts[-1], scene):
+        return None  # at rest
     band, ripple = _band(rows[-window:])
     if band > ripple:
         return None
@@ -383,11 +394,12 @@ def judge(rows: np.ndarray | None, scene: OwnScene, vp: VerdictParams) -> Motion
         )
     pts = section_points(regime, scene)
     dist = np.linalg.norm(np.diff(pts, axis=0), axis=1)
-    for rule in (_rest, _cycle, _ripple):
+    for rule in (_rest, _cycle, _ripple):  # _cycle and _ripple need a motion that moves
         found = rule(regime, pts, dist, scene, vp)
         if found is not None:
             return found
-    found = _envelope(regime, scene, vp)
+    resting = float(regime["v_max"][-1] * regime["dt"][-1]) <= _tolerance(pts[-1], scene)
+    found = None if resting else _envelope(regime, scene, vp)
     if found is not None:
         return found
     m = _measures(regime, scene)
