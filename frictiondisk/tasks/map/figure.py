@@ -4,7 +4,7 @@ Every cell coloured by its motion (the colours of frictiondisk.tasks.basin.figur
 outcome_colors: the campaign figures' colours, then a fixed palette for any outcome they do
 not know), one legend for all motions with the share of cells of each; the cells that ran
 are marked with a dot (the others are inferred from a uniform block of the refinement), a
-cross where a run had not settled. A map over one key is one coloured strip.
+cross where a converge-mode run had not settled (sticking is settled by its own rule). A map over one key is one coloured strip.
 
 Like every figure: no backend, no pyplot, no kernel.
 """
@@ -29,6 +29,7 @@ from frictiondisk.figures.shared import (
 )
 from frictiondisk.figures.style import styled
 from frictiondisk.tasks.basin.figure import outcome_colors
+from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
 
 _VARS = ("motion", "ran", "cycle_converged", "cell_fraction")
 
@@ -41,7 +42,8 @@ def plot_map(results: xr.Dataset) -> Figure:
     colors = outcome_colors(outcomes)
     motion = results["motion"]
     dims = list(motion.dims)
-    fig, main, _ = new_figure(results, 7.2, 5.2, 0)
+    # the caption names the map's own numerics.mode (the base scene's may differ)
+    fig, main, _ = new_figure(results, 7.2, 5.2, 0, results.attrs.get("mode"))
     ax = main.add_subplot()
     code = {o: k for k, o in enumerate(outcomes)}
     values = np.vectorize(lambda o: code.get(str(o), -1), otypes=[float])(motion.values)
@@ -104,6 +106,10 @@ def _mark_runs(ax, results: xr.Dataset, dims: list[str], xs, ys) -> list[Any]:
     handles = []
     if results.attrs.get("mode") != "converge":  # a decide run does not say whether it settled
         settled = np.ones_like(settled)
+    # sticking is settled by its own rule (co-rotation for good), whatever cycle_converged says
+    motion = np.asarray(results["motion"].values, dtype=str)
+    sticks = np.vectorize(lambda o: o in OUTCOMES and outcome_class(o) == "stick")(motion)
+    settled = np.where(sticks.reshape(settled.shape), 1, settled)
     for flag, marker, label in ((1, ".", "cell run"), (0, "x", "run, not settled")):
         mask = (ran == 1) & ((settled != 0) if flag else (settled == 0))
         i, j = np.nonzero(mask)
