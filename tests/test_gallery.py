@@ -62,6 +62,13 @@ def test_save_figure_keeps_the_footer_in_the_png(tmp_path):
     assert numerics_versions(text) == [NUMERICS_VERSION]
 
 
+def test_the_footer_of_a_figure_with_an_empty_log_axis_is_found(tmp_path):
+    fig = Figure(figsize=(4.0, 3.0), layout="constrained")
+    fig.add_subplot().set_yscale("log")  # no data: its ticks cannot be computed
+    add_footer(fig, "a log axis | numerics 7")
+    assert footer_text(fig) == "a log axis | numerics 7"
+
+
 def test_a_figure_without_a_footer_keeps_none(tmp_path):
     fig = Figure(figsize=(2.0, 2.0))
     fig.add_subplot()
