@@ -4,13 +4,14 @@ so no pixels are read and nothing is simulated)."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
 from matplotlib.figure import Figure
 from PIL import Image
 
-from frictiondisk.cli.gallery import GALLERY, outputs
+from frictiondisk.cli.gallery import GALLERY, outputs, seed
 from frictiondisk.figures.footer import (
     FOOTER_KEY,
     add_footer,
@@ -79,3 +80,17 @@ def test_a_figure_without_a_footer_keeps_none(tmp_path):
 def test_numerics_versions_reads_the_kernel_version_text():
     assert numerics_versions("frictiondisk 0.1.0 | numerics 12, numba 0.1") == [12]
     assert numerics_versions("numerics rodas4, rtol 1e-06 | numerics 7, numba") == [7]
+
+
+def test_seed_copies_only_complete_run_folders_that_out_lacks(tmp_path):
+    runs, out = tmp_path / "runs", tmp_path / "out"
+    for name, state in (("done", "complete"), ("half", "running"), ("mine", "complete")):
+        (runs / name).mkdir(parents=True)
+        (runs / name / "status.json").write_text(json.dumps({"state": state}))
+        (runs / name / "lock").write_text("")
+    (out / "mine").mkdir(parents=True)  # resumed as it is, never overwritten
+    seed(("done", "half", "mine", "absent"), runs, out)
+    assert (out / "done" / "status.json").is_file()
+    assert not (out / "done" / "lock").exists()  # the writer's lock stays with its folder
+    assert not (out / "half").exists() and not (out / "absent").exists()
+    assert not (out / "mine" / "status.json").exists()
