@@ -14,8 +14,8 @@ stays cheap)::
     fig = plot_results("out/demo_line")      # what `frictiondisk plot DIR` draws
     fig = plot_orbit(simulate(scene, record=True, dt_out=0.05), scene)
 
-Everything else lives in the packages below, in data-flow order (docs/architecture.md):
-model, kernel, outcome, simulation, store, figures, tasks (one package per task, found
+Everything else lives in the packages below, in layer order (docs/architecture.md):
+model, kernel, verdict, simulation, store, figures, tasks (one package per task, found
 through tasks/registry.py), engine, studies, cli. docs/model.md describes the model.
 """
 

@@ -3,7 +3,7 @@ exercises, the VerdictParams field it pins and the verdict it must get.
 
 The thresholds live in frictiondisk/verdict/params.py with a one-line reason each; the
 story of why each has its value lives here, next to a scene that shows it. "Study seed s
-scene k" is scene k of seed s of the well-posedness study (benchmarks/study_wellposed.py
+scene k" is scene k of seed s of the well-posedness study (frictiondisk/studies/wellposed/scenes.py
 `draw_scene`, with the numerics a find_jump campaign at tol 1e-4 gives it). A row that a
 dedicated test already runs with more checks names that test in `covered_by` and is not
 run again here (the suite stays fast); the others run here, a few milliseconds each.

@@ -7,7 +7,7 @@ rate (docs/brake.md).
 Prints every number it finds and writes
   FIGURES/brake_admissibility.png   mu*(beta_b) of the `stick` rule (both initial spins), the
                                     mu* of a co-rotation rule, and the four bounds of
-                                    frictiondisk/outcome/admissibility.py; micro-slip per
+                                    frictiondisk/verdict/admissibility.py; micro-slip per
                                     revolution
   FIGURES/brake_rotation_term.png   a stuck braked disk integrated with and without the
                                     rotation term of docs/model.md section 3 (scipy-radau)
