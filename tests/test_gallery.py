@@ -39,16 +39,35 @@ def test_the_gallery_names_its_generators_once():
     assert len(names) == len(set(names))
 
 
+def numerics_problem(path: Path) -> str | None:
+    """Why the PNG at `path` is not from this code's numerics, or None if it is."""
+    footer = Image.open(path).text.get(FOOTER_KEY, "")
+    if not footer:
+        return f"{path.name} keeps no footer in its metadata: draw it with `make gallery`"
+    versions = numerics_versions(footer)
+    if not versions:
+        return f"{path.name}'s footer names no numerics version: {footer!r}"
+    if set(versions) != {NUMERICS_VERSION}:
+        return (
+            f"{path.name} was drawn from numerics {sorted(set(versions))}, the code is at "
+            f"{NUMERICS_VERSION}: draw it again (`make gallery`)"
+        )
+    return None
+
+
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda path: path.name)
 def test_a_shipped_figure_names_this_code_s_numerics_version(path):
-    footer = Image.open(path).text.get(FOOTER_KEY, "")
-    assert footer, f"{path.name} keeps no footer in its metadata: draw it with `make gallery`"
-    versions = numerics_versions(footer)
-    assert versions, f"{path.name}'s footer names no numerics version: {footer!r}"
-    assert set(versions) == {NUMERICS_VERSION}, (
-        f"{path.name} was drawn from numerics {sorted(set(versions))}, the code is at "
-        f"{NUMERICS_VERSION}: draw it again (`make gallery`)"
-    )
+    assert numerics_problem(path) is None, numerics_problem(path)
+
+
+@pytest.mark.parametrize("footer", ["", "no version here", "numerics 7, numba"])
+def test_the_check_flags_a_figure_of_other_numerics(tmp_path, footer):
+    fig = Figure(figsize=(4.0, 3.0), layout="constrained")
+    fig.add_subplot()
+    text = footer.replace("numerics 7", f"numerics {NUMERICS_VERSION - 1}")
+    if text:
+        add_footer(fig, text)
+    assert numerics_problem(save_figure(fig, tmp_path / "old.png")) is not None
 
 
 def test_save_figure_keeps_the_footer_in_the_png(tmp_path):
