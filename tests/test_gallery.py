@@ -4,13 +4,14 @@ so no pixels are read and nothing is simulated)."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
 from matplotlib.figure import Figure
 from PIL import Image
 
-from frictiondisk.cli.gallery import GALLERY, outputs
+from frictiondisk.cli.gallery import GALLERY, outputs, seed
 from frictiondisk.figures.footer import (
     FOOTER_KEY,
     add_footer,
@@ -38,16 +39,35 @@ def test_the_gallery_names_its_generators_once():
     assert len(names) == len(set(names))
 
 
+def numerics_problem(path: Path) -> str | None:
+    """Why the PNG at `path` is not from this code's numerics, or None if it is."""
+    footer = Image.open(path).text.get(FOOTER_KEY, "")
+    if not footer:
+        return f"{path.name} keeps no footer in its metadata: draw it with `make gallery`"
+    versions = numerics_versions(footer)
+    if not versions:
+        return f"{path.name}'s footer names no numerics version: {footer!r}"
+    if set(versions) != {NUMERICS_VERSION}:
+        return (
+            f"{path.name} was drawn from numerics {sorted(set(versions))}, the code is at "
+            f"{NUMERICS_VERSION}: draw it again (`make gallery`)"
+        )
+    return None
+
+
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda path: path.name)
 def test_a_shipped_figure_names_this_code_s_numerics_version(path):
-    footer = Image.open(path).text.get(FOOTER_KEY, "")
-    assert footer, f"{path.name} keeps no footer in its metadata: draw it with `make gallery`"
-    versions = numerics_versions(footer)
-    assert versions, f"{path.name}'s footer names no numerics version: {footer!r}"
-    assert set(versions) == {NUMERICS_VERSION}, (
-        f"{path.name} was drawn from numerics {sorted(set(versions))}, the code is at "
-        f"{NUMERICS_VERSION}: draw it again (`make gallery`)"
-    )
+    assert numerics_problem(path) is None, numerics_problem(path)
+
+
+@pytest.mark.parametrize("footer", ["", "no version here", "numerics 7, numba"])
+def test_the_check_flags_a_figure_of_other_numerics(tmp_path, footer):
+    fig = Figure(figsize=(4.0, 3.0), layout="constrained")
+    fig.add_subplot()
+    text = footer.replace("numerics 7", f"numerics {NUMERICS_VERSION - 1}")
+    if text:
+        add_footer(fig, text)
+    assert numerics_problem(save_figure(fig, tmp_path / "old.png")) is not None
 
 
 def test_save_figure_keeps_the_footer_in_the_png(tmp_path):
@@ -62,6 +82,13 @@ def test_save_figure_keeps_the_footer_in_the_png(tmp_path):
     assert numerics_versions(text) == [NUMERICS_VERSION]
 
 
+def test_the_footer_of_a_figure_with_an_empty_log_axis_is_found(tmp_path):
+    fig = Figure(figsize=(4.0, 3.0), layout="constrained")
+    fig.add_subplot().set_yscale("log")  # no data: its ticks cannot be computed
+    add_footer(fig, "a log axis | numerics 7")
+    assert footer_text(fig) == "a log axis | numerics 7"
+
+
 def test_a_figure_without_a_footer_keeps_none(tmp_path):
     fig = Figure(figsize=(2.0, 2.0))
     fig.add_subplot()
@@ -72,3 +99,17 @@ def test_a_figure_without_a_footer_keeps_none(tmp_path):
 def test_numerics_versions_reads_the_kernel_version_text():
     assert numerics_versions("frictiondisk 0.1.0 | numerics 12, numba 0.1") == [12]
     assert numerics_versions("numerics rodas4, rtol 1e-06 | numerics 7, numba") == [7]
+
+
+def test_seed_copies_only_complete_run_folders_that_out_lacks(tmp_path):
+    runs, out = tmp_path / "runs", tmp_path / "out"
+    for name, state in (("done", "complete"), ("half", "running"), ("mine", "complete")):
+        (runs / name).mkdir(parents=True)
+        (runs / name / "status.json").write_text(json.dumps({"state": state}))
+        (runs / name / "lock").write_text("")
+    (out / "mine").mkdir(parents=True)  # resumed as it is, never overwritten
+    seed(("done", "half", "mine", "absent"), runs, out)
+    assert (out / "done" / "status.json").is_file()
+    assert not (out / "done" / "lock").exists()  # the writer's lock stays with its folder
+    assert not (out / "half").exists() and not (out / "absent").exists()
+    assert not (out / "mine" / "status.json").exists()

@@ -16,10 +16,12 @@ holds it under this code's numerics version (the version is part of every journa
 so the figure is this code's either way, and a folder of older numerics is run again.
 No figure needs campaigns/clutch_annulus.yaml (hours).
 
-Cost on 2 cores with nothing reused (docs/user-guide.md, "The gallery"): the figure
-campaigns about 20 min (disk_xms_at_rest 5, each Fig 11 start 3), the basin campaigns 2,
-the brake study, the corotation scans and the three accuracy studies some minutes each,
-the work-precision benchmark about 21 min.
+Cost, measured 2026-11-28 one campaign or study at a time on the shared 2-core machine
+(load 6-13; docs/user-guide.md, "The gallery"): the figure campaigns 15-21 min
+(disk_xms_at_rest 5-7, each Fig 11 start 3-4), the basin campaigns 2-12, the accuracy
+studies 9 (pin) and 14 min each (braked disk), the brake study 11 min, the corotation
+scans 30 s, the work-precision benchmark about 21 min on an idle machine. Drawing from
+finished run folders (--runs): about 2 min for the figure and basin campaigns.
 """
 
 from __future__ import annotations

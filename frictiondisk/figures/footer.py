@@ -15,7 +15,7 @@ import re
 from collections.abc import Iterable
 from typing import Any
 
-from matplotlib.figure import Figure
+from matplotlib.figure import Figure, SubFigure
 from matplotlib.layout_engine import ConstrainedLayoutEngine, TightLayoutEngine
 from matplotlib.text import Text
 
@@ -47,11 +47,16 @@ def chars_per_line(width_in: float) -> int:
     return int(width_in * 72 / (CHAR_WIDTH_EM * CAPTION_FONT_PT))
 
 
+def figure_texts(fig: Figure | SubFigure) -> list[Text]:
+    """The texts placed on `fig` and its subfigures (fig.text), not those of its axes."""
+    return [*fig.texts, *(text for sub in fig.subfigs for text in figure_texts(sub))]
+
+
 def footer_text(fig: Figure) -> str | None:
-    """The text of `fig`'s footer (every Text with gid FOOTER_GID, in drawing order), or
-    None if it has none."""
-    texts = fig.findobj(lambda artist: isinstance(artist, Text) and artist.get_gid() == FOOTER_GID)
-    found = [text.get_text() for text in texts if text.get_text()]
+    """The text of `fig`'s footer (every figure text with gid FOOTER_GID), or None if it
+    has none. (Not Figure.findobj: that asks every axis for its ticks, which fails on a log
+    axis without positive data.)"""
+    found = [t.get_text() for t in figure_texts(fig) if t.get_gid() == FOOTER_GID and t.get_text()]
     return "\n".join(dict.fromkeys(found)) or None
 
 

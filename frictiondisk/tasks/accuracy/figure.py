@@ -85,7 +85,7 @@ def work_precision_figure(ds: xr.Dataset) -> Figure:
                 color="0.3",
             )
             ax.set_xscale("log")
-            ax.set_yscale("log")
+            _cost_scale(ax, np.isfinite(ds["error"].values[rows]).any())
             ax.set_xlabel("error |\u03bc* \u2212 \u03bc*_ref| [-]")
             ax.set_ylabel(cost_label)
             ax.grid(True, which="major", alpha=0.3)
@@ -116,6 +116,26 @@ def work_precision_figure(ds: xr.Dataset) -> Figure:
         bottom += 0.012 * len(lines)
         fig.get_layout_engine().set(rect=(0, bottom, 1, 1 - bottom))
     return fig
+
+
+def _cost_scale(ax, drawn: bool) -> None:
+    """A log cost axis, or where no row of the panel has an error to draw (every
+    bisection, or its reference, failed: listed under the figure) a note saying so; a log
+    axis without positive data cannot be drawn."""
+    if drawn:
+        ax.set_yscale("log")
+        return
+    ax.set_yticks([])
+    ax.text(
+        0.5,
+        0.5,
+        "nothing to draw: no setting of these knobs\nhas an error (the failures are listed below)",
+        transform=ax.transAxes,
+        ha="center",
+        va="center",
+        fontsize=8,
+        color="0.3",
+    )
 
 
 def _series_key(ds: xr.Dataset, i: int) -> tuple[str, str]:
