@@ -27,3 +27,13 @@ def test_an_unknown_name_is_refused_not_guessed():
 
 def test_the_stored_attribute_lists_the_same_names():
     assert cf.OUTCOMES.split() == list(oc.OUTCOMES)
+
+
+def test_every_outcome_has_a_figure_style_and_a_label():
+    """A new outcome in verdict/outcomes.py must be drawn: the scan figure and the run dots
+    take their markers and legend text from these, and would skip a name they lack."""
+    from frictiondisk.figures.shared import OUTCOME_LABEL, OUTCOME_STYLE
+    from frictiondisk.verdict.outcomes import OUTCOMES
+
+    assert set(OUTCOME_STYLE) == set(OUTCOMES)
+    assert set(OUTCOME_LABEL) == set(OUTCOMES)

@@ -41,7 +41,8 @@ def main() -> None:
     """frictiondisk: stick-slip and permanent sticking of rigid friction disks.
 
     Simulates a pin or a slave disk on a driven master disk with elasto-visco-plastic
-    friction contacts, and classifies each run as stick, creep, stick_slip, slide or undetermined.
+    friction contacts, and classifies each run as stick, creep, stick_slip, self_centring,
+    slide_cycle, modulated, slide or undetermined.
     """
 
 
@@ -117,7 +118,8 @@ def simulate(
 ) -> None:
     """Simulate one SCENE (a YAML file) and report its outcome.
 
-    The outcome is one of stick, creep, stick_slip, slide or undetermined (always with a reason),
+    The outcome is one of stick, creep, stick_slip, self_centring, slide_cycle, modulated,
+    slide or undetermined (always with a reason),
     reported with the first sticking radius R1, the cycle size and a, the number of
     stick/slide transitions and the stick fraction of the final window.
     """

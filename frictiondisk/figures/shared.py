@@ -22,6 +22,7 @@ from matplotlib.ticker import FuncFormatter
 from frictiondisk.figures.footer import FOOTER_GID, FOOTER_SEP, chars_per_line, wrap_parts
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 from frictiondisk.verdict.horizon import horizon_key
+from frictiondisk.verdict.outcomes import OUTCOMES, is_not_stick
 
 MU_LABEL = "friction coefficient \u03bc [-]"
 MU_STAR_LABEL = "\u03bc* [-]"
@@ -42,6 +43,9 @@ OUTCOME_STYLE: dict[str, dict[str, Any]] = {
     "stick": {"color": STICK_COLOR, "edge": STICK_COLOR, "marker": "o"},
     "creep": {"color": "#e0a040", "edge": "#9a6a1c", "marker": "D"},
     "stick_slip": {"color": SLIDE_COLOR, "edge": "#3f6e8c", "marker": "o"},
+    "self_centring": {"color": "#7fbf7f", "edge": "#3f7f3f", "marker": "v"},
+    "slide_cycle": {"color": "#b58fd6", "edge": "#6f4a94", "marker": "^"},
+    "modulated": {"color": "#e07fb0", "edge": "#9a3f6e", "marker": "P"},
     "slide": {"color": SLIDE_GREY, "edge": "0.35", "marker": "s"},
     "undetermined": {"color": FAIL_COLOR, "edge": FAIL_COLOR, "marker": "x"},
 }
@@ -49,7 +53,10 @@ OUTCOME_LABEL = {
     "stick": "stick",
     "creep": "creep (ratchets on the small orbit)",
     "stick_slip": "stick_slip (limit cycle)",
-    "slide": "slide",
+    "self_centring": "self_centring (slides to rest)",
+    "slide_cycle": "slide_cycle (pure-sliding cycle)",
+    "modulated": "modulated (cycle with a slow envelope)",
+    "slide": "slide (not stick, not settled)",
     "undetermined": "undetermined",
 }
 
@@ -305,7 +312,7 @@ def run_dots(ax: Axes, x: np.ndarray, mu: np.ndarray, outcome: np.ndarray) -> li
     groups = (
         (outcome == "stick", "o", STICK_COLOR, "run: stick"),
         (
-            (outcome == "stick_slip") | (outcome == "slide") | (outcome == "creep"),
+            np.isin(outcome, [o for o in OUTCOMES if is_not_stick(o)]),
             "o",
             SLIDE_COLOR,
             "run: not stick",

@@ -17,6 +17,7 @@ from frictiondisk.store.campaign_datasets import (
 from frictiondisk.store.measures import RUN_MEASURES, num
 from frictiondisk.store.partial import PENDING_REASON
 from frictiondisk.tasks.jump_search.runs import RunRequest
+from frictiondisk.verdict.outcomes import OUTCOMES
 
 PENDING_RUN = {"outcome": "", "reason": PENDING_REASON}
 # CF attributes of this task's own variables (frictiondisk.store.cf.complete)
@@ -43,7 +44,7 @@ def _scan_results(snapshot) -> xr.Dataset:
         "outcome": (
             dims,
             np.asarray([r["outcome"] for r in results], dtype=str).reshape(shape),
-            {"long_name": "stick, creep, stick_slip, slide or undetermined"},
+            {"long_name": "one of " + ", ".join(OUTCOMES)},
         ),
         "reason": (
             dims,
