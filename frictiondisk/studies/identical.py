@@ -30,8 +30,8 @@ import numpy as np
 
 # variables that measure the machine, not the result
 TIMING_VARIABLES = frozenset({"wall_s", "kernel_s", "elapsed_s", "run_wall_s"})
-# attributes that carry a date or a host
-VOLATILE_ATTRIBUTES = frozenset({"history", "date_created", "date_modified"})
+# attributes that carry a date, a host or a timing (a trajectory file's wall_s)
+VOLATILE_ATTRIBUTES = frozenset({"history", "date_created", "date_modified"}) | TIMING_VARIABLES
 # campaigns that only describe a scene (no task): `frictiondisk simulate` reads them
 SCENE_FILES = frozenset({"demo_pin"})
 
@@ -165,13 +165,27 @@ def _compare_digests(before: dict, after: dict, allow: set[str]) -> list[str]:
     return lines
 
 
+def campaign_folders(root: Path) -> list[Path]:
+    """The run folders under `root`: root itself where it holds netCDF files (one
+    campaign's folder), else each of its sub-folders that does."""
+    if any(root.glob("*.nc")):
+        return [root]
+    return sorted(p for p in root.iterdir() if p.is_dir() and any(p.glob("*.nc")))
+
+
 def compare(before: Path, after: Path, allow: set[str]) -> list[str]:
-    """Differences between two run folders (run by run) or a digest and a run folder."""
+    """Differences between two run folders (run by run) or a digest and a run folder.
+    Either folder is one campaign's folder or a folder of them; comparing no netCDF file
+    at all is an error, never `identical`."""
     if before.is_file():
         return _compare_digests(json.loads(before.read_text()), digest(after), allow)
+    folders = campaign_folders(before)
+    if not folders:
+        raise SystemExit(f"error: no netCDF file under {before}: nothing to compare")
+    single = folders == [before]
     lines = []
-    for folder in sorted(p for p in before.iterdir() if p.is_dir()):
-        other = after / folder.name
+    for folder in folders:
+        other = after if single else after / folder.name
         for nc in sorted(folder.glob("*.nc")):
             if not (other / nc.name).exists():
                 lines.append(f"{folder.name}/{nc.name}: missing after")
