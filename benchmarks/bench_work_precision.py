@@ -17,7 +17,7 @@ same lines with today's default numerics fixed (numerics.preset: default: rtol 1
 atol 1e-9, t_decide 30 s), for comparison. `--figure PATH` draws the cost per right
 certified mu* and runs per point against tol (docs/accuracy.md).
 
-    python benchmarks/bench_work_precision.py --figure figures/work_precision_tol.png
+    python benchmarks/bench_work_precision.py --figure out/bench/work_precision_tol.png
     python benchmarks/bench_work_precision.py --lines pin --tols 1e-4,1e-8 --no-baseline
 """
 

@@ -20,7 +20,7 @@ Cost, measured 2026-11-28 one campaign or study at a time on the shared 2-core m
 (load 6-13; docs/user-guide.md, "The gallery"): the figure campaigns 15-21 min
 (disk_xms_at_rest 5-7, each Fig 11 start 3-4), the basin campaigns 2-12, the accuracy
 studies 9 (pin) and 14 min each (braked disk), the brake study 11 min, the corotation
-scans 30 s, the work-precision benchmark about 21 min on an idle machine. Drawing from
+scans 30 s. Drawing from
 finished run folders (--runs): about 2 min for the figure and basin campaigns.
 """
 
@@ -120,11 +120,6 @@ GALLERY: tuple[Generator, ...] = (
         "brake",
         ("brake_admissibility.png", "brake_rotation_term.png"),
         ("-m", "frictiondisk.studies.brake", "-o", "{out}/brake", "--figures", "{figures}"),
-    ),
-    Generator(
-        "work_precision_tol",
-        ("work_precision_tol.png",),
-        ("benchmarks/bench_work_precision.py", "--figure", "{figures}/work_precision_tol.png"),
     ),
 )
 
