@@ -318,8 +318,12 @@ def test_a_certified_end_that_its_watch_contradicts_is_a_silent_error_within_tol
 def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default(tmp_path):
     """Seed 0, scene 0 end to end: three find_jump campaigns on the engine, each read back
     by rebuilding its search from runs.nc (which a runs.nc short of a run cannot do); run
-    again, it resumes from the journals and computes nothing."""
-    (row,) = study.run_study([(0, 0)], tmp_path)
+    again, it resumes from the journals and computes nothing. The bracket ends' watches
+    (1 500 s or more each at rtol / 100) are left out here: the judge's reading of them is
+    tested on rows above."""
+    options = study.Options(watch_ends=False)
+    (row,) = study.run_study([(0, 0)], tmp_path, options)
+    assert row["ends"] == []
     default, reference = row["default"], row["reference"]
     assert math.isfinite(reference.mu_star)
     if default.certified:
@@ -339,5 +343,5 @@ def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default
     with pytest.raises(found_module.ReplayMismatch, match="not in runs.nc"):
         found_module.replay(campaign, runs.isel(run=slice(1, None)))
     journal = sorted((tmp_path / "s0-0-reference" / "journal").iterdir())
-    assert study.run_study([(0, 0)], tmp_path) == [row]
+    assert study.run_study([(0, 0)], tmp_path, options) == [row]
     assert sorted((tmp_path / "s0-0-reference" / "journal").iterdir()) == journal

@@ -52,6 +52,7 @@ class Options:
     reference_from: Path | None = None
     settled_from: tuple[Path, ...] = ()
     generator: int = 1
+    watch_ends: bool = True
 
 
 def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options()) -> list[dict]:
@@ -69,7 +70,7 @@ def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options
         scenes.update(defaults)
     if options.reference:
         known = known_watches(list(options.settled_from))
-        settle(rows, scenes, out, options.workers, known, options.generator)
+        settle(rows, scenes, out, options.workers, known, options.generator, options.watch_ends)
     write_rows(out, rows)
     return rows
 
@@ -130,7 +131,13 @@ def watches_of(scene: dict) -> tuple[str, ...]:
 
 
 def settle(
-    rows: list[dict], scenes: dict, out: Path, workers: int, known: dict, generator: int = 1
+    rows: list[dict],
+    scenes: dict,
+    out: Path,
+    workers: int,
+    known: dict,
+    generator: int = 1,
+    watch_ends: bool = True,
 ) -> None:
     """Watch every disagreement at its disputed mu and every certified bracket's ends (a
     scan campaign per scene and watch, of the mu no earlier study watched), then give each
@@ -138,7 +145,7 @@ def settle(
     scans = {}  # (seed, index, watch) -> the scan campaign of the mu it watches here
     for row in rows:
         key = (row["seed"], row["index"])
-        wanted = sorted({mu for mus in watched_mu(row) for mu in mus})
+        wanted = sorted({mu for mus in _watched(row, watch_ends) for mu in mus})
         earlier = known.get(key, {})
         for watch in watches_of(row["scene"]):
             todo = [mu for mu in wanted if earlier_watch(earlier.get(mu), watch) is None]
@@ -149,10 +156,16 @@ def settle(
     campaigns.run(scans.values(), out, workers)
     shown = {where: read_watches(out / scan["name"]) for where, scan in scans.items()}
     for row in rows:
-        settled, persisted, ends = watched_mu(row)
+        settled, persisted, ends = _watched(row, watch_ends)
         row["settled"] = [settling_run(row, mu, shown, known) for mu in settled]
         row["persisted"] = [settling_run(row, mu, shown, known) for mu in persisted]
         row["ends"] = [settling_run(row, mu, shown, known) for mu in ends]
+
+
+def _watched(row: dict, watch_ends: bool) -> tuple[list[float], list[float], list[float]]:
+    """watched_mu, without the bracket's ends where they are not watched."""
+    settled, persisted, ends = watched_mu(row)
+    return settled, persisted, ends if watch_ends else []
 
 
 def earlier_watch(run: dict | None, watch: str) -> dict | None:
