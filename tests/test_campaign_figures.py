@@ -29,6 +29,7 @@ from frictiondisk.model.auto_numerics import choose  # noqa: E402
 from frictiondisk.model.scene import scene_from_dict  # noqa: E402
 from frictiondisk.model.search_settings import CERTIFICATION_FLAGS  # noqa: E402
 from frictiondisk.store import cf  # noqa: E402
+from frictiondisk.store.measures import RUN_MEASURES  # noqa: E402
 from frictiondisk.tasks.campaign import campaign_from_text  # noqa: E402
 from frictiondisk.tasks.find_jump.figure_grid import plot_jump_grid  # noqa: E402
 from frictiondisk.tasks.find_jump.figure_kind import figure_kind  # noqa: E402
@@ -43,25 +44,7 @@ NUMERICS_YAML = (
     "horizon_budget: 8.0\nmax_events: 200000\nmax_steps: 2000000\nmethod: rodas4\nmode: decide\nrtol: 1.0e-06\n"
     "stick_rule: corotation\nstop_on_stick: true\nt_decide: 30.0\nt_max: 3000.0\nwindow_revs: 2.0\n"
 )
-MEASURES = {  # datasets.RUN_MEASURES: name -> units
-    "R1": "m",
-    "t_R1": "s",
-    "size": "m",
-    "a": "m",
-    "n_transitions": "1",
-    "stick_fraction": "1",
-    "t_end": "s",
-    "n_steps": "1",
-    "n_refused": "1",
-    "energy_residual": "1",
-    "n_revolutions": "1",
-    "slip_per_rev": "m",
-    "drift_per_rev": "m",
-    "spin_drift_per_rev": "rad",
-    "slip_decay": "1",
-    "slip_limit": "m",
-    "reserve": "1",
-}
+MEASURES = {name: units for name, (units, _) in RUN_MEASURES.items()}  # name -> units
 JUMP_ONLY_ATTRS = ("tol", "runs_saved_by_warm_start")  # results.nc of find_jump, not runs.nc
 KEYS = {  # scene key -> (dimension, units, long_name) as datasets._key_attrs writes them
     "params.x_ms": ("x_ms", "m", "axes offset: the slave's rest position is (x_ms, 0) [m]"),
@@ -167,6 +150,7 @@ def jump_runs(results, per_point):
         "role": ("run", np.full(n, "search"), {}),
         "outcome": ("run", np.asarray([r[2] for r in rows], str), {}),
         "reason": ("run", np.full(n, "why"), {}),
+        "decided_by": ("run", np.full(n, "corotation"), {}),
         "key": ("run", np.full(n, "0" * 64), {}),
         "wall_s": ("run", np.full(n, 0.001), {"units": "s"}),
     }
