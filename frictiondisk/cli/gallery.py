@@ -19,7 +19,7 @@ No figure needs campaigns/clutch_annulus.yaml (hours).
 Cost, measured 2026-11-28 one campaign or study at a time on the shared 2-core machine
 (load 6-13; docs/user-guide.md, "The gallery"): the figure campaigns 15-21 min
 (disk_xms_at_rest 5-7, each Fig 11 start 3-4), the basin campaigns 2-12, the accuracy
-studies 9 (pin) and 14 min each (braked disk), the brake study 11 min, the corotation
+study of the pin 9 min, the brake study 11 min, the corotation
 scans 30 s. Drawing from
 finished run folders (--runs): about 2 min for the figure and basin campaigns.
 """
@@ -97,19 +97,6 @@ GALLERY: tuple[Generator, ...] = (
         campaigns=BASIN,
     ),
     _accuracy("accuracy_pin", "work_precision_pin.png"),
-    _accuracy(
-        "accuracy_brake",
-        "work_precision_brake.png",
-        "--knobs",
-        "rtol,t_decide,eps",
-        "--tol",
-        "1e-5",
-    ),
-    _accuracy(
-        "accuracy_brake_contacts",
-        "work_precision_brake_contacts.png",
-        *("--knobs", "rtol,t_decide", "--tol", "1e-5"),
-    ),
     Generator(
         "corotation",
         ("brake_drift.png",),
