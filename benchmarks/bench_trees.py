@@ -28,19 +28,11 @@ import sys
 import tempfile
 from pathlib import Path
 
+from bench_kernel import CASES as KERNEL_CASES
 from harness import Record
 
-CASES = {
-    "pin decision run (mu 0.13, x_ms 0.1)": {
-        "scene": "pin",
-        "params": {"mu": 0.13, "x_ms": 0.1},
-        "numerics": {"mode": "decide"},
-    },
-    "pin 200 s stick_slip run (mu 0.1265, x_ms 0.1)": {
-        "scene": "pin",
-        "params": {"mu": 0.1265, "x_ms": 0.1},
-        "numerics": {"mode": "decide", "t_decide": 200.0},
-    },
+CASES = {  # bench_kernel's two pin runs, and two disks
+    **KERNEL_CASES,
     "disk from rest, 12 contacts (mu 0.2, x_ms 0.1)": {
         "scene": "disk",
         "params": {"mu": 0.2, "x_ms": 0.1},
