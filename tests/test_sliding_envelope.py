@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from ring_replay import replay
 
-from frictiondisk.verdict.facts import Evidence
+from frictiondisk.simulation.result_builder import evidence_of
 from frictiondisk.verdict.params import VerdictParams
 from frictiondisk.verdict.records import EV_NONE
 
@@ -81,18 +81,7 @@ def test_without_two_windows_of_revolutions_no_sliding_is_read():
 def test_a_run_extended_for_its_falling_lowest_slip_says_so():
     """At the horizon budget the reason names the sliding that was not shown steady."""
     _, _, vs = replay(d1(0.15), RINGS["mu_0_15"][:12])  # too few revolutions to compare
-    evidence = Evidence(
-        kind=int(vs["evidence"]),
-        source=int(vs["ev_source"]),
-        distance=float(vs["ev_distance"]),
-        ratio=float(vs["ev_ratio"]),
-        ratio_bound=float(vs["ev_ratio_bound"]),
-        limit=float(vs["ev_limit"]),
-        lag=int(vs["ev_lag"]),
-        points=int(vs["ev_points"]),
-        sliding_revs=int(vs["sliding_revs"]),
-        envelope_revs=int(vs["envelope_revs"]),
-    )
+    evidence = evidence_of(vs)
     assert evidence.kind == EV_NONE
     assert "slides as a whole for 12 revolutions, but" in evidence.describe()
     assert "fewer than 16 to compare" in evidence.describe()

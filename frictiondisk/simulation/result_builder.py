@@ -98,7 +98,7 @@ def run_facts(config, run: RunBuffers, verdict: VerdictParams) -> RunFacts:
         max_events=num.max_events,
         stick_rule=num.stick_rule,
         revs=_revolutions(config, run) if ring else None,
-        evidence=_evidence(vs) if ring else None,
+        evidence=evidence_of(vs) if ring else None,
         steps=run.steps,
         revolution_log=revolution_log(run.revolutions, motion) if ring else None,
         floor=floor,
@@ -172,7 +172,7 @@ def _revolutions(config, run: RunBuffers) -> Revolutions:
     )
 
 
-def _evidence(vs: np.void) -> Evidence:
+def evidence_of(vs: np.void) -> Evidence:
     """The section evidence of the run's last check (verdict/section_evidence.py)."""
     return Evidence(
         kind=int(vs["evidence"]),
