@@ -107,10 +107,10 @@ def test_arrow_jacobian_is_the_dense_jacobian(name):
         p, pts, y, modes, nq = _random_case(name, rng)
         n = y.size
         dense = np.empty((n, n))
-        model.jacobian(p, pts, modes, y, dense)
+        model.jacobian(p, pts, modes, y, dense, np.empty((4, n)))
         jac, _, piv = linalg.stage_workspace(n, nq, False)
         jac[:] = np.nan  # every entry the solver reads must be written
-        model.jacobian_arrow(p, pts, modes, y, jac)
+        model.jacobian_arrow(p, pts, modes, y, jac, np.empty((4, n)))
         r = 2 * nq
         assert piv.shape == (r,)
         jac[:r, r:] = 0.0  # unused

@@ -36,7 +36,7 @@ def test_analytic_jacobian_matches_finite_differences(scene, stribeck):
         for mode in (STICK, SLIDE):
             modes = np.full(pts.shape[0], mode, dtype=np.int8)
             jac = np.empty((n, n))
-            model.jacobian(p, pts, modes, y, jac)
+            model.jacobian(p, pts, modes, y, jac, np.empty((4, n)))
             fd = np.empty((n, n))
             fp, fm = np.empty(n), np.empty(n)
             for j in range(n):
@@ -72,7 +72,7 @@ def _exact_flow(p, pts, modes, y0, t):
     b = np.empty(n)
     model.rhs(p, pts, modes, np.zeros(n), b)
     a = np.empty((n, n))
-    model.jacobian(p, pts, modes, y0, a)
+    model.jacobian(p, pts, modes, y0, a, np.empty((4, y0.size)))
     aug = np.zeros((n + 1, n + 1))
     aug[:n, :n] = a
     aug[:n, n] = b

@@ -17,6 +17,17 @@ numba checks only the timestamp of a function's own file, so a cached step loop 
 keep calling a stale copy of an edited monitor.py. The cache therefore lives in a folder
 named by a hash of every numba source (NUMBA_SOURCES: the kernel, the verdict and the
 step loop, frictiondisk/simulation/loop.py): any edit to any of them compiles afresh.
+
+No reference counting: numba counts the references of every array a function holds,
+with an atomic increment and decrement of its owner for each array argument of each
+call, each view and each tuple element taken. In the step loop, whose functions are
+small and called millions of times, that counting cost more than the arithmetic (about
+60 % of a pin run's time, docs/benchmarks.md). `kernel_jit` compiles a function without
+it (numba's `_nrt=False`): such a function may take, index, slice and pass arrays, but
+may not allocate one (numba refuses to compile it: "NRT required but not enabled") nor
+return one (its caller would count the returned reference as a new one; `plain_types`
+refuses that at compile time). The few functions that allocate the run's scratch, or
+return it, are `kernel_jit_allocating`, with the counting on.
 """
 
 import hashlib
@@ -25,6 +36,7 @@ import pathlib
 
 import numba as nb
 from numba.core import types
+from numba.core.targetconfig import ConfigStack
 
 KERNEL_SOURCES = pathlib.Path(__file__).resolve().parent
 PACKAGE = KERNEL_SOURCES.parent
@@ -56,25 +68,58 @@ def kernel_cache_dir(package: pathlib.Path = PACKAGE) -> str:
 
 nb.config.CACHE_DIR = kernel_cache_dir()
 
-_njit = nb.njit(cache=True, nogil=True, error_model="numpy")
+_njit = nb.njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
+# _nrt=True explicitly: numba lets a callee inherit its caller's unset _nrt flag
+_njit_allocating = nb.njit(cache=True, nogil=True, error_model="numpy", _nrt=True)
 
 
 def kernel_jit(function):
-    """The kernel's numba decorator: `_njit`, typing the arguments of calls from other
-    kernel functions without literals."""
-    return plain_types(_njit(function))
+    """The kernel's numba decorator: `_njit` (no reference counting), typing the arguments
+    of calls from other kernel functions without literals."""
+    return plain_types(_njit(function), counted=False)
 
 
-def plain_types(dispatcher):
+def kernel_jit_allocating(function):
+    """`kernel_jit` with numba's reference counting, for a function that allocates arrays
+    or returns them."""
+    return plain_types(_njit_allocating(function), counted=True)
+
+
+def holds_array(numba_type) -> bool:
+    """Whether a numba type is an array or a tuple (or optional) holding one."""
+    if isinstance(numba_type, types.Buffer):
+        return True
+    if isinstance(numba_type, types.BaseTuple):
+        return any(holds_array(member) for member in numba_type.types)
+    if isinstance(numba_type, types.Optional):
+        return holds_array(numba_type.type)
+    return False
+
+
+def plain_types(dispatcher, counted: bool = True):
     """`dispatcher`, compiled for the plain type of each argument a jitted caller passes
-    (Literal[int](0) -> int64): one signature where numba would add one per literal."""
+    (Literal[int](0) -> int64): one signature where numba would add one per literal.
+
+    And the rule of the counting, checked where a caller first types a call: an array may
+    be returned only from a counted function (counted=True) to a counted caller; else the
+    returned reference would be freed too early or never."""
     typing = getattr(dispatcher, "get_call_template", None)
     if typing is None:  # NUMBA_DISABLE_JIT: the plain function
         return dispatcher
 
     def get_call_template(args, kws):
         plain = tuple(types.unliteral(arg) for arg in args)
-        return typing(plain, {name: types.unliteral(arg) for name, arg in kws.items()})
+        template = typing(plain, {name: types.unliteral(arg) for name, arg in kws.items()})
+        caller = ConfigStack.top_or_none()  # the flags of the function being compiled
+        caller_counted = caller is None or caller.nrt
+        for compiled in dispatcher.overloads.values():
+            if holds_array(compiled.signature.return_type) and not (counted and caller_counted):
+                raise TypeError(
+                    f"{dispatcher.py_func.__qualname__} returns an array to a caller, or "
+                    "from a function, without reference counting: both must be "
+                    "kernel_jit_allocating (frictiondisk/kernel/jit.py)"
+                )
+        return template
 
     dispatcher.get_call_template = get_call_template  # numba's typing of a call asks this
     return dispatcher

@@ -20,10 +20,10 @@ length n (dense) or r (arrow).
 
 import numpy as np
 
-from .jit import kernel_jit
+from .jit import kernel_jit, kernel_jit_allocating
 
 
-@kernel_jit
+@kernel_jit_allocating
 def stage_workspace(n, nq, dense):
     """(jac, lu, piv) for an n-state scene: (n, n), (n, n), n if dense, else arrow form
     (n, 4 nq + 2), (n, 4 nq + 2), 2 nq."""
@@ -31,6 +31,14 @@ def stage_workspace(n, nq, dense):
         return np.empty((n, n)), np.empty((n, n)), np.empty(n, dtype=np.int64)
     r = 2 * nq
     return np.empty((n, 2 * r + 2)), np.empty((n, 2 * r + 2)), np.empty(r, dtype=np.int64)
+
+
+@kernel_jit
+def copy_vector(src, dst):
+    """dst[:] = src, element by element (a slice assignment needs numba's reference
+    counting, which the kernel's functions run without, kernel/jit.py)."""
+    for j in range(dst.shape[0]):
+        dst[j] = src[j]
 
 
 @kernel_jit

@@ -353,14 +353,15 @@ def _rigid_jacobian(p, y, jac):
 
 
 @kernel_jit
-def jacobian(p, pts, modes, y, jac):
-    """Analytic Jacobian d(rhs)/dy in the given contact modes, dense (n, n)."""
+def jacobian(p, pts, modes, y, jac, lin):
+    """Analytic Jacobian d(rhs)/dy in the given contact modes, dense (n, n). lin: scratch
+    of at least (4, 2 nq) for one contact's linearization (`_contact_linearization`)."""
     nq = n_coords(p)
     m = p.m_s
     jac[:, :] = 0.0
     _rigid_jacobian(p, y, jac)
-    dg = np.zeros((2, 2 * nq))
-    pm = np.empty((2, 2))
+    dg = lin[0:2, : 2 * nq]
+    pm = lin[2:4, :2]
     c, s = body_rotation(p, y)
     for i in range(modes.shape[0]):
         ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, c, s, dg, pm)
@@ -386,17 +387,18 @@ def jacobian(p, pts, modes, y, jac):
 
 
 @kernel_jit
-def jacobian_arrow(p, pts, modes, y, jac):
+def jacobian_arrow(p, pts, modes, y, jac, lin):
     """Analytic Jacobian d(rhs)/dy in the arrow form of kernel/linalg.py, shape (n, 4 nq + 2):
     the numbers of `jacobian` (to round-off: 1/m_s, 1/J_s are multiplied), in O(N) time
-    and memory. Every contact entry is written once, so only the rigid rows are zeroed."""
+    and memory. Every contact entry is written once, so only the rigid rows are zeroed.
+    lin: scratch as for `jacobian`."""
     nq = n_coords(p)
     r = 2 * nq
     inv_m = 1.0 / p.m_s
     inv_j = 1.0 / p.J_s
     _rigid_jacobian(p, y, jac)
-    dg = np.zeros((2, r))
-    pm = np.empty((2, 2))
+    dg = lin[0:2, :r]
+    pm = lin[2:4, :2]
     c, s = body_rotation(p, y)
     for i in range(modes.shape[0]):
         ax, ay, gx, gy, rate = _contact_linearization(p, pts, modes, y, i, c, s, dg, pm)

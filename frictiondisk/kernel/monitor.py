@@ -18,6 +18,7 @@ import math
 
 from .events import hermite_max
 from .jit import kernel_jit
+from .linalg import copy_vector
 from .records import REV_RING
 
 
@@ -231,7 +232,7 @@ def begin_revolution(motion, t, y, slip, yrev, steps):
     motion.rev_none = not motion.some_stuck
     motion.rev_ever_all = motion.all_stuck
     motion.rev_switches0 = motion.switches
-    yrev[:] = y
+    copy_vector(y, yrev)
 
 
 @kernel_jit

@@ -6,6 +6,7 @@ The buffers: rec_t (cap) [s], rec_y (cap, n) states, rec_m (cap, N) contact mode
 import math
 
 from .jit import kernel_jit
+from .linalg import copy_vector
 from .rodas import dense_eval
 
 
@@ -19,8 +20,8 @@ def record_state(recording, counters, t, y, modes):
         counters.truncated = True
         return
     rec_t[k] = t
-    rec_y[k, :] = y
-    rec_m[k, :] = modes
+    copy_vector(y, rec_y[k])
+    copy_vector(modes, rec_m[k])
     counters.recorded = k + 1
 
 

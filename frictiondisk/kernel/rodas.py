@@ -30,10 +30,11 @@ def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     estimate is left in wk[W_K6] (order-4 minus order-3 solution).
     """
     n = y0.shape[0]
+    lin = wk[W_K2:W_K6]  # the stages k2 .. k5, not yet written: the Jacobian's scratch
     if is_dense(piv, n):
-        jacobian(p, pts, modes, y0, jac)
+        jacobian(p, pts, modes, y0, jac, lin)
     else:
-        jacobian_arrow(p, pts, modes, y0, jac)
+        jacobian_arrow(p, pts, modes, y0, jac, lin)
     if not stage_factor(jac, 1.0 / (co.GAMMA * h), lu, piv):
         return False
     ytmp = wk[W_Y]

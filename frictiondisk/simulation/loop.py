@@ -28,8 +28,8 @@ from frictiondisk.kernel import controller, monitor, own_section, switching
 from frictiondisk.kernel import energy as en
 from frictiondisk.kernel import status as st
 from frictiondisk.kernel.events import SAME_TIME, T_TOL_ABS
-from frictiondisk.kernel.jit import kernel_jit
-from frictiondisk.kernel.linalg import stage_workspace
+from frictiondisk.kernel.jit import kernel_jit, kernel_jit_allocating
+from frictiondisk.kernel.linalg import copy_vector, stage_workspace
 from frictiondisk.kernel.model import n_coords, rhs
 from frictiondisk.kernel.recording import record_dense, record_state
 from frictiondisk.kernel.rodas import N_WORK_ROWS, W_K6, dense_eval, rodas_step
@@ -40,7 +40,7 @@ from frictiondisk.verdict.section_sequence import new_sequence
 STEP_UNDERFLOW = 1e-14  # a step below this share of max(1, t) is an underflow
 
 
-@kernel_jit
+@kernel_jit_allocating
 def _workspace(p, y, modes, options, vp):
     """Scratch of one run: state-sized vectors, the stage matrices, the RODAS work rows,
     one watch per contact, the state one revolution back, a section sequence, the bound's
@@ -173,7 +173,7 @@ def _switch(p, pts, options, rules, y, modes, state, rings, recording, ws, s_eve
     )  # fmt: skip
     if options.record:
         record_state(recording, counters, t_ev, ybuf, modes)
-    y[:] = ybuf
+    copy_vector(ybuf, y)
     n_sw = switching.switch_at(p, pts, modes, y, f, watch, s_event, h, stol, counters)
     en.refresh(p, pts, modes, y, state.energy)  # the integrand changes with the modes
     monitor.switch(
@@ -215,15 +215,15 @@ def _accept(p, pts, options, y, modes, state, rings, recording, ws, h_free):
         y1, ymid, vectors[6:8], slip, state.energy.slip,
     )  # fmt: skip
     step.t = t + h
-    y[:] = y1
-    f[:] = f1
+    copy_vector(y1, y)
+    copy_vector(f1, f)
     if options.record and options.dt_out <= 0.0:
         record_state(recording, state.counters, step.t, y, modes)
     switching.step_accepted(p, pts, modes, y, watch)
     controller.accepted(step, options, h_free)
 
 
-@kernel_jit
+@kernel_jit_allocating
 def run(p, pts, options, rules, vp, y, modes, state, rings, recording):
     """Integrate one scene from t = 0 until the verdict's machine stops it or the loop
     fails. Returns (status, t_end [s]).

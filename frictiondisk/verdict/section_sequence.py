@@ -14,14 +14,14 @@ import math
 
 import numpy as np
 
-from frictiondisk.kernel.jit import kernel_jit
+from frictiondisk.kernel.jit import kernel_jit, kernel_jit_allocating
 from frictiondisk.kernel.records import REV_RING
 
 SEQ_MAX = 512  # capacity: newest section points read (the revolution ring's length)
 N_COORD = 5  # coordinates of a section point [m]
 
 
-@kernel_jit
+@kernel_jit_allocating
 def new_sequence():
     """Scratch for a section sequence: (points, slip, stick)."""
     return np.empty((SEQ_MAX, N_COORD)), np.empty(SEQ_MAX), np.empty(SEQ_MAX)
