@@ -243,6 +243,20 @@ def fitted_legend(ax: Axes, ncols: int, **kwargs: Any) -> Legend:
     raise AssertionError("unreachable: one column is always returned")
 
 
+def legend_above(ax: Axes, handles: list, ncols: int) -> Legend:
+    """The legend of `handles` in a band just above the axes, left-aligned, without a
+    frame (`fitted_legend`: as many of `ncols` columns as fit)."""
+    return fitted_legend(
+        ax,
+        ncols,
+        handles=handles,
+        loc="lower left",
+        bbox_to_anchor=(0.0, 1.01),
+        fontsize="small",
+        frameon=False,
+    )
+
+
 # ---- the note under the plot ------------------------------------------------------------
 def add_note(note: SubFigure, lines: list[str], title: str) -> None:
     """`title` and `lines` in a monospace box in the note subfigure (new_figure)."""

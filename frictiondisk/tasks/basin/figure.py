@@ -29,7 +29,7 @@ from frictiondisk.figures.shared import (
     axis_label,
     cell_edges,
     check_vars,
-    fitted_legend,
+    legend_above,
     new_figure,
     sample_spec,
 )
@@ -122,15 +122,7 @@ def plot_basin_map(results: xr.Dataset, boundary: xr.Dataset | None = None) -> F
         if boundary is not None and mu is not None:
             handles += _draw_boundary(ax, boundary, dims, float(mu))
     mesh.set_gid("basin_map")
-    fitted_legend(
-        ax,
-        min(3, len(handles)),
-        handles=handles,
-        loc="lower left",
-        bbox_to_anchor=(0.0, 1.01),
-        fontsize="small",
-        frameon=False,
-    )
+    legend_above(ax, handles, min(3, len(handles)))
     n = int(results["n_samples"])
     main.suptitle(
         f"{results.attrs.get('campaign_name', '')}: basin map{mu_text}, {n} initial states",

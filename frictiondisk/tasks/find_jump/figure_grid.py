@@ -22,7 +22,7 @@ from frictiondisk.figures.shared import (
     add_note,
     axis_label,
     cell_edges,
-    fitted_legend,
+    legend_above,
     new_figure,
     scene_title,
 )
@@ -94,15 +94,7 @@ def plot_jump_grid(
                 _ring(ax, box, NON_MONOTONE_COLOR, 2.0, "non_monotone", zorder=4)
     handles = _legend_entries(results, failed, without, monotone)
     if handles:
-        fitted_legend(
-            ax,
-            len(handles),
-            handles=handles,
-            loc="lower left",
-            bbox_to_anchor=(0.0, 1.01),
-            fontsize="small",
-            frameon=False,
-        )
+        legend_above(ax, handles, len(handles))
     ax.set_xlim(ex[0], ex[-1])
     ax.set_ylim(ey[0], ey[-1])
     ax.set_xlabel(axis_label(cx))

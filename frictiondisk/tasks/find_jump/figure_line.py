@@ -30,7 +30,7 @@ from frictiondisk.figures.shared import (
     add_note,
     axis_label,
     check_vars,
-    fitted_legend,
+    legend_above,
     make_rug_room,
     new_figure,
     padded,
@@ -249,15 +249,7 @@ def plot_jump_line(
     )
     handles += run_handles
     if handles:
-        fitted_legend(
-            ax,
-            2,
-            handles=handles,
-            loc="lower left",
-            bbox_to_anchor=(0.0, 1.01),
-            fontsize="small",
-            frameon=False,
-        )
+        legend_above(ax, handles, 2)
     if note is not None:
         add_note(note, fail_lines, f"failed points ({int(line.failed.sum())}):")
     return fig

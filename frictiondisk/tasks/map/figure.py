@@ -24,7 +24,7 @@ from frictiondisk.figures.shared import (
     axis_label,
     cell_edges,
     check_vars,
-    fitted_legend,
+    legend_above,
     new_figure,
 )
 from frictiondisk.figures.style import styled
@@ -68,15 +68,7 @@ def plot_map(results: xr.Dataset) -> Figure:
     ax.set_xlabel(axis_label(results[dims[0]]))
     handles = _legend_handles(results, outcomes, colors)
     handles += _mark_runs(ax, results, dims, xs, ys)
-    fitted_legend(
-        ax,
-        min(3, len(handles)),
-        handles=handles,
-        loc="lower left",
-        bbox_to_anchor=(0.0, 1.01),
-        fontsize="small",
-        frameon=False,
-    )
+    legend_above(ax, handles, min(3, len(handles)))
     ran = int((results["ran"] == 1).sum())
     main.suptitle(
         f"{results.attrs.get('campaign_name', '')}: motion map, {motion.size} cells "
