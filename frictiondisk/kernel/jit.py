@@ -1,4 +1,5 @@
-"""The one numba decorator of the kernel.
+"""The numba decorators of the kernel: `kernel_jit`, and `kernel_jit_allocating` for the few
+functions that allocate the run's scratch (see "No reference counting" below).
 
 cache=True: compiled code is stored next to the sources, so only the first process pays
 the compile time. nogil=True: runs release the GIL, so threads run them in parallel.
@@ -110,7 +111,8 @@ def plain_types(dispatcher, counted: bool = True):
     def get_call_template(args, kws):
         plain = tuple(types.unliteral(arg) for arg in args)
         template = typing(plain, {name: types.unliteral(arg) for name, arg in kws.items()})
-        caller = ConfigStack.top_or_none()  # the flags of the function being compiled
+        # numba keeps the flags of the function being compiled (the caller) on this stack
+        caller = ConfigStack.top_or_none()
         caller_counted = caller is None or caller.nrt
         for compiled in dispatcher.overloads.values():
             if holds_array(compiled.signature.return_type) and not (counted and caller_counted):

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from frictiondisk.kernel.jit import kernel_jit, kernel_jit_allocating
+from frictiondisk.kernel.jit import kernel_jit_allocating
 from frictiondisk.kernel.linalg import lu_factor, lu_solve
 
 IRLS_ITERS = 100  # most iterations of `limit_motion`
