@@ -5,6 +5,7 @@ of the refinement) must be too."""
 
 from __future__ import annotations
 
+import pytest
 import xarray as xr
 
 from frictiondisk.engine.runner import run_campaign
@@ -48,3 +49,35 @@ def test_a_map_names_each_cell_as_a_single_run_does(tmp_path):
     assert len(lines) == 1 + len(points)
     fig = plot_map(ds)
     assert len([a for a in fig.get_axes() if a.get_legend() is not None]) == 1
+    # a traced boundary over the same two keys is drawn on top (`plot --boundary`), one
+    # line per curve through its points; a trace over another plane, or a find_jump, is not
+    trace = _trace_results("omega_m", [0.8, 1.1, 1.4], [0.2, 0.19, 0.18])
+    fig = plot_map(ds, (trace,))
+    lines = [line for line in fig.get_axes()[0].get_lines() if line.get_linestyle() == "-"]
+    assert [list(line.get_xdata()) for line in lines] == [[0.8, 1.1, 1.4]]
+    assert [list(line.get_ydata()) for line in lines] == [[0.2, 0.19, 0.18]]
+    legend = [t.get_text() for t in fig.get_axes()[0].get_legend().get_texts()]
+    assert "traced slide_cycle | stick, tol 0.0001" in legend
+    with pytest.raises(ValueError, match="the trace runs over \\(x_ms, mu\\)"):
+        plot_map(ds, (_trace_results("x_ms", [0.1, 0.2], [0.2, 0.2]),))
+    with pytest.raises(ValueError, match="boundary: a motion map draws trace campaigns"):
+        plot_map(ds, (trace.assign_attrs(task="find_jump"),))
+
+
+def _trace_results(key: str, along: list[float], mu_star: list[float]) -> xr.Dataset:
+    """A trace results.nc of one curve through (along, mu_star) over (key, mu): the
+    variables and attributes a map's boundary reads."""
+    return xr.Dataset(
+        {
+            key: ("point", along),
+            "mu_star": ("point", mu_star),
+            "curve_first_point": ("curve", [0]),
+            "curve_points": ("curve", [len(along)]),
+        },
+        attrs={
+            "task": "trace",
+            "trace_key_var": key,
+            "tol": 1e-4,
+            "between": "[slide_cycle, stick]: each curve separates slide_cycle from stick",
+        },
+    )

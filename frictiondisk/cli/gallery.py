@@ -35,6 +35,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from frictiondisk.studies import atlas
+
 PAPER = tuple(
     f"fig{name}"
     for name in (
@@ -53,6 +55,8 @@ PAPER = tuple(
 # docs/trace.md, the disk from rest of docs/brake.md and the pin line of `make demo` (README)
 PLOTTED = (*PAPER, "trace_fig11_betab_mu", "trace_stribeck_pin", "disk_xms_at_rest", "demo_line")
 BASIN = ("basin_pin_x0", "basin_pin_map", "basin_pin_boundary", "basin_disk_map")
+# the pin's motion map and its traced boundaries
+ATLAS = atlas.campaign_names()
 
 
 @dataclass(frozen=True)
@@ -95,6 +99,13 @@ GALLERY: tuple[Generator, ...] = (
         ("-m", "frictiondisk.studies.basin", "--campaigns", "{campaigns}")
         + ("-o", "{out}", "--figures", "{figures}"),
         campaigns=BASIN,
+    ),
+    Generator(
+        "atlas",
+        ("atlas_pin_map.png",),
+        ("-m", "frictiondisk.studies.atlas", "--campaigns", "{campaigns}")
+        + ("-o", "{out}", "--figures", "{figures}"),
+        campaigns=ATLAS,
     ),
     _accuracy("accuracy_pin", "work_precision_pin.png"),
     Generator(

@@ -39,12 +39,13 @@ DEFAULT_FIGURE = "figure.png"
 @click.option(
     "--boundary",
     type=click.Path(file_okay=False, path_type=Path),
-    metavar="JUMP_DIR",
-    default=None,
+    metavar="CAMPAIGN_DIR",
+    multiple=True,
     help="basin map: draw the contour mu* = the map's mu of the find_jump campaign in "
-    "JUMP_DIR (a grid over the same two keys) on top.",
+    "CAMPAIGN_DIR (a grid over the same two keys) on top. Motion map: draw the curves of "
+    "the trace campaign in CAMPAIGN_DIR (over the map's two keys) on top; repeatable.",
 )
-def plot(out_dir: Path, output: Path | None, show_runs: bool, boundary: Path | None) -> None:
+def plot(out_dir: Path, output: Path | None, show_runs: bool, boundary: tuple[Path, ...]) -> None:
     """Draw the figure of the campaign in DIR from DIR/results.nc (never simulates).
 
     find_jump along one key: mu* against the key with its brackets, the regions "pure

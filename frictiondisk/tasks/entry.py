@@ -27,8 +27,9 @@ class TaskEntry:
 
     # `plot --runs` overlays its runs (runs.nc) on its figure
     shows_runs: ClassVar[bool] = False
-    # `plot --boundary` draws a find_jump's mu* contour on its figure (a basin map)
-    takes_boundary: ClassVar[bool] = False
+    # `plot --boundary DIR` draws the campaign in DIR on its figure, if it is one of these
+    # tasks (a basin map: a find_jump's mu* contour; a motion map: trace curves)
+    boundary_tasks: ClassVar[tuple[str, ...]] = ()
     # its results.nc holds a bisected mu* at every point of its grid (a boundary for a basin
     # map; a campaign the accuracy study can bisect)
     mu_star_grid: ClassVar[bool] = False
@@ -58,12 +59,12 @@ class TaskEntry:
         runs: Any = None,
         *,
         show_runs: bool = False,
-        boundary: Any = None,
+        boundary: tuple[Any, ...] = (),
         files: dict[str, Any] | None = None,
     ) -> Any:
         """The figure of the campaign (a matplotlib Figure) from its results.nc; `runs`:
-        runs.nc (with `shows_runs`), `boundary`: a mu* grid's results.nc (with
-        `takes_boundary`), `files`: the Datasets of `figure_files` by name. ValueError
+        runs.nc (with `shows_runs`), `boundary`: the results.nc of campaigns of its
+        `boundary_tasks` to draw on it, `files`: the Datasets of `figure_files` by name. ValueError
         saying what is wrong ("runs ..." or "boundary ..." for those inputs)."""
         raise NotImplementedError
 

@@ -6,7 +6,7 @@ frictiondisk.figures.plotting.save_figure)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -37,14 +37,16 @@ def figure_for_dir(
     out_dir: Path,
     show_runs: bool = False,
     note: Callable[[str], Any] | None = None,
-    boundary: Path | None = None,
+    boundary: Path | Sequence[Path] | None = None,
 ):
     """The Figure of the campaign in `out_dir`, from its netCDF files alone.
 
     `show_runs` overlays the runs of a task that shows them (ignored for the others, with
-    a message to `note`, a callable taking text, if given). `boundary`: a campaign
-    directory with mu* on a grid, whose contour a basin map draws. Raises CampaignFileError
-    naming the file if one is missing, damaged or cannot be drawn."""
+    a message to `note`, a callable taking text, if given). `boundary`: campaign
+    directories drawn on top, of the tasks the figure's task takes (TaskEntry.
+    boundary_tasks: a find_jump's mu* grid on a basin map, trace curves on a motion map).
+    Raises CampaignFileError naming the file if one is missing, damaged or cannot be
+    drawn."""
     out_dir = Path(out_dir)
     results = load_dataset(out_dir / RESULTS_FILE, out_dir)
     if results.attrs.get("partial") and not results.attrs.get("points_done"):
@@ -59,14 +61,15 @@ def figure_for_dir(
         path = out_dir / RESULTS_FILE
         raise CampaignFileError(f"{path}: cannot draw this file", [str(exc)]) from None
     runs = _runs(entry, out_dir, show_runs, note)
-    jump = _boundary(entry, out_dir, boundary, note)
+    paths = (boundary,) if isinstance(boundary, str | Path) else tuple(boundary or ())
+    drawn = _boundaries(entry, out_dir, paths, note)
     files = {name: load_dataset(out_dir / name, out_dir) for name in entry.figure_files}
     try:
-        return entry.figure(results, runs, show_runs=runs is not None, boundary=jump, files=files)
+        return entry.figure(results, runs, show_runs=runs is not None, boundary=drawn, files=files)
     except ValueError as exc:
         text = str(exc)
         if text.startswith("boundary"):
-            path = Path(boundary) / RESULTS_FILE
+            path = Path(paths[0]) / RESULTS_FILE if len(paths) == 1 else out_dir / RESULTS_FILE
         elif text.startswith("runs"):
             path = out_dir / RUNS_FILE
         else:
@@ -87,21 +90,30 @@ def _runs(entry: TaskEntry, out_dir: Path, show_runs: bool, note):
     return None
 
 
-def _boundary(entry: TaskEntry, out_dir: Path, boundary: Path | None, note):
-    """The results.nc of the campaign whose mu* contour a basin map draws, if given and
-    the task draws one (else a note why not); CampaignFileError if it holds no mu* grid."""
-    if boundary is None:
-        return None
-    if not entry.takes_boundary:
+def _boundaries(entry: TaskEntry, out_dir: Path, paths: tuple, note) -> tuple:
+    """The results.nc of each campaign in `paths` to draw on the figure, if the task draws
+    such campaigns (else a note why not); CampaignFileError naming a file of another task."""
+    if not paths:
+        return ()
+    if not entry.boundary_tasks:
         if note is not None:
-            note(f"note: --boundary applies to basin maps; {out_dir} holds a {entry.name}")
-        return None
-    path = Path(boundary) / RESULTS_FILE
-    jump = load_dataset(path, Path(boundary))
-    task = TASKS.get(jump.attrs.get("task"))
-    if task is None or not task.mu_star_grid or "mu_star" not in jump:
-        raise CampaignFileError(
-            f"{path}: cannot draw this file",
-            ["boundary: expected a find_jump results.nc (with mu_star)"],
-        )
-    return jump
+            takers = " and ".join(
+                f"{name} ({', '.join(e.boundary_tasks)})"
+                for name, e in TASKS.items()
+                if e.boundary_tasks
+            )
+            note(f"note: --boundary applies to {takers} campaigns; {out_dir} holds a {entry.name}")
+        return ()
+    drawn = []
+    for folder in map(Path, paths):
+        path = folder / RESULTS_FILE
+        results = load_dataset(path, folder)
+        if results.attrs.get("task") not in entry.boundary_tasks or "mu_star" not in results:
+            raise CampaignFileError(
+                f"{path}: cannot draw this file",
+                [
+                    f"boundary: expected a {' or '.join(entry.boundary_tasks)} results.nc (with mu_star)"
+                ],
+            )
+        drawn.append(results)
+    return tuple(drawn)

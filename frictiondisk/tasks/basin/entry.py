@@ -11,7 +11,7 @@ from frictiondisk.tasks.entry import TaskEntry
 class BasinEntry(TaskEntry):
     spec = Basin
     summary = "basin stability or a basin map"
-    takes_boundary = True
+    boundary_tasks = ("find_jump",)
 
     def size(self, task: Basin) -> tuple[int, str]:
         """Every grid cell of a map is a point; a sampled point takes up to sample_limit runs."""
@@ -31,10 +31,12 @@ class BasinEntry(TaskEntry):
 
         return BasinPlanner(campaign)
 
-    def figure(self, results, runs=None, *, show_runs=False, boundary=None, files=None):
+    def figure(self, results, runs=None, *, show_runs=False, boundary=(), files=None):
         from frictiondisk.tasks.basin.figure import plot_basin
 
-        return plot_basin(results, boundary)
+        if len(boundary) > 1:
+            raise ValueError("boundary: a basin map draws one find_jump contour")
+        return plot_basin(results, boundary[0] if boundary else None)
 
     def run_lines(self, results) -> list[str]:
         from frictiondisk.tasks.basin.table import summary_lines

@@ -29,7 +29,7 @@ class FindJumpEntry(TaskEntry):
 
         return JumpPlanner(campaign)
 
-    def figure(self, results, runs=None, *, show_runs=False, boundary=None, files=None):
+    def figure(self, results, runs=None, *, show_runs=False, boundary=(), files=None):
         from frictiondisk.tasks.find_jump.figure import plot_find_jump
 
         return plot_find_jump(results, runs, show_runs=show_runs)

@@ -11,6 +11,7 @@ from frictiondisk.tasks.map.spec import MotionMap
 class MapEntry(TaskEntry):
     spec = MotionMap
     summary = "the motion of every cell of a plane of one or two scene keys"
+    boundary_tasks = ("trace",)
 
     def size(self, task: MotionMap) -> tuple[int, str]:
         """Every cell is a point (at most; the refinement runs fewer) of runs_per_cell runs."""
@@ -22,10 +23,10 @@ class MapEntry(TaskEntry):
 
         return MapPlanner(campaign)
 
-    def figure(self, results, runs=None, *, show_runs=False, boundary=None, files=None):
+    def figure(self, results, runs=None, *, show_runs=False, boundary=(), files=None):
         from frictiondisk.tasks.map.figure import plot_map
 
-        return plot_map(results)
+        return plot_map(results, tuple(boundary))
 
     def run_lines(self, results) -> list[str]:
         from frictiondisk.tasks.map.table import summary_lines

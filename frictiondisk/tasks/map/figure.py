@@ -11,6 +11,7 @@ Like every figure: no backend, no pyplot, no kernel.
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import numpy as np
@@ -32,11 +33,15 @@ from frictiondisk.tasks.basin.figure import outcome_colors
 from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
 
 _VARS = ("motion", "ran", "cycle_converged", "cell_fraction")
+_TRACE_VARS = ("mu_star", "curve_first_point", "curve_points")
+# a traced boundary's line: (line style, marker); drawn in black over any cell colour
+BOUNDARY_STYLES = (("-", "o"), ("--", "s"), (":", "^"), ("-.", "D"))
 
 
 @styled
-def plot_map(results: xr.Dataset) -> Figure:
-    """The motion of every cell of a map results.nc (see the module docstring)."""
+def plot_map(results: xr.Dataset, boundaries: tuple[xr.Dataset, ...] = ()) -> Figure:
+    """The motion of every cell of a map results.nc (see the module docstring);
+    `boundaries`: trace results.nc over the map's two keys, whose curves are drawn on top."""
     check_vars(results, _VARS, "results (map)")
     outcomes = [str(o) for o in results["outcome"].values]
     colors = outcome_colors(outcomes)
@@ -68,6 +73,8 @@ def plot_map(results: xr.Dataset) -> Figure:
     ax.set_xlabel(axis_label(results[dims[0]]))
     handles = _legend_handles(results, outcomes, colors)
     handles += _mark_runs(ax, results, dims, xs, ys)
+    for k, trace in enumerate(boundaries):
+        handles += _draw_traced(ax, trace, dims, BOUNDARY_STYLES[k % len(BOUNDARY_STYLES)])
     legend_above(ax, handles, min(3, len(handles)))
     ran = int((results["ran"] == 1).sum())
     main.suptitle(
@@ -112,3 +119,39 @@ def _mark_runs(ax, results: xr.Dataset, dims: list[str], xs, ys) -> list[Any]:
         points[0].set_gid("cells_run" if flag else "cells_unsettled")
         handles.append(Line2D([], [], marker=marker, color="0.15", linestyle="none", label=label))
     return handles
+
+
+def _draw_traced(ax, trace: xr.Dataset, dims: list[str], style: tuple[str, str]) -> list[Any]:
+    """The curves of a trace results.nc, as lines through their certified points, where the
+    map's two keys are the trace's key and mu (either way round); their legend entry.
+    ValueError ("boundary ...") for any other results.nc."""
+    if trace.attrs.get("task") != "trace":
+        raise ValueError(
+            f"boundary: a motion map draws trace campaigns; this is a {trace.attrs.get('task')!r}"
+        )
+    check_vars(trace, _TRACE_VARS, "boundary (trace)")
+    key = str(trace.attrs["trace_key_var"])
+    if len(dims) != 2 or set(dims) != {key, "mu"}:
+        raise ValueError(
+            f"boundary: the trace runs over ({key}, mu), the map over ({', '.join(dims)})"
+        )
+    along = np.asarray(trace[key].values, float)
+    mu = np.asarray(trace["mu_star"].values, float)
+    line, marker = style
+    for c in range(trace.sizes["curve"]):
+        start = int(trace["curve_first_point"][c])
+        stop = start + int(trace["curve_points"][c])
+        x, y = (along, mu) if dims[0] == key else (mu, along)
+        ax.plot(x[start:stop], y[start:stop], line, color="black", linewidth=1.3, zorder=5)
+        ax.plot(x[start:stop], y[start:stop], marker, color="black", markersize=2.6, zorder=6)
+    label = f"traced {_sides(trace)}, tol {float(trace.attrs['tol']):g}"
+    return [
+        Line2D([], [], linestyle=line, marker=marker, color="black", markersize=2.6, label=label)
+    ]
+
+
+def _sides(trace: xr.Dataset) -> str:
+    """ "A | B" of a trace's `between` attribute ("[A, B]: each curve separates ..."); the
+    stick jump's where it has none."""
+    found = re.match(r"\[(\w+), (\w+)\]", str(trace.attrs.get("between", "")))
+    return f"{found[1]} | {found[2]}" if found else "not_stick | stick"

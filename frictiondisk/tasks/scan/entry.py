@@ -20,7 +20,7 @@ class ScanEntry(TaskEntry):
 
         return ScanPlanner(campaign)
 
-    def figure(self, results, runs=None, *, show_runs=False, boundary=None, files=None):
+    def figure(self, results, runs=None, *, show_runs=False, boundary=(), files=None):
         from frictiondisk.tasks.scan.figure import plot_scan
 
         return plot_scan(results)

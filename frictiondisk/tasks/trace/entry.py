@@ -26,7 +26,7 @@ class TraceEntry(TaskEntry):
 
         return TracePlanner(campaign)
 
-    def figure(self, results, runs=None, *, show_runs=False, boundary=None, files=None):
+    def figure(self, results, runs=None, *, show_runs=False, boundary=(), files=None):
         from frictiondisk.tasks.trace.figure import plot_trace
 
         return plot_trace(results, runs, show_runs=show_runs)

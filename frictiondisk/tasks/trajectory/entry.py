@@ -31,7 +31,7 @@ class TrajectoryEntry(TaskEntry):
 
         return run_trajectory(campaign, out_dir), out_dir / TRAJECTORY_FILE
 
-    def figure(self, results, runs=None, *, show_runs=False, boundary=None, files=None):
+    def figure(self, results, runs=None, *, show_runs=False, boundary=(), files=None):
         from frictiondisk.tasks.trajectory.figure import plot_trajectory
 
         return plot_trajectory(results, files[TRAJECTORY_FILE])
