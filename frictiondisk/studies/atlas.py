@@ -12,9 +12,7 @@ plot OUT/map_pin_omega_mu --boundary OUT/trace_pin_...` draws).
 
 from __future__ import annotations
 
-import argparse
 import sys
-import time
 from pathlib import Path
 
 from frictiondisk.studies import campaigns
@@ -54,18 +52,11 @@ def draw(name: str, out: Path, figures: Path) -> Path:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(
-        prog="python -m frictiondisk.studies.atlas", description=__doc__.splitlines()[0]
+    parser = campaigns.figure_study_parser(
+        "python -m frictiondisk.studies.atlas", __doc__.splitlines()[0], "out/atlas"
     )
-    parser.add_argument("--campaigns", type=Path, default=Path("campaigns"))
-    parser.add_argument("-o", "--out", type=Path, default=Path("out/atlas"))
-    parser.add_argument("--figures", type=Path, default=Path("figures"))
-    parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
-    t0 = time.perf_counter()
-    files = [campaigns.campaign_file(args.campaigns / f"{c}.yaml") for c in campaign_names()]
-    computed = campaigns.run(files, args.out, args.workers)
-    print(f"{len(files)} campaigns, {computed} runs computed now, {time.perf_counter() - t0:.1f} s")
+    campaigns.run_shipped(campaign_names(), args.campaigns, args.out, args.workers)
     for name in FIGURES:
         print(f"{name}: figure {draw(name, args.out, args.figures)}", flush=True)
     return 0

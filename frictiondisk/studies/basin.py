@@ -13,9 +13,7 @@ basin campaign costs per run is a benchmark: benchmarks/bench_basin.py.
 
 from __future__ import annotations
 
-import argparse
 import sys
-import time
 from pathlib import Path
 
 from frictiondisk.studies import campaigns
@@ -51,20 +49,13 @@ def draw(name: str, out: Path, figures: Path) -> Path:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(
-        prog="python -m frictiondisk.studies.basin", description=__doc__.splitlines()[0]
+    parser = campaigns.figure_study_parser(
+        "python -m frictiondisk.studies.basin", __doc__.splitlines()[0], "out/basin"
     )
-    parser.add_argument("--campaigns", type=Path, default=Path("campaigns"))
-    parser.add_argument("-o", "--out", type=Path, default=Path("out/basin"))
-    parser.add_argument("--figures", type=Path, default=Path("figures"))
     parser.add_argument("--only", nargs="*", choices=sorted(FIGURES), default=None)
-    parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
     names = args.only if args.only is not None else list(FIGURES)
-    t0 = time.perf_counter()
-    files = [campaigns.campaign_file(args.campaigns / f"{c}.yaml") for c in needed(names)]
-    computed = campaigns.run(files, args.out, args.workers)
-    print(f"{len(files)} campaigns, {computed} runs computed now, {time.perf_counter() - t0:.1f} s")
+    campaigns.run_shipped(needed(names), args.campaigns, args.out, args.workers)
     for name in names:
         print(f"{name}: figure {draw(name, args.out, args.figures)}", flush=True)
     return 0

@@ -14,7 +14,9 @@ study imports them from where they live).
 
 from __future__ import annotations
 
+import argparse
 import json
+import time
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
@@ -70,3 +72,24 @@ def finished(folder: Path) -> bool:
         return False
     status = json.loads(path.read_text())
     return status.get("state") == "complete" and status["points_done"] == status["points_total"]
+
+
+def figure_study_parser(prog: str, description: str, out: str) -> argparse.ArgumentParser:
+    """The options of a study that runs shipped campaigns and draws their figures:
+    --campaigns (the campaign files' folder), -o (the run folders), --figures, --workers."""
+    parser = argparse.ArgumentParser(prog=prog, description=description)
+    parser.add_argument("--campaigns", type=Path, default=Path("campaigns"))
+    parser.add_argument("-o", "--out", type=Path, default=Path(out))
+    parser.add_argument("--figures", type=Path, default=Path("figures"))
+    parser.add_argument("--workers", type=int, default=2)
+    return parser
+
+
+def run_shipped(names: Iterable[str], folder: Path, out: Path, workers: int) -> int:
+    """Run (or resume) the campaign files folder/<name>.yaml into out/<name>/, printing
+    how many and how long; returns the runs computed now."""
+    t0 = time.perf_counter()
+    files = [campaign_file(folder / f"{name}.yaml") for name in names]
+    computed = run(files, out, workers)
+    print(f"{len(files)} campaigns, {computed} runs computed now, {time.perf_counter() - t0:.1f} s")
+    return computed

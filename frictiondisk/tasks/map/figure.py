@@ -30,10 +30,11 @@ from frictiondisk.figures.shared import (
 )
 from frictiondisk.figures.style import styled
 from frictiondisk.tasks.basin.figure import outcome_colors
+from frictiondisk.tasks.trace.figure import curve_points
 from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
 
 _VARS = ("motion", "ran", "cycle_converged", "cell_fraction")
-_TRACE_VARS = ("mu_star", "curve_first_point", "curve_points")
+_TRACE_VARS = ("mu_star", "curve_first_point", "curve_points")  # what curve_points reads
 # a traced boundary's line: (line style, marker); drawn in black over any cell colour
 BOUNDARY_STYLES = (("-", "o"), ("--", "s"), (":", "^"), ("-.", "D"))
 
@@ -135,15 +136,11 @@ def _draw_traced(ax, trace: xr.Dataset, dims: list[str], style: tuple[str, str])
         raise ValueError(
             f"boundary: the trace runs over ({key}, mu), the map over ({', '.join(dims)})"
         )
-    along = np.asarray(trace[key].values, float)
-    mu = np.asarray(trace["mu_star"].values, float)
     line, marker = style
-    for c in range(trace.sizes["curve"]):
-        start = int(trace["curve_first_point"][c])
-        stop = start + int(trace["curve_points"][c])
+    for along, mu in curve_points(trace, key):
         x, y = (along, mu) if dims[0] == key else (mu, along)
-        ax.plot(x[start:stop], y[start:stop], line, color="black", linewidth=1.3, zorder=5)
-        ax.plot(x[start:stop], y[start:stop], marker, color="black", markersize=2.6, zorder=6)
+        ax.plot(x, y, line, color="black", linewidth=1.3, zorder=5)
+        ax.plot(x, y, marker, color="black", markersize=2.6, zorder=6)
     label = f"traced {_sides(trace)}, tol {float(trace.attrs['tol']):g}"
     return [
         Line2D([], [], linestyle=line, marker=marker, color="black", markersize=2.6, label=label)

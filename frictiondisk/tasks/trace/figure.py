@@ -123,17 +123,26 @@ def _draw_first_look(ax, results: xr.Dataset, name: str) -> list[Any]:
     return []
 
 
-def _draw_curves(ax, results: xr.Dataset, name: str, origin, shown) -> list[Any]:
-    """Each curve through its points, its sticking side shaded (a band `shown` wide in
-    units of the view, from `origin`: the plane's low corner); their legend entries."""
+def curve_points(results: xr.Dataset, name: str) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(key values, mu*) of each curve of a trace results.nc, in curve order (`name`: the
+    key's variable)."""
     key = np.asarray(results[name].values, float)
     mu = np.asarray(results["mu_star"].values, float)
-    key_lo, mu_lo = origin
+    curves = []
     for c in range(results.sizes["curve"]):
         start = int(results["curve_first_point"][c])
         stop = start + int(results["curve_points"][c])
+        curves.append((key[start:stop], mu[start:stop]))
+    return curves
+
+
+def _draw_curves(ax, results: xr.Dataset, name: str, origin, shown) -> list[Any]:
+    """Each curve through its points, its sticking side shaded (a band `shown` wide in
+    units of the view, from `origin`: the plane's low corner); their legend entries."""
+    key_lo, mu_lo = origin
+    for c, (points_key, points_mu) in enumerate(curve_points(results, name)):
         color = CURVE_COLORS[c % len(CURVE_COLORS)]
-        ck, cm = key[start:stop], mu[start:stop]
+        ck, cm = points_key, points_mu  # a closed curve's line returns to its first point
         if int(results["curve_closed"][c]) and len(ck) > 2:
             ck, cm = np.append(ck, ck[0]), np.append(cm, cm[0])
         if len(ck) > 1:
@@ -145,7 +154,7 @@ def _draw_curves(ax, results: xr.Dataset, name: str, origin, shown) -> list[Any]
                 zorder=1,
             )
         ax.plot(ck, cm, "-", color=color, linewidth=1.4, zorder=3)
-        ax.plot(key[start:stop], mu[start:stop], "o", color=color, markersize=3.2, zorder=4)
+        ax.plot(points_key, points_mu, "o", color=color, markersize=3.2, zorder=4)
     if not results.sizes["curve"]:
         return []
     tol = float(results.attrs["tol"])
