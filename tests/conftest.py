@@ -170,3 +170,10 @@ def outside_the_figure(fig) -> list[str]:
     if tight.y1 > inches.y1 + 0.01:
         bad.append(f"drawn content {tight.bounds} beyond the figure {inches.bounds}")
     return bad
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    """The slow tests (marker `slow`, over ~10 s each) first, in their order: with two
+    workers (make test) a long test that starts last keeps one worker busy while the other
+    has nothing left to take."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
