@@ -60,7 +60,7 @@ def test_a_map_names_each_cell_as_a_single_run_does(tmp_path):
     assert "traced slide_cycle | stick, tol 0.0001" in legend
     with pytest.raises(ValueError, match="the trace runs over \\(x_ms, mu\\)"):
         plot_map(ds, (_trace_results("x_ms", [0.1, 0.2], [0.2, 0.2]),))
-    with pytest.raises(ValueError, match="boundary: a motion map draws trace campaigns"):
+    with pytest.raises(ValueError, match="a motion map draws trace campaigns"):
         plot_map(ds, (trace.assign_attrs(task="find_jump"),))
 
 

@@ -126,15 +126,17 @@ def _draw_traced(ax, trace: xr.Dataset, dims: list[str], style: tuple[str, str])
     """The curves of a trace results.nc, as lines through their certified points, where the
     map's two keys are the trace's key and mu (either way round); their legend entry.
     ValueError ("boundary ...") for any other results.nc."""
+    name = trace.attrs.get("campaign_name", "?")
     if trace.attrs.get("task") != "trace":
         raise ValueError(
-            f"boundary: a motion map draws trace campaigns; this is a {trace.attrs.get('task')!r}"
+            f"boundary {name}: a motion map draws trace campaigns; this is a "
+            f"{trace.attrs.get('task')!r}"
         )
-    check_vars(trace, _TRACE_VARS, "boundary (trace)")
+    check_vars(trace, _TRACE_VARS, f"boundary {name} (trace)")
     key = str(trace.attrs["trace_key_var"])
     if len(dims) != 2 or set(dims) != {key, "mu"}:
         raise ValueError(
-            f"boundary: the trace runs over ({key}, mu), the map over ({', '.join(dims)})"
+            f"boundary {name}: the trace runs over ({key}, mu), the map over ({', '.join(dims)})"
         )
     line, marker = style
     for along, mu in curve_points(trace, key):
