@@ -34,10 +34,10 @@ class SampleRequest:
 
 
 @dataclasses.dataclass(frozen=True)
-class BasinPointResult:
-    """The samples of one point, in sample order, and why sampling stopped."""
+class SampledRuns:
+    """The runs of one point (a basin point, a map cell), in sample order, and its state."""
 
-    status: str  # "converged" (every sample ran) or "failed" (a job never came back)
+    status: str  # "converged" (every run came back) or "failed" (a job never came back)
     reason: str
     results: tuple[dict[str, Any], ...]
 
@@ -47,6 +47,10 @@ class BasinPointResult:
 
     def count(self, outcome: str) -> int:
         return sum(1 for r in self.results if r["outcome"] == outcome)
+
+
+class BasinPointResult(SampledRuns):
+    """The samples of one point, in sample order, and why sampling stopped."""
 
     @property
     def not_stick(self) -> int:

@@ -4,29 +4,16 @@ then any other name a run reported), so a motion the verdict adds plugs in uncha
 
 from __future__ import annotations
 
-import dataclasses
 from collections import Counter
-from typing import Any
 
+from frictiondisk.tasks.basin.sampling import SampledRuns
 from frictiondisk.verdict.outcomes import OUTCOMES
 
 UNDETERMINED = "undetermined"
 
 
-@dataclasses.dataclass(frozen=True)
-class MapCellResult:
+class MapCellResult(SampledRuns):
     """The runs of one cell, in sample order (one from the scene's start)."""
-
-    status: str  # "converged" (every run came back) or "failed" (a job never came back)
-    reason: str
-    results: tuple[dict[str, Any], ...]
-
-    @property
-    def n(self) -> int:
-        return len(self.results)
-
-    def count(self, outcome: str) -> int:
-        return sum(1 for r in self.results if r["outcome"] == outcome)
 
     @property
     def motion(self) -> str:
