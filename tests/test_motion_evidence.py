@@ -167,8 +167,9 @@ def test_the_ripple_of_a_12_point_ring_is_no_modulation():
     assert "inside the ripple of its ring" in ev.reason
     assert ev.mean_radius == pytest.approx(0.117569, abs=1e-4)
     # without the band rule (own_window longer than the run) and with envelopes allowed to
-    # scatter by 20 %, the beat reads as 19.4 s envelopes: the frequency guard refuses it
-    jittery = {"own_window": 1000, "env_tol": 0.2}
+    # scatter by 20 % (over all of them, no trend read ahead), the beat reads as 19.4 s
+    # envelopes: the frequency guard refuses it
+    jittery = {"own_window": 1000, "env_tol": 0.2, "env_trend_count": 1000}
     guarded = me.judge(rows, _disk_scene(12), VerdictParams(**jittery))
     assert guarded.motion != "modulated", guarded.reason
     unguarded = me.judge(rows, _disk_scene(12), VerdictParams(**jittery, layout_alias=0.0))

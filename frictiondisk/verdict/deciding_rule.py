@@ -23,7 +23,16 @@ EVIDENCE_RULES = {
 }
 # the rules that read a trend or a section ahead to where it ends (docs/model.md section 7)
 EXTRAPOLATED = frozenset(
-    {"repeat", "contract", "depart", "shakedown", "sliding", "corotation_limit", "creep_limit"}
+    {
+        "repeat",
+        "contract",
+        "depart",
+        "shakedown",
+        "sliding",
+        "corotation_limit",
+        "creep_limit",
+        "envelope_trend",
+    }
 )
 DECIDING_RULES = (
     "corotation",  # co-rotates without net slip, seen (every contact stuck and still, or no slip)
@@ -35,6 +44,7 @@ DECIDING_RULES = (
     "bound",  # Melan's or Koiter's bound (a braked disk)
     *EVIDENCE_RULES.values(),  # the section evidence at the horizon (verdict/horizon_evidence.py)
     "window",  # the final window without section evidence (stick_rule contacts)
+    "envelope_trend",  # a pure-sliding motion named by its envelope's trend read ahead
     "budget",  # undetermined: the horizon budget ran out
     "error",  # undetermined: the integrator failed or ran out of work
 )

@@ -63,6 +63,7 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
     if _refinable(facts, outcome):
         motion = judge(facts.own_rows, facts.own_scene, vp)
         outcome, reason = _refine(facts, outcome, reason, motion)
+        rule = motion.rule or rule  # a trend read ahead named the motion
     size = math.nan
     a = math.nan
     if outcome == "stick":

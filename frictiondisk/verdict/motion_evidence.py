@@ -37,11 +37,13 @@ import math
 
 import numpy as np
 
+from .envelope_trend import DepthTrend, depth_trend
 from .params import VerdictParams
 
 SELF_CENTRING = "self_centring"
 SLIDE_CYCLE = "slide_cycle"
 MODULATED = "modulated"
+ENVELOPE_TREND = "envelope_trend"  # the rule that reads an envelope's trend ahead
 
 
 @dataclasses.dataclass(frozen=True)
@@ -81,6 +83,7 @@ class MotionEvidence:
     r_eq_angle: float = math.nan  # its angle from +x, counter-clockwise [rad]
     envelope_period: float = math.nan  # the modulation's period [s]
     envelope_depth: float = math.nan  # half its range of the step-mean |r| [m]
+    rule: str = ""  # ENVELOPE_TREND where a trend read ahead named the motion
 
 
 def sliding_rows(rows: np.ndarray) -> np.ndarray:
@@ -221,6 +224,7 @@ class Envelopes:
 
     periods: np.ndarray  # [s]
     depths: np.ndarray  # half the range of the step-mean |r| over each [m]
+    middles: np.ndarray  # the time halfway through each [s]
     level: float  # the level whose upward crossings bound them [m]
     bounds: np.ndarray  # row index where each envelope starts, and where the last ends
 
@@ -255,7 +259,8 @@ def envelopes(rows: np.ndarray) -> Envelopes | None:
         top = _peak(part, int(np.argmax(part)))
         low = -_peak(-part, int(np.argmin(part)))
         depths.append(0.5 * (top - low))
-    return Envelopes(np.diff(times), np.array(depths), mean, up)
+    middles = 0.5 * (times[:-1] + times[1:])
+    return Envelopes(np.diff(times), np.array(depths), middles, mean, up)
 
 
 def _aliased_ripple(rows: np.ndarray, scene: OwnScene) -> float:
@@ -328,20 +333,85 @@ def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None
             envelope_depth=depth,
             **measures,
         )
-    if not deep or layout:
+    if layout:
+        return None
+    count = env.depths.shape[0]
+    if count >= vp.env_trend_count and not scene.observe:
+        # read before the depth test: a decay that has fallen below env_min_depth is still
+        # the approach to the whirl, a growth from below it still leaves the whirl. Over the
+        # newer half of the envelopes (as their level): the once-a-whirl samples drift along
+        # an envelope with a period of ~20 envelopes near the torus bifurcation, and bend a
+        # shorter line by more than its errors say.
+        ahead = depth_trend(env.middles, env.depths, max(vp.env_trend_count, count // 2))
+        found = _trending(ahead, depth, depth_tol, period, measures, vp)
+        if found is not None:
+            return found
+    trend = depth_trend(env.middles, env.depths, min(count, vp.env_trend_count))
+    if not deep:
         return None
     measures["mean_radius"] = mean  # of the cycle, not of the newest whirl
-    if steady_period and steady_depth:
+    if steady_period and steady_depth and _no_trend(trend, vp):
         return MotionEvidence(
             MODULATED,
             True,
             f"a modulated cycle: {vp.env_count} envelopes agree within {vp.env_tol:.3g} of "
-            f"their period and depth ({shape}; own period {measures['own_period']:.5g} s)",
+            f"their period and depth, and the depth of {trend.count} changes by at most "
+            f"{trend.change_bound(vp.env_trend_sigmas):.2g} over as long again "
+            f"({trend.text()}; {shape}; own period {measures['own_period']:.5g} s)",
             envelope_period=period,
             envelope_depth=depth,
             **measures,
         )
     return _settling_envelope(env, depth_tol, measures, scene, vp)
+
+
+def _no_trend(trend: DepthTrend | None, vp: VerdictParams) -> bool:
+    """A depth shown steady: over env_trend_count envelopes it would change by at most
+    env_tol in as long again, at the rate's bound (a slow growth or decay near the torus
+    bifurcation keeps three envelopes within env_tol)."""
+    return trend is not None and trend.change_bound(vp.env_trend_sigmas) <= vp.env_tol
+
+
+def _bend(trend: DepthTrend, vp: VerdictParams) -> str:
+    sigmas = vp.env_trend_sigmas
+    if trend.curvature <= sigmas * trend.curvature_error:
+        return "straight within its errors"
+    return f"its bend implying a limit of at most {trend.limit_share(sigmas):.2g} of the depth"
+
+
+def _trending(trend: DepthTrend, depth, tol, period, measures, vp) -> MotionEvidence | None:
+    """The envelope's trend read ahead (envelope_trend.py): a straight geometric decay is
+    the approach to a whirl (slide_cycle), a growth leaves the whirl for a modulated
+    cycle; None where the trend is within its errors."""
+    sigmas = vp.env_trend_sigmas
+    if trend.dies_out(sigmas, vp.env_trend_limit):
+        ratio = math.exp(trend.rate * period)
+        return MotionEvidence(
+            SLIDE_CYCLE,
+            depth <= tol,
+            _cycle_reason(
+                f"its envelope dies out geometrically ({trend.text()}, {_bend(trend, vp)}; "
+                f"envelope period {period:.5g} s, depth {depth:.4g} m): the whirl is stable",
+                measures,
+            ),
+            floquet_ratio=ratio,
+            decay_rate=-trend.rate,
+            rule=ENVELOPE_TREND,
+            **measures,
+        )
+    if trend.grows(sigmas):
+        return MotionEvidence(
+            MODULATED,
+            False,
+            f"a modulated cycle, read ahead: its envelope grows ({trend.text()}; envelope "
+            f"period {period:.5g} s, depth {depth:.4g} m), so the motion leaves the whirl",
+            envelope_period=period,
+            envelope_depth=depth,
+            decay_rate=-trend.rate,
+            rule=ENVELOPE_TREND,
+            **measures,
+        )
+    return None
 
 
 def _settling_envelope(env: Envelopes, tol, measures, scene, vp) -> MotionEvidence | None:

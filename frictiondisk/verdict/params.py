@@ -266,6 +266,24 @@ class VerdictParams:
         "a modulation needs a depth of at least this share of the mean radius (and 10 "
         "cycle_tol): less is the whirl with its ripple",
     )
+    env_trend_count: int = _param(
+        12,
+        "envelopes",
+        "whole envelopes (at least; the newer half of them) behind the trend of the depth "
+        "(ln depth against time) read ahead, and the most behind a steady depth's bound",
+    )
+    env_trend_sigmas: float = _param(
+        4.0,
+        "standard errors",
+        "a trend's rate counts beyond this many standard errors; a decay's implied limit and "
+        "a steady depth's change are bounded at value plus this many",
+    )
+    env_trend_limit: float = _param(
+        0.5,
+        "1",
+        "a decay whose bend implies a limit below this share of the newest depth dies out "
+        "(a decay towards a modulation keeps more)",
+    )
     layout_alias: float = _param(
         0.05,
         "1",
