@@ -1,4 +1,5 @@
-"""The atlas of the pin's motions (issue 49): its motion map with the boundaries traced.
+"""The atlas of the motions (issue 49): the pin's motion map with the boundaries traced, and
+the braked axisymmetric disk's map.
 
     python -m frictiondisk.studies.atlas [-o out/atlas] [--figures figures] [--workers 2]
 
@@ -7,7 +8,8 @@ from rest) and the trace campaigns of the boundaries it shows (trace_pin_*.yaml:
 boundary between two motions followed to tol in mu, every point certified) on the engine
 into OUT/<name>/, resuming what is there, prints the map's shares and the traced curves,
 and writes FIGURES/atlas_pin_map.png: the map with the traced curves on top (what `frictiondisk
-plot OUT/map_pin_omega_mu --boundary OUT/trace_pin_...` draws).
+plot OUT/map_pin_omega_mu --boundary OUT/trace_pin_...` draws), and FIGURES/atlas_disk_map.png
+from campaigns/map_disk_js_omega.yaml.
 """
 
 from __future__ import annotations
@@ -22,6 +24,9 @@ FIGURES = {  # figure name -> (map campaign, the trace campaigns drawn on it)
         "map_pin_omega_mu",
         ("trace_pin_selfcentring_stick", "trace_pin_selfcentring_cycle", "trace_pin_cycle_stick"),
     ),
+    # the braked axisymmetric disk from one start (x0 0.15 m): its boundaries lie in the
+    # hysteresis band of the subcritical torus bifurcation (located: torus_disk_js.yaml)
+    "atlas_disk_map": ("map_disk_js_omega", ()),
 }
 
 
