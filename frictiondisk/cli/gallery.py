@@ -102,7 +102,7 @@ GALLERY: tuple[Generator, ...] = (
     ),
     Generator(
         "atlas",
-        ("atlas_pin_map.png",),
+        tuple(f"{name}.png" for name in atlas.FIGURES),
         ("-m", "frictiondisk.studies.atlas", "--campaigns", "{campaigns}")
         + ("-o", "{out}", "--figures", "{figures}"),
         campaigns=ATLAS,
