@@ -13,18 +13,16 @@ phidot0 0.94358 rad/s), on either side of J_NS ~ 0.2706.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
+from own_rows import recorded_rows
 from scipy.optimize import curve_fit
 
-from frictiondisk.kernel.records import OWN_STEP
 from frictiondisk.verdict import motion_evidence as me
 from frictiondisk.verdict.envelope_trend import depth_trend
 from frictiondisk.verdict.params import VerdictParams
 
-DATA = Path(__file__).resolve().parent / "data"
 PERIOD = 107.0  # envelope period near J_NS [s]
 
 
@@ -75,14 +73,6 @@ def test_too_few_envelopes_give_no_trend():
 # --- the example disk on either side of the torus bifurcation ----------------------------
 
 
-def _rows(name: str) -> np.ndarray:
-    with np.load(DATA / f"own_section_{name}.npz") as data:
-        rows = np.zeros(data["t"].shape[0], dtype=OWN_STEP)
-        for field in data.files:
-            rows[field] = data[field]
-    return rows
-
-
 def _scene() -> me.OwnScene:
     return me.OwnScene(
         omega0=1.0, arm=0.1, eps=1e-9, n_contacts=48, cycle_tol=1e-6, atol=1e-9, rtol=1e-6
@@ -119,7 +109,7 @@ def test_near_the_torus_bifurcation_the_trend_names_the_side(name, motion):
     agree within env_tol, yet neither is a settled modulation; the trend names the side,
     and its rate is the one a decaying sinusoid fitted to |r| itself gives (Re(lambda)
     -7.5e-5 and +3.9e-5 1/s; the two estimators differ by ~6e-6 1/s, 1e-4 in J_s)."""
-    rows = _rows(name)
+    rows = recorded_rows(name)
     ev = me.judge(rows, _scene(), VerdictParams())
     assert ev.motion == motion and ev.rule == me.ENVELOPE_TREND, ev.reason
     assert not ev.converged

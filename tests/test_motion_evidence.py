@@ -15,10 +15,10 @@ The reference numbers were measured on recorded trajectories in the issue's stud
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
+from own_rows import recorded_rows
 
 from frictiondisk.kernel.records import OWN_STEP
 from frictiondisk.model.scene import scene_from_dict
@@ -27,7 +27,6 @@ from frictiondisk.verdict import motion_evidence as me
 from frictiondisk.verdict.outcomes import is_not_stick
 from frictiondisk.verdict.params import VerdictParams
 
-DATA = Path(__file__).resolve().parent / "data"
 CYCLE_TOL = 1e-6  # numerics.cycle_tol default [m]
 
 
@@ -130,18 +129,10 @@ def _disk_scene(points: int) -> me.OwnScene:
     )
 
 
-def _rows(name: str) -> np.ndarray:
-    with np.load(DATA / f"own_section_{name}.npz") as data:
-        rows = np.zeros(data["t"].shape[0], dtype=OWN_STEP)
-        for field in data.files:
-            rows[field] = data[field]
-    return rows
-
-
 def test_the_example_disk_is_a_modulated_cycle():
     """J_s 0.3 above the torus bifurcation J_NS = 0.2704 (48 points): envelope period
     136.66 s measured on the trajectory by a spline through the step means."""
-    ev = me.judge(_rows("modulated_disk"), _disk_scene(48), VerdictParams())
+    ev = me.judge(recorded_rows("modulated_disk"), _disk_scene(48), VerdictParams())
     assert ev.motion == "modulated" and ev.converged, ev.reason
     assert ev.envelope_period == pytest.approx(136.66, rel=VerdictParams().env_tol)
     # |r| 0.07717 ... 0.13959 m on the trajectory: half its range, about its mean 0.11246 m
@@ -151,7 +142,7 @@ def test_the_example_disk_is_a_modulated_cycle():
 
 
 def test_the_whirl_below_the_torus_bifurcation_is_a_sliding_cycle():
-    ev = me.judge(_rows("whirl_disk"), _disk_scene(48), VerdictParams())
+    ev = me.judge(recorded_rows("whirl_disk"), _disk_scene(48), VerdictParams())
     assert ev.motion == "slide_cycle" and ev.converged, ev.reason
     assert ev.mean_radius == pytest.approx(0.117569, abs=1e-5)  # a relative equilibrium
     assert ev.own_period == pytest.approx(2.0 * math.pi / 1.000007, abs=1e-3)
@@ -161,7 +152,7 @@ def test_the_whirl_below_the_torus_bifurcation_is_a_sliding_cycle():
 def test_the_ripple_of_a_12_point_ring_is_no_modulation():
     """The layout guard: the 12-point ring's 0.69 % ripple at N |Omega - phidot|, aliased by
     a section once a whirl into a 19.5 s beat, is the whirl's, not a fourth motion."""
-    rows = _rows("layout_artefact_disk")
+    rows = recorded_rows("layout_artefact_disk")
     ev = me.judge(rows, _disk_scene(12), VerdictParams())
     assert ev.motion == "slide_cycle" and ev.converged, ev.reason
     assert "inside the ripple of its ring" in ev.reason
