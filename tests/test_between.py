@@ -210,3 +210,35 @@ trace:
         mu, x_ms = ds["mu_star"].values, ds["x_ms"].values
     assert mu.size >= 3
     assert np.all(np.abs(mu - 1.2 * x_ms) <= 2 * 1.0e-3)
+
+
+SELF_CENTRING_STICK = """\
+name: sc_stick
+scene: pin
+params: {omega_m: 0.8}
+numerics: {mode: converge, t_max: 3000.0}
+find_jump:
+  between: [self_centring, stick]
+  bracket: [0.03, 0.13]
+  tol: 1.0e-3
+  certify: {levels: 0}
+  along:
+    params.x_ms: [0.05, 0.1]
+"""
+
+
+def test_the_self_centring_stick_boundary_moves_with_the_offset_as_c_s_x_ms_over_f_n(tmp_path):
+    """A pin stuck at radius R needs mu F_n >= c_s x_ms + g R and a sliding rest state
+    mu F_n < c_s x_ms, both ending at r = 0: the boundary is mu = c_s x_ms / F_n (= x_ms
+    with the default c_s / F_n = 1 1/m), and doubling the offset doubles it."""
+    campaign = campaign_from_text(SELF_CENTRING_STICK, "<test>")
+    run_campaign(campaign, tmp_path, workers=2, progress=False)
+    p = campaign.base.params
+    with xr.open_dataset(tmp_path / "results.nc") as ds:
+        assert list(ds.status.values) == ["converged", "converged"], list(ds.reason.values)
+        for x_ms, lo, hi in zip(ds.x_ms.values, ds.mu_lo.values, ds.mu_hi.values, strict=True):
+            exact = p.c_s * x_ms / p.F_n
+            assert hi - lo <= 1e-3 * (1 + 1e-9)
+            assert lo - 1e-9 <= exact <= hi + 1e-9, (x_ms, lo, hi)
+        assert list(ds.outcome_lo.values) == ["self_centring"] * 2
+        assert list(ds.outcome_hi.values) == ["stick"] * 2
