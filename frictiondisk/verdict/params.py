@@ -269,8 +269,8 @@ class VerdictParams:
     env_trend_count: int = _param(
         12,
         "envelopes",
-        "whole envelopes (at least; the newer half of them) behind the trend of the depth "
-        "(ln depth against time) read ahead, and the most behind a steady depth's bound",
+        "whole envelopes (at least; all but the first env_count) behind the trend of the "
+        "depth (ln depth against time) read ahead, and the most behind a steady depth's bound",
     )
     env_trend_sigmas: float = _param(
         4.0,
