@@ -65,20 +65,26 @@ class DepthTrend:
         )
 
 
-def depth_trend(middles: np.ndarray, depths: np.ndarray, count: int) -> DepthTrend | None:
+def depth_trend(
+    middles: np.ndarray, depths: np.ndarray, count: int, precision: float = 0.0
+) -> DepthTrend | None:
     """The trend of the newest `count` envelopes (middle times [s], depths [m]); None with
-    fewer envelopes, fewer than four, or a depth that is not positive."""
+    fewer envelopes, fewer than four, or a depth that is not positive. `precision` [1]: the
+    relative precision of one depth, a floor on the curvature's error (the residuals of a
+    few envelopes do not show a wobble slower than they span)."""
     if count < 4 or depths.shape[0] < count or np.any(depths[-count:] <= 0.0):
         return None
     t = middles[-count:] - float(np.mean(middles[-count:]))
     y = np.log(depths[-count:])
     line, line_cov = np.polyfit(t, y, 1, cov=True)
     bend, bend_cov = np.polyfit(t, y, 2, cov=True)
+    design = np.vander(t, 3)
+    floor = precision * math.sqrt(float(np.linalg.inv(design.T @ design)[0, 0]))
     return DepthTrend(
         rate=float(line[0]),
         rate_error=math.sqrt(max(float(line_cov[0, 0]), 0.0)),
         curvature=2.0 * float(bend[0]),
-        curvature_error=2.0 * math.sqrt(max(float(bend_cov[0, 0]), 0.0)),
+        curvature_error=2.0 * max(math.sqrt(max(float(bend_cov[0, 0]), 0.0)), floor),
         span=float(t[-1] - t[0]),
         count=count,
     )

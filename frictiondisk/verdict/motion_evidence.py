@@ -342,7 +342,8 @@ def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None
         # every envelope after the first env_count (the start's fast modes): near the
         # torus bifurcation ln(depth) wobbles by ~0.3 % with a period of ~20 envelopes,
         # which bends a shorter line by more than its errors say
-        ahead = depth_trend(env.middles, env.depths, max(vp.env_trend_count, count - vp.env_count))
+        newest = max(vp.env_trend_count, count - vp.env_count)
+        ahead = depth_trend(env.middles, env.depths, newest, vp.env_depth_precision)
         found = _trending(ahead, depth, depth_tol, period, measures, vp)
         if found is not None:
             return found
@@ -367,10 +368,12 @@ def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None
 
 
 def _no_trend(trend: DepthTrend | None, vp: VerdictParams) -> bool:
-    """A depth shown steady: over env_trend_count envelopes it would change by at most
-    env_tol in as long again, at the rate's bound (a slow growth or decay near the torus
-    bifurcation keeps three envelopes within env_tol)."""
-    return trend is not None and trend.change_bound(vp.env_trend_sigmas) <= vp.env_tol
+    """A depth shown steady: over env_trend_count envelopes no rate beyond its errors, and
+    at the rate's bound it would change by at most env_tol in as long again (a slow growth
+    or decay near the torus bifurcation keeps three envelopes within env_tol)."""
+    if trend is None or abs(trend.rate) > vp.env_trend_sigmas * trend.rate_error:
+        return False  # a rate shown is a trend, however slow
+    return trend.change_bound(vp.env_trend_sigmas) <= vp.env_tol
 
 
 def _bend(trend: DepthTrend, vp: VerdictParams) -> str:

@@ -278,6 +278,13 @@ class VerdictParams:
         "a trend's rate counts beyond this many standard errors; a decay's implied limit and "
         "a steady depth's change are bounded at value plus this many",
     )
+    env_depth_precision: float = _param(
+        0.004,
+        "1",
+        "relative precision of an envelope's depth, a floor on the error of its trend's "
+        "bend: near the torus bifurcation ln(depth) wobbles about its line by +-0.35 % with "
+        "a period of ~20 envelopes (measured), which the residuals of fewer do not show",
+    )
     env_trend_limit: float = _param(
         0.5,
         "1",
