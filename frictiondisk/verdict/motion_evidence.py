@@ -19,12 +19,17 @@ section evidence), V_k the largest speed |rdot| over step k.
   is steady with a depth below env_min_depth of the mean radius (a whirl with the ripple
   of its discrete ring) or at the layout ripple's aliased frequency.
 * modulated: env_count whole envelopes of the step-mean |r| (between its upward crossings
-  of its mean) agree in period and depth within env_tol, the depth at least env_min_depth
-  of the mean radius and 10 cycle_tol, and not at the layout's aliased ripple frequency
-  (the layout guard: a ring of N contacts makes |r| ripple at N |Omega - phidot|, which a
-  section taken once a whirl aliases into a slow beat). Or the depths settle geometrically
-  towards a limit that keeps that depth (Aitken), converged where the rest is within tol.
-  An envelope that dies out geometrically is the approach to a whirl: slide_cycle.
+  of its mean) agree in period and depth within env_tol, their depth shows no trend
+  (envelope_trend.py: no rate beyond its errors over up to env_trend_count envelopes, and
+  at its bound a change within env_tol over as long again), the depth at least
+  env_min_depth of the mean radius and 10 cycle_tol, and not at the layout's aliased
+  ripple frequency (the layout guard: a ring of N contacts makes |r| ripple at
+  N |Omega - phidot|, which a section taken once a whirl aliases into a slow beat). Or the
+  depths settle geometrically towards a limit that keeps that depth (Aitken), converged
+  where the rest is within tol. Or, read ahead over at least env_trend_count envelopes
+  (rule ENVELOPE_TREND), the depth grows: the motion leaves the whirl. An envelope that
+  dies out geometrically (Aitken, or that trend falling on a line that does not bend
+  towards a limit) is the approach to a whirl: slide_cycle.
 
 Anything else is no evidence: the run stays `slide` (not stick, not settled). Plain numpy
 on at most OWN_RING rows, once per run after it ends: no compile cost for the kernel.
@@ -336,11 +341,12 @@ def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None
     if layout:
         return None
     count = env.depths.shape[0]
-    if count >= vp.env_trend_count and not scene.observe:
+    read_ahead = count >= vp.env_trend_count and not scene.observe
+    if read_ahead:
         # read before the depth test: a decay that has fallen below env_min_depth is still
         # the approach to the whirl, a growth from below it still leaves the whirl. Over
         # every envelope after the first env_count (the start's fast modes): near the
-        # torus bifurcation ln(depth) wobbles by ~0.3 % with a period of ~20 envelopes,
+        # torus bifurcation ln(depth) wobbles by +-0.35 % with a period of ~20 envelopes,
         # which bends a shorter line by more than its errors say
         newest = max(vp.env_trend_count, count - vp.env_count)
         ahead = depth_trend(env.middles, env.depths, newest, vp.env_depth_precision)
@@ -363,7 +369,6 @@ def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None
             envelope_depth=depth,
             **measures,
         )
-    read_ahead = count >= vp.env_trend_count and not scene.observe
     return _settling_envelope(env, depth_tol, measures, scene, vp, read_ahead)
 
 
