@@ -47,13 +47,16 @@ class DepthTrend:
         x = max(self.curvature + sigmas * self.curvature_error, 0.0) / self.rate**2
         return x / (1.0 + x)
 
+    def bent(self, sigmas: float) -> bool:
+        """The line bends as a decay towards a limit would, beyond `sigmas` errors."""
+        return self.curvature > sigmas * self.curvature_error
+
     def dies_out(self, sigmas: float, limit: float) -> bool:
         """The depth falls towards nothing: a rate below -`sigmas` standard errors on a line
         that does not bend towards a limit beyond `sigmas` errors, or whose bend implies a
         limit below `limit` of the depth at its bound."""
         falls = self.rate < -sigmas * self.rate_error
-        bent = self.curvature > sigmas * self.curvature_error
-        return falls and (not bent or self.limit_share(sigmas) <= limit)
+        return falls and (not self.bent(sigmas) or self.limit_share(sigmas) <= limit)
 
     def change_bound(self, sigmas: float) -> float:
         """The most the depth may change, as a share, over another `span` at the rate's

@@ -353,11 +353,13 @@ def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None
         found = _trending(ahead, depth, depth_tol, period, measures, vp)
         if found is not None:
             return found
-    trend = depth_trend(env.middles, env.depths, min(count, vp.env_trend_count))
     if not deep:
         return None
     measures["mean_radius"] = mean  # of the cycle, not of the newest whirl
-    if steady_period and steady_depth and _no_trend(trend, vp):
+    trend = None
+    if steady_period and steady_depth:
+        trend = depth_trend(env.middles, env.depths, min(count, vp.env_trend_count))
+    if trend is not None and _no_trend(trend, vp):
         return MotionEvidence(
             MODULATED,
             True,
@@ -372,18 +374,18 @@ def _envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None
     return _settling_envelope(env, depth_tol, measures, scene, vp, read_ahead)
 
 
-def _no_trend(trend: DepthTrend | None, vp: VerdictParams) -> bool:
+def _no_trend(trend: DepthTrend, vp: VerdictParams) -> bool:
     """A depth shown steady: over env_trend_count envelopes no rate beyond its errors, and
     at the rate's bound it would change by at most env_tol in as long again (a slow growth
     or decay near the torus bifurcation keeps three envelopes within env_tol)."""
-    if trend is None or abs(trend.rate) > vp.env_trend_sigmas * trend.rate_error:
+    if abs(trend.rate) > vp.env_trend_sigmas * trend.rate_error:
         return False  # a rate shown is a trend, however slow
     return trend.change_bound(vp.env_trend_sigmas) <= vp.env_tol
 
 
 def _bend(trend: DepthTrend, vp: VerdictParams) -> str:
     sigmas = vp.env_trend_sigmas
-    if trend.curvature <= sigmas * trend.curvature_error:
+    if not trend.bent(sigmas):
         return "straight within its errors"
     return f"its bend implying a limit of at most {trend.limit_share(sigmas):.2g} of the depth"
 
@@ -440,12 +442,11 @@ def _settling_envelope(
         return None
     rest = abs(float(depths[-1]) - limit)
     period = float(env.periods[-1])
-    reached = (
-        float(depths[-1]) <= tol if limit <= vp.own_rest_zero * float(depths[-1]) else rest <= tol
-    )
+    dies_out = limit <= vp.own_rest_zero * float(depths[-1])
+    reached = float(depths[-1]) <= tol if dies_out else rest <= tol
     if read_ahead and not reached:
         return None
-    if limit <= vp.own_rest_zero * float(depths[-1]):
+    if dies_out:
         ratio = float(depths[-1] / depths[-2])
         return MotionEvidence(
             SLIDE_CYCLE,
