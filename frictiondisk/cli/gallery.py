@@ -55,7 +55,7 @@ PAPER = tuple(
 # docs/trace.md, the disk from rest of docs/brake.md and the pin line of `make demo` (README)
 PLOTTED = (*PAPER, "trace_fig11_betab_mu", "trace_stribeck_pin", "disk_xms_at_rest", "demo_line")
 BASIN = ("basin_pin_x0", "basin_pin_map", "basin_pin_boundary", "basin_disk_map")
-# the pin's motion map and its traced boundaries
+# the motion maps (pin, braked disk) and the traced boundaries drawn on them
 ATLAS = atlas.campaign_names()
 
 
