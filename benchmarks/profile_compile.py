@@ -10,6 +10,8 @@ more), and prints:
 * the entry points compiled from Python and their signatures;
 * every numba function compiled more than once (its signatures): the needless
   specialisations kernel/jit.py removes (expected: none);
+* every twin of a kernel function compiled for a call from Python (kernel/jit.py
+  `KernelDispatcher`; expected: none, the package calls entry points only);
 * the numba functions that take the most time of their own (exclusive of the functions
   they call), and the share of each module. The numba code is the kernel, the verdict's
   machine and evidence, and the step loop (kernel/jit.py NUMBA_SOURCES).
@@ -118,6 +120,10 @@ def main() -> int:
     for name, signatures in repeated.items():
         for signature in signatures:
             print(f"  {name}{short(signature)[:120]}")
+    twins = sorted({name for _, name, _, _, _ in kernel if name.endswith(".from_python")})
+    print(f"twins compiled for calls from Python: {len(twins)} (expected 0)")
+    for name in twins:
+        print(f"  {name}")
     print("kernel functions by their own compile time (callees excluded), top 12:")
     for _, name, _, _, own in sorted(kernel, key=lambda c: -c[4])[:12]:
         print(f"  {own:6.2f} s  {name}")
@@ -129,7 +135,7 @@ def main() -> int:
     print("own compile time by module:")
     for module, own in by_module.most_common():
         print(f"  {own:6.2f} s  {own / total:4.0%}  {module}")
-    return 0 if later == 0 and not repeated else 1
+    return 0 if later == 0 and not repeated and not twins else 1
 
 
 if __name__ == "__main__":

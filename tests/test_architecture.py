@@ -179,7 +179,7 @@ def numba_modules() -> list[str]:
             if isinstance(node, ast.ImportFrom)
             for alias in node.names
         }
-        if "kernel_jit" in names:
+        if names & {"kernel_jit", "kernel_entry"}:
             found.append(name)
     return sorted(found)
 

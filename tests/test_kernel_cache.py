@@ -59,7 +59,7 @@ def test_every_module_numba_compiles_is_hashed():
     users = {
         path
         for path in PACKAGE.rglob("*.py")
-        if "kernel_jit" in path.read_text() and path.name != "jit.py"
+        if "@kernel_" in path.read_text() and path.name != "jit.py"
     }
     assert users and users <= hashed, sorted(str(p) for p in users - hashed)
 

@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from .jit import kernel_jit
+from .jit import kernel_entry, kernel_jit
 from .model import STICK, contact_constants, friction_limit, n_coords
 from .rodas import dense_eval
 
@@ -49,7 +49,7 @@ ENERGY = np.dtype(
 )
 
 
-@kernel_jit
+@kernel_entry
 def stored_energy(p, pts, y):
     """Kinetic + support-spring + contact-spring energy E of state y [J]."""
     nq = n_coords(p)

@@ -1,5 +1,7 @@
-"""The numba decorators of the kernel: `kernel_jit`, and `kernel_jit_allocating` for the few
-functions that allocate the run's scratch (see "No reference counting" below).
+"""The numba decorators of the kernel: `kernel_jit`, `kernel_jit_allocating` for the few
+functions that allocate the run's scratch (see "No reference counting" below), and
+`kernel_entry` / `kernel_entry_allocating` for the few the package calls from Python (see
+"No CPython wrapper").
 
 cache=True: compiled code is stored next to the sources, so only the first process pays
 the compile time. nogil=True: runs release the GIL, so threads run them in parallel.
@@ -29,14 +31,26 @@ may not allocate one (numba refuses to compile it: "NRT required but not enabled
 return one (its caller would count the returned reference as a new one; `plain_types`
 refuses that at compile time). The few functions that allocate the run's scratch, or
 return it, are `kernel_jit_allocating`, with the counting on.
+
+No CPython wrapper: numba gives every function it compiles a wrapper that unboxes the
+arguments of a call from Python, and optimises and emits it again in the module of every
+kernel function that calls it, though only Python ever calls it. `kernel_jit` functions
+have none (a `KernelDispatcher`); the few the package calls from Python are
+`kernel_entry` (`kernel_entry_allocating`), and tests/test_kernel_entry.py checks that the
+package calls no other from Python. A call from Python to any other kernel function (a
+test, a study, the Radau integrator) runs its twin with the wrapper, compiled and cached
+on the first such call. That cut the cold compile by about a fifth (docs/benchmarks.md).
 """
 
+import functools
 import hashlib
 import os
 import pathlib
+import types as pytypes
 
 import numba as nb
 from numba.core import types
+from numba.core.registry import CPUDispatcher
 from numba.core.targetconfig import ConfigStack
 
 KERNEL_SOURCES = pathlib.Path(__file__).resolve().parent
@@ -69,21 +83,68 @@ def kernel_cache_dir(package: pathlib.Path = PACKAGE) -> str:
 
 nb.config.CACHE_DIR = kernel_cache_dir()
 
-_njit = nb.njit(cache=True, nogil=True, error_model="numpy", _nrt=False)
-# _nrt=True explicitly: numba lets a callee inherit its caller's unset _nrt flag
-_njit_allocating = nb.njit(cache=True, nogil=True, error_model="numpy", _nrt=True)
+_OPTIONS = {"nopython": True, "nogil": True, "error_model": "numpy"}
+_INTERNAL = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+
+
+class KernelDispatcher(CPUDispatcher):
+    """A kernel function compiled without a CPython wrapper, for calls from other kernel
+    functions; a call from Python runs its twin `from_python` (module docstring)."""
+
+    def __call__(self, *args, **kwargs):
+        return self.from_python(*args, **kwargs)
+
+    @functools.cached_property
+    def from_python(self):
+        """The twin of this function with a CPython wrapper (cached under its own name)."""
+        original = self.py_func
+        twin = pytypes.FunctionType(
+            original.__code__,
+            original.__globals__,
+            original.__name__,
+            original.__defaults__,
+            original.__closure__,
+        )
+        twin.__qualname__ = f"{original.__qualname__}.from_python"
+        twin.__module__ = original.__module__
+        counted = self.targetoptions["_nrt"]
+        return _compile(twin, counted, internal=False)
+
+
+def _compile(function, counted: bool, internal: bool):
+    """`function` compiled by numba with the kernel's options, cached (`_nrt` explicitly:
+    numba lets a callee inherit its caller's unset flag)."""
+    if nb.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT: the plain function, for debugging
+        return function
+    options = {**_OPTIONS, "_nrt": counted, **(_INTERNAL if internal else {})}
+    dispatcher_class = KernelDispatcher if internal else CPUDispatcher
+    dispatcher = dispatcher_class(py_func=function, locals={}, targetoptions=options)
+    dispatcher.enable_caching()
+    return plain_types(dispatcher, counted=counted)
 
 
 def kernel_jit(function):
-    """The kernel's numba decorator: `_njit` (no reference counting), typing the arguments
-    of calls from other kernel functions without literals."""
-    return plain_types(_njit(function), counted=False)
+    """The kernel's numba decorator: no reference counting, no CPython wrapper (a
+    `KernelDispatcher`), and the arguments of calls from other kernel functions typed
+    without literals."""
+    return _compile(function, counted=False, internal=True)
 
 
 def kernel_jit_allocating(function):
     """`kernel_jit` with numba's reference counting, for a function that allocates arrays
     or returns them."""
-    return plain_types(_njit_allocating(function), counted=True)
+    return _compile(function, counted=True, internal=True)
+
+
+def kernel_entry(function):
+    """`kernel_jit` for a function the package calls from Python: with its CPython
+    wrapper."""
+    return _compile(function, counted=False, internal=False)
+
+
+def kernel_entry_allocating(function):
+    """`kernel_jit_allocating` for a function the package calls from Python."""
+    return _compile(function, counted=True, internal=False)
 
 
 def holds_array(numba_type) -> bool:

@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from .jit import kernel_jit
+from .jit import kernel_entry, kernel_jit
 
 # The parameter record p (one element of a PARAMETERS array, built by
 # frictiondisk/simulation/pack.py `pack_parameters`): the scene's physics, read by name.
@@ -133,7 +133,7 @@ def contact_state_rot(p, pts, y, i, c, s):
     return ax, ay, vx, vy, kx, ky, fst, dfst
 
 
-@kernel_jit
+@kernel_entry
 def switch_value(p, pts, y, i, mode):
     """Switching function of contact i in `mode` [N]: |k_i| - F_St,i in stick,
     |k_i| - F_St,i - beta_i eps in slide. Its sign change ends the mode."""

@@ -17,7 +17,7 @@ scipy cross-check (frictiondisk/simulation/radau.py).
 import math
 
 from .events import hermite_max
-from .jit import kernel_jit
+from .jit import kernel_entry, kernel_jit
 from .linalg import copy_vector
 from .records import REV_RING
 
@@ -178,7 +178,7 @@ def switch(motion, phases, intervals, t, y, modes, n_switched, slip, steps):
     _update_phases(motion, phases, intervals, t, y, modes, slip, steps)
 
 
-@kernel_jit
+@kernel_entry
 def stuck_for(motion, t):
     """How long every contact has stuck without interruption at time t [s] (0 if not)."""
     if not motion.all_stuck:
@@ -205,7 +205,7 @@ def _overlap(starts, ends, count, open_start, t_lo, t_hi):
     return total
 
 
-@kernel_jit
+@kernel_entry
 def window_fractions(motion, phases, intervals, t_end, window):
     """Fractions of [t_end - window, t_end] with every contact / some contact sticking."""
     t_lo = max(0.0, t_end - window)

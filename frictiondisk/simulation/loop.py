@@ -28,7 +28,7 @@ from frictiondisk.kernel import controller, monitor, own_section, switching
 from frictiondisk.kernel import energy as en
 from frictiondisk.kernel import status as st
 from frictiondisk.kernel.events import SAME_TIME, T_TOL_ABS
-from frictiondisk.kernel.jit import kernel_jit, kernel_jit_allocating
+from frictiondisk.kernel.jit import kernel_entry_allocating, kernel_jit, kernel_jit_allocating
 from frictiondisk.kernel.linalg import copy_vector, stage_workspace
 from frictiondisk.kernel.model import n_coords, rhs
 from frictiondisk.kernel.recording import record_dense, record_state
@@ -223,7 +223,7 @@ def _accept(p, pts, options, y, modes, state, rings, recording, ws, h_free):
     controller.accepted(step, options, h_free)
 
 
-@kernel_jit_allocating
+@kernel_entry_allocating
 def run(p, pts, options, rules, vp, y, modes, state, rings, recording):
     """Integrate one scene from t = 0 until the verdict's machine stops it or the loop
     fails. Returns (status, t_end [s]).

@@ -9,14 +9,14 @@ import math
 
 import numpy as np
 
-from frictiondisk.kernel.jit import kernel_jit_allocating
+from frictiondisk.kernel.jit import kernel_entry_allocating
 from frictiondisk.kernel.linalg import lu_factor, lu_solve
 
 IRLS_ITERS = 100  # most iterations of `limit_motion`
 IRLS_TOL = 1e-10  # ... which stops once its value changes by less than this share
 
 
-@kernel_jit_allocating
+@kernel_entry_allocating
 def limit_motion(fx, fy, torque, pts):
     """The optimal rigid slip motion behind Lambda(F, T) on the points pts[:, 0:2] [m]:
     min over (v, w) of sum_i |v + w J a_i| subject to F.v + T w = 1, by iteratively

@@ -14,7 +14,7 @@ VerdictParams on_orbit_revs, bound_blocks, bound_solver_rtol.
 
 import math
 
-from frictiondisk.kernel.jit import kernel_jit
+from frictiondisk.kernel.jit import kernel_entry, kernel_jit
 
 from .limit_analysis import limit_motion
 
@@ -35,7 +35,7 @@ def corotation_reserve(p, pts, x, y, phi):
     return p.mu - demand / (p.F_n_i * n)
 
 
-@kernel_jit
+@kernel_entry
 def floor_reserve(p, pts):
     """mu - the least shakedown demand over every sticking circle and layout angle / F_n
     [1]: c_s |x_ms| + min over C of Lambda(C, T), and that minimum is N T / sum |a_i|

@@ -1,0 +1,113 @@
+"""Kernel functions without a CPython wrapper (kernel/jit.py `KernelDispatcher`): a call
+from other kernel functions compiles the function itself, a call from Python its twin
+with the wrapper, and the package calls only entry points (`kernel_entry`) from Python,
+so a simulation compiles no twin."""
+
+from __future__ import annotations
+
+import ast
+import importlib
+from pathlib import Path
+
+import numpy as np
+
+from frictiondisk.kernel import jit
+from frictiondisk.kernel.jit import KernelDispatcher, kernel_entry, kernel_jit
+
+PACKAGE = Path(jit.__file__).resolve().parents[1]
+# The independent integrator (simulation/radau.py) steps the monitor and the verdict's
+# machine from Python; their twins compile on its first use, not on the default path.
+CALLS_TWINS = {"frictiondisk.simulation.radau"}
+
+
+@kernel_jit
+def _scaled_sum(values, factor):
+    total = 0.0
+    for value in values:
+        total += factor * value
+    return total
+
+
+@kernel_entry
+def _twice_the_scaled_sum(values):
+    return 2.0 * _scaled_sum(values, 1.5)
+
+
+def test_an_internal_function_called_from_python_runs_its_twin():
+    values = np.array([1.0, 2.0, 4.0])
+    assert _scaled_sum(values, 2.0) == _scaled_sum.py_func(values, 2.0) == 14.0
+    assert isinstance(_scaled_sum, KernelDispatcher)
+    assert _scaled_sum.targetoptions["no_cpython_wrapper"]
+    twin = _scaled_sum.from_python
+    assert not isinstance(twin, KernelDispatcher)
+    assert twin.py_func.__qualname__ == "_scaled_sum.from_python"
+    assert twin.signatures  # the call from Python compiled the twin
+
+
+def test_a_call_from_a_kernel_function_compiles_the_function_itself():
+    values = np.array([1.0, 2.0])
+    assert _twice_the_scaled_sum(values) == 9.0
+    assert _twice_the_scaled_sum.signatures  # an entry point: called directly
+    assert _scaled_sum.signatures  # compiled for its jitted caller, no wrapper
+
+
+def numba_module_names() -> list[str]:
+    names = []
+    for source in jit.numba_sources(PACKAGE):
+        parts = source.relative_to(PACKAGE.parent).with_suffix("").parts
+        names.append(".".join(parts))
+    return names
+
+
+def python_calls_of_internal_functions(path: Path, name: str) -> list[str]:
+    """Calls in module `name` (not numba code) of a kernel function that is no entry
+    point, as 'module.function'."""
+    numba_modules = set(numba_module_names())
+    bound: dict[str, object] = {}  # a local name -> the kernel module or function it names
+    tree = ast.parse(path.read_text(), str(path))
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.ImportFrom) or not node.module or node.level:
+            continue
+        for alias in node.names:
+            full = f"{node.module}.{alias.name}"
+            if full in numba_modules:
+                bound[alias.asname or alias.name] = importlib.import_module(full)
+            elif node.module in numba_modules:
+                module = importlib.import_module(node.module)
+                bound[alias.asname or alias.name] = getattr(module, alias.name, None)
+    found = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.Call):
+            continue
+        target = node.func
+        if isinstance(target, ast.Name):
+            called = bound.get(target.id)
+        elif isinstance(target, ast.Attribute) and isinstance(target.value, ast.Name):
+            called = getattr(bound.get(target.value.id), target.attr, None)
+        else:
+            continue
+        if isinstance(called, KernelDispatcher):
+            found.append(f"{called.py_func.__module__}.{called.py_func.__name__}")
+    return found
+
+
+def test_the_package_calls_only_entry_points_from_python():
+    offenders = {}
+    checked = 0
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        if "@kernel_" in path.read_text() or name in CALLS_TWINS:
+            continue  # numba code calls kernel functions without their wrapper
+        checked += 1
+        calls = python_calls_of_internal_functions(path, name)
+        if calls:
+            offenders[name] = sorted(set(calls))
+    assert checked > 100
+    assert not offenders, offenders
+
+
+def test_the_rule_finds_a_call_of_an_internal_function():
+    radau = PACKAGE / "simulation" / "radau.py"
+    calls = python_calls_of_internal_functions(radau, "frictiondisk.simulation.radau")
+    assert "frictiondisk.kernel.monitor.switch" in calls
