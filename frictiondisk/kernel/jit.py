@@ -7,7 +7,9 @@ cache=True: compiled code is stored next to the sources, so only the first proce
 the compile time. nogil=True: runs release the GIL, so threads run them in parallel.
 error_model="numpy": a division by zero yields inf/nan (caught by the
 driver's finiteness checks and reported as a status) instead of raising inside a kernel.
-Set NUMBA_DISABLE_JIT=1 to run the kernel as plain Python for debugging.
+NUMBA_DISABLE_JIT=1 leaves every kernel function plain Python, but a simulation does not
+run so: the kernel reads its records (kernel/records.py) by attribute, which numba allows
+and a numpy structured scalar does not.
 
 One signature per function: numba types a constant argument of a call inside the kernel
 (`_row(mi, 0)`, a module constant such as KIND_SWITCH, a counter's first value `0`) as a
