@@ -116,7 +116,7 @@ class KernelDispatcher(CPUDispatcher):
 def _compile(function, counted: bool, internal: bool):
     """`function` compiled by numba with the kernel's options, cached (`_nrt` explicitly:
     numba lets a callee inherit its caller's unset flag)."""
-    if nb.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT: the plain function, for debugging
+    if nb.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT: the plain function
         return function
     options = {**_OPTIONS, "_nrt": counted, **(_INTERNAL if internal else {})}
     dispatcher_class = KernelDispatcher if internal else CPUDispatcher
