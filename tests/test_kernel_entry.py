@@ -1,6 +1,6 @@
-"""Kernel functions without a CPython wrapper (kernel/jit.py `KernelDispatcher`): a call
-from other kernel functions compiles the function itself, a call from Python its twin
-with the wrapper, and the package calls only entry points (`kernel_entry`) from Python,
+"""Kernel functions without a CPython wrapper (kernel/jit.py `KernelDispatcher`): other
+kernel functions call the function itself, a call from Python runs its twin with the
+wrapper, and the package calls only entry points (`kernel_entry`) from Python,
 so a simulation compiles no twin."""
 
 from __future__ import annotations
@@ -44,11 +44,11 @@ def test_an_internal_function_called_from_python_runs_its_twin():
     assert twin.signatures  # the call from Python compiled the twin
 
 
-def test_a_call_from_a_kernel_function_compiles_the_function_itself():
+def test_an_entry_point_calls_an_internal_function_without_its_twin():
     values = np.array([1.0, 2.0])
     assert _twice_the_scaled_sum(values) == 9.0
-    assert _twice_the_scaled_sum.signatures  # an entry point: called directly
-    assert _scaled_sum.signatures  # compiled for its jitted caller, no wrapper
+    assert not isinstance(_twice_the_scaled_sum, KernelDispatcher)  # called directly
+    assert not _twice_the_scaled_sum.targetoptions.get("no_cpython_wrapper")
 
 
 def numba_module_names() -> list[str]:
