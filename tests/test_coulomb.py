@@ -69,6 +69,7 @@ def rim_pin(offset, **numerics):
     )
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_a_pin_creeping_onto_the_rim_of_its_sticking_disc_sticks_in_the_limit():
     config = rim_pin(1.25e-4, t_decide=600.0)
     result = simulate(config)

@@ -6,6 +6,7 @@ a known future, and the braked disk of the well-posedness study that the old rul
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from verdict_records import DEFAULT, ring
 
 from frictiondisk.model.scene import scene_from_dict
@@ -95,6 +96,7 @@ def test_a_limit_whose_estimates_rose_to_it_is_no_shakedown():
     assert code == rc.SETTLING
 
 
+@pytest.mark.slow  # > 10 s on 2 shared cores (selected out by -m 'not slow')
 def test_the_braked_disk_whose_ratchet_looked_like_shakedown_is_not_stick():
     """Well-posedness seed 5 scene 11 (braked Stribeck disk, co-rotating start) at
     mu = 0.26081: its slip per revolution falls ever more slowly (2.25e-7 ... 2.3e-8 m over
