@@ -34,9 +34,9 @@ return one (its caller would count the returned reference as a new one; `plain_t
 refuses that at compile time). The few functions that allocate the run's scratch, or
 return it, are `kernel_jit_allocating`, with the counting on.
 
-No CPython wrapper: numba gives every function it compiles a wrapper that unboxes the
-arguments of a call from Python, and optimises and emits it again in the module of every
-kernel function that calls it, though only Python ever calls it. `kernel_jit` functions
+No CPython wrapper: numba builds, optimises and emits for every function it compiles a
+wrapper that unboxes the arguments of a call from Python, and links it into the module of
+every kernel function above it, though only Python ever calls it. `kernel_jit` functions
 have none (a `KernelDispatcher`); the few the package calls from Python are
 `kernel_entry` (`kernel_entry_allocating`), and tests/test_kernel_entry.py checks that the
 package calls no other from Python. A call from Python to any other kernel function (a

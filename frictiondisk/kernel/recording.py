@@ -21,7 +21,8 @@ def record_state(recording, counters, t, y, modes):
         return
     rec_t[k] = t
     copy_vector(y, rec_y[k])
-    copy_vector(modes, rec_m[k])
+    for i in range(modes.shape[0]):  # int8 modes: copy_vector keeps one (float) signature
+        rec_m[k, i] = modes[i]
     counters.recorded = k + 1
 
 
