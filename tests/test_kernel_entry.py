@@ -15,9 +15,10 @@ from frictiondisk.kernel import jit
 from frictiondisk.kernel.jit import KernelDispatcher, kernel_entry, kernel_jit
 
 PACKAGE = Path(jit.__file__).resolve().parents[1]
-# The independent integrator (simulation/radau.py) steps the monitor and the verdict's
-# machine from Python; their twins compile on its first use, not on the default path.
-CALLS_TWINS = {"frictiondisk.simulation.radau"}
+# The independent integrator (simulation/radau.py) and its stop rules (verdict/
+# segment_rules.py) step the monitor and the verdict's machine from Python; their twins
+# compile on its first use, not on the default path.
+CALLS_TWINS = {"frictiondisk.simulation.radau", "frictiondisk.verdict.segment_rules"}
 
 
 @kernel_jit
@@ -66,14 +67,18 @@ def python_calls_of_internal_functions(path: Path, name: str) -> list[str]:
     bound: dict[str, object] = {}  # a local name -> the kernel module or function it names
     tree = ast.parse(path.read_text(), str(path))
     for node in ast.walk(tree):
-        if not isinstance(node, ast.ImportFrom) or not node.module or node.level:
+        if not isinstance(node, ast.ImportFrom):
             continue
+        source = node.module or ""
+        if node.level:  # relative to the module's package
+            package = name.split(".")[: -node.level]
+            source = ".".join(package + ([node.module] if node.module else []))
         for alias in node.names:
-            full = f"{node.module}.{alias.name}"
+            full = f"{source}.{alias.name}"
             if full in numba_modules:
                 bound[alias.asname or alias.name] = importlib.import_module(full)
-            elif node.module in numba_modules:
-                module = importlib.import_module(node.module)
+            elif source in numba_modules:
+                module = importlib.import_module(source)
                 bound[alias.asname or alias.name] = getattr(module, alias.name, None)
     found = []
     for node in ast.walk(tree):
@@ -107,7 +112,11 @@ def test_the_package_calls_only_entry_points_from_python():
     assert not offenders, offenders
 
 
-def test_the_rule_finds_a_call_of_an_internal_function():
+def test_the_rule_finds_a_call_of_an_internal_function(tmp_path):
     radau = PACKAGE / "simulation" / "radau.py"
     calls = python_calls_of_internal_functions(radau, "frictiondisk.simulation.radau")
     assert "frictiondisk.kernel.monitor.switch" in calls
+    relative = tmp_path / "relative.py"  # as if it were frictiondisk/verdict/relative.py
+    relative.write_text("from .sliding import steady_sliding\n\nsteady_sliding(1, 2)\n")
+    calls = python_calls_of_internal_functions(relative, "frictiondisk.verdict.relative")
+    assert calls == ["frictiondisk.verdict.sliding.steady_sliding"]

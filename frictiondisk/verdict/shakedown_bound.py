@@ -54,7 +54,7 @@ def floor_reserve(p, pts):
     return p.mu - demand / (p.F_n_i * n)
 
 
-@kernel_jit
+@kernel_entry
 def margin(vp, mu, damping, stiffness, omega):
     """What the quasi-static bound neglects [1, units of mu]: terms of relative order
     (beta omega_m / c)^2 (contact damping [N s/m] against stiffness [N/m] of a co-rotating
@@ -69,7 +69,7 @@ def run_margin(vp, p):
     return margin(vp, p.mu, p.beta_i, p.c_i, p.omega_m)
 
 
-@kernel_jit
+@kernel_entry
 def history(vp, revs, newest, count, out):
     """The reserves (out, newest first) at the end of the newest row and every
     vp.on_orbit_revs rows back while the disk stayed on its small orbit: how many (0 where
@@ -124,7 +124,7 @@ def still_to_come(vp, values, m):
     return first * ratio / (1.0 - ratio)
 
 
-@kernel_jit
+@kernel_entry
 def bound_verdict(vp, values, m, width):
     """+1 (Melan: stick), -1 (Koiter: creep) or 0 (no decision) from the history
     values[:m]: the reserve must lie outside the margin `width` and stay outside it after
