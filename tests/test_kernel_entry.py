@@ -52,18 +52,18 @@ def test_an_entry_point_calls_an_internal_function():
     assert not _twice_the_scaled_sum.targetoptions.get("no_cpython_wrapper")
 
 
-def numba_module_names() -> list[str]:
-    names = []
-    for source in jit.numba_sources(PACKAGE):
-        parts = source.relative_to(PACKAGE.parent).with_suffix("").parts
-        names.append(".".join(parts))
-    return names
+def dotted_name(path: Path) -> str:
+    """The module name of a source file of the package."""
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+NUMBA_MODULES = {dotted_name(source) for source in jit.numba_sources(PACKAGE)}
 
 
 def python_calls_of_internal_functions(path: Path, name: str) -> list[str]:
     """Calls in module `name` (not numba code) of a kernel function that is no entry
     point, as 'module.function'."""
-    numba_modules = set(numba_module_names())
     bound: dict[str, object] = {}  # a local name -> the kernel module or function it names
     tree = ast.parse(path.read_text(), str(path))
     for node in ast.walk(tree):
@@ -75,9 +75,9 @@ def python_calls_of_internal_functions(path: Path, name: str) -> list[str]:
             source = ".".join(package + ([node.module] if node.module else []))
         for alias in node.names:
             full = f"{source}.{alias.name}"
-            if full in numba_modules:
+            if full in NUMBA_MODULES:
                 bound[alias.asname or alias.name] = importlib.import_module(full)
-            elif source in numba_modules:
+            elif source in NUMBA_MODULES:
                 module = importlib.import_module(source)
                 bound[alias.asname or alias.name] = getattr(module, alias.name, None)
     found = []
@@ -100,8 +100,7 @@ def test_the_package_calls_only_entry_points_from_python():
     offenders = {}
     checked = 0
     for path in sorted(PACKAGE.rglob("*.py")):
-        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
-        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        name = dotted_name(path)
         if "@kernel_" in path.read_text() or name in CALLS_TWINS:
             continue  # numba code calls kernel functions without their wrapper
         checked += 1
