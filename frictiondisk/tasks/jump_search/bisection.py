@@ -208,7 +208,14 @@ class Bisection:
         if u is not None:
             near = 0.5 * UNDECIDED_SPAN * self.tol
             below, above = 0.5 * (self.lo + u[0]), 0.5 * (u[1] + self.hi)
-            return "straddle", [max(below, u[0] - near), min(above, u[1] + near)]
+            # a side already within tol / 2 of its end is not split again: probes there
+            # would halve that gap forever while the other side's decided probe waits
+            probes = []
+            if u[0] - self.lo > 0.5 * self.tol:
+                probes.append(max(below, u[0] - near))
+            if self.hi - u[1] > 0.5 * self.tol:
+                probes.append(min(above, u[1] + near))
+            return "straddle", probes
         deferred = self._deferred_inside()
         if deferred is not None:
             return self._away_from(deferred)
@@ -360,6 +367,8 @@ class Bisection:
                 self.undecided.append(request.mu)
                 self._round += 1  # the round around them
                 self._maybe_converged()
+                if not self.done:
+                    self._after_round()  # its probes may be decided already
                 return
             if request.level >= self.max_retries and self._step_past(request.mu):
                 return
