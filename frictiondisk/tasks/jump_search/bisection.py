@@ -201,7 +201,8 @@ class Bisection:
     def _choose_interior(self) -> tuple[str, list[float]]:
         """lo + j (hi - lo) / parts; around the undecided mu [u_lo, u_hi], the midpoints of
         (lo, u_lo) and (u_hi, hi), but at most UNDECIDED_SPAN / 2 tol away (a wide
-        bracket's midpoint once hit a far transient); away from a deferred run
+        bracket's midpoint once hit a far transient) and none on a side within tol / 2
+        of its end; away from a deferred run
         (expanding.py); else the interpolating probe."""
         width = self.hi - self.lo
         u = self._straddled()
