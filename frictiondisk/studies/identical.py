@@ -7,7 +7,7 @@ and the history attribute left out), and compares two such runs or a run with a 
 
     python -m frictiondisk.studies.identical run -o out/identical
     python -m frictiondisk.studies.identical digest out/identical -o digest.json
-    python -m frictiondisk.studies.identical compare frictiondisk/studies/snapshots/campaigns-4cdd14b.json out/identical
+    python -m frictiondisk.studies.identical compare digest.json out/identical     # with a digest
     python -m frictiondisk.studies.identical compare out/before out/after   # run by run
 
 Comparing two run folders names every run and variable that differs; comparing with a
