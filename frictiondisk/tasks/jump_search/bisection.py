@@ -183,6 +183,14 @@ class Bisection:
         inside = self._undecided_inside()
         return (min(inside), max(inside)) if inside and self.split == 2 else None
 
+    def _open_sides(self, undecided: tuple[float, float]) -> tuple[bool, bool]:
+        """Whether the gaps below and above the undecided mu [u_lo, u_hi] are wider than
+        tol / 2: a closed side is not split again (probes there would halve that gap
+        forever while the other side's decided probe waits), and with both closed the
+        bracket has converged."""
+        half = 0.5 * self.tol
+        return undecided[0] - self.lo > half, self.hi - undecided[1] > half
+
     def _interior(self) -> list[float]:
         """This round's interior points, increasing; chosen once per round and deferral
         (pending() asks again after every result)."""
@@ -209,12 +217,9 @@ class Bisection:
         if u is not None:
             near = 0.5 * UNDECIDED_SPAN * self.tol
             below, above = 0.5 * (self.lo + u[0]), 0.5 * (u[1] + self.hi)
-            # a side already within tol / 2 of its end is not split again: probes there
-            # would halve that gap forever while the other side's decided probe waits
-            probes = []
-            if u[0] - self.lo > 0.5 * self.tol:
-                probes.append(max(below, u[0] - near))
-            if self.hi - u[1] > 0.5 * self.tol:
+            below_open, above_open = self._open_sides(u)
+            probes = [max(below, u[0] - near)] if below_open else []
+            if above_open:
                 probes.append(min(above, u[1] + near))
             return "straddle", probes
         deferred = self._deferred_inside()
@@ -627,10 +632,11 @@ class Bisection:
 
     def _maybe_converged(self) -> None:
         """Converged at a width <= tol, or, around undecided mu, at a width of their span
-        plus tol."""
+        plus tol (or both gaps beside them within tol / 2)."""
         span = self._straddled()
         spread = 0.0 if span is None else span[1] - span[0]
-        if self.hi - self.lo <= (self.tol + spread) * (1 + 1e-9):
+        closed = span is not None and not any(self._open_sides(span))
+        if closed or self.hi - self.lo <= (self.tol + spread) * (1 + 1e-9):
             self.phase = "converged"
 
     # ---- the answer -------------------------------------------------------------------
