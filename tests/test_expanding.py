@@ -39,12 +39,14 @@ def oracle(mu_star=MU_STAR, band=(), bias=None, slow_below=0.0):
     return run
 
 
-def search(bracket, answer, expanding=PLAIN, tol=TOL, limits=LIMITS):
+def search(bracket, answer, expanding=PLAIN, tol=TOL, limits=LIMITS, reverse=False):
+    """The bisection's answer, its runs fed in the order asked (`reverse`: the last asked
+    first, as results from two workers may arrive)."""
     bis = Bisection(bracket, tol, limits, 2, expanding=expanding)
     while not bis.done:
         requests = bis.pending()
         assert requests, "a bisection neither done nor asking for a run"
-        for request in requests:
+        for request in reversed(requests) if reverse else requests:
             if bis.done:
                 break
             bis.feed(request, answer(request))
@@ -158,3 +160,21 @@ def test_the_answer_does_not_move_with_the_bracket(offset, half, band_at, band_w
         assert res.end_result("hi")["outcome"] == "stick"
     else:  # only a band wider than the straddle span may fail the search, with its reason
         assert band_width > 9 and "undetermined at mu" in res.reason, res.reason
+
+
+def test_undecided_mu_down_to_the_low_end_are_passed_by_the_decided_probe_above_them():
+    """Undetermined mu from the bracket's low end up to 8 tol below a probe that slides:
+    the straddle splits the gap below them to tol / 2, then leaves that side and moves the
+    bracket past them to the probe above (it once halved the gap below for ever), whatever
+    order the two probes' results arrive in."""
+    bracket = (MU_STAR, MU_STAR + 8 * TOL)  # a prediction just above the jump
+    answer = oracle(band=((MU_STAR - 16 * TOL, MU_STAR - 5 * TOL),), slow_below=TOL)
+    res = search(bracket, answer, PREDICTED)
+    assert holds(res), res.reason
+    assert search(bracket, answer, PREDICTED, reverse=True).runs == res.runs
+    # the search's low end reaches the band's edge, 16 tol below the jump (it slides);
+    # the probes above it close the gap below the undecided mu to tol / 2, not beyond
+    end = max(run.request.mu for run in res.runs if run.request.mu <= MU_STAR - 16 * TOL)
+    assert math.isclose(end, MU_STAR - 16 * TOL, rel_tol=0.0, abs_tol=1e-3 * TOL)
+    inside = [run.request.mu for run in res.runs if end < run.request.mu < MU_STAR - 8 * TOL]
+    assert min(inside) - end > 0.25 * TOL, (min(inside) - end) / TOL
