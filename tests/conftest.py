@@ -13,9 +13,9 @@ from pathlib import Path
 
 def _one_blas_thread_per_test_process() -> None:
     """Two test workers on two cores, each with OpenBLAS's own thread per core, oversubscribe
-    them: OpenBLAS's threads spin while they wait, and a 126 x 126 solve took 6 s instead of
-    0.04 s. The limit is read when numpy loads, so it is set before (a campaign's Dask
-    workers get the same from distributed's nanny)."""
+    them: OpenBLAS's threads spin while they wait, and with other work on the cores a
+    126 x 126 solve took 6 s instead of 0.04 s. The limit is read when numpy loads, so it
+    is set before (a campaign's Dask workers get the same from distributed's nanny)."""
     if "numpy" in sys.modules:
         warnings.warn(
             "numpy was imported before tests/conftest.py: BLAS may use several threads",
