@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -70,9 +71,9 @@ def python_calls_of_internal_functions(path: Path, name: str) -> list[str]:
         if not isinstance(node, ast.ImportFrom):
             continue
         source = node.module or ""
-        if node.level:  # relative to the module's package
-            package = name.split(".")[: -node.level]
-            source = ".".join(package + ([node.module] if node.module else []))
+        if node.level:  # relative to the module's package (a package's own __init__: itself)
+            package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+            source = importlib.util.resolve_name("." * node.level + source, package)
         for alias in node.names:
             full = f"{source}.{alias.name}"
             if full in NUMBA_MODULES:
