@@ -15,7 +15,9 @@ import numpy as np
 import pytest
 from ring_replay import replay
 
+from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.result_builder import evidence_of
+from frictiondisk.simulation.simulate import simulate
 from frictiondisk.verdict.params import VerdictParams
 from frictiondisk.verdict.records import EV_NONE
 
@@ -85,3 +87,50 @@ def test_a_run_extended_for_its_falling_lowest_slip_says_so():
     assert evidence.kind == EV_NONE
     assert "slides as a whole for 12 revolutions, but" in evidence.describe()
     assert "fewer than 16 to compare" in evidence.describe()
+
+
+# generator 2 of the well-posedness study, seed 2 scene 7: a Stribeck disk from rest on an
+# annulus of 8 contacts, at mu = 0.1 (its prescan's mu 0.07-0.14 ended undetermined at
+# every retry while the guard below held)
+LARGE_ORBIT_DISK = {
+    "scene": "disk",
+    "params": {
+        "x_ms": 0.06237773439356467,
+        "x0": -0.02629084359297599,
+        "m_s": 2.3867851242799762,
+        "omega_m": 1.9324237949245293,
+        "J_s": 0.08990461525036654,
+        "phidot0": 0.0,
+        "mu": 0.1,
+    },
+    "contact": {
+        "layout": "annulus",
+        "inner_radius": 0.025999588121418223,
+        "outer_radius": 0.04103397343813958,
+        "points": 8,
+        "stribeck": {"r": 0.8626143732285031, "v_s": 0.010684184808204955},
+    },
+    "numerics": {"rtol": 1e-4, "atol": 1e-7, "t_decide": 30.0, "horizon_budget": 8.0},
+}
+
+
+def test_a_spin_climbing_towards_a_spin_short_of_the_masters_is_no_approach_to_sticking():
+    """The disk slides 5-6 m a revolution on an orbit of about 1.3 m radius while its spin
+    climbs at every revolution, for thousands of seconds, towards 0.83 of the master's. A
+    guard that read every such climb as an approach to sticking (until NUMERICS_VERSION 9)
+    left it undetermined at 958 s; its slip per revolution shows no approach, and watched
+    to 15 000 s it never sticks: a pure-sliding limit cycle."""
+    res = simulate(scene_from_dict(LARGE_ORBIT_DISK))
+    assert res.outcome == "slide", res.reason
+    assert res.t_end < 60.0
+    arm = LARGE_ORBIT_DISK["contact"]["outer_radius"]
+    gap = np.abs(res.revolutions["w"][-VerdictParams().slide_revs :] - arm)
+    assert np.all(np.diff(gap) < -(1e-7 + 1e-4 * arm))  # what the guard read as approach
+
+    watched = {**LARGE_ORBIT_DISK, "numerics": {**LARGE_ORBIT_DISK["numerics"]}}
+    watched["numerics"].update(t_decide=15000.0, horizon_budget=1.0, stop_on_stick=False)
+    long = simulate(scene_from_dict(watched))
+    rows = long.revolutions
+    assert long.outcome == "slide_cycle", long.reason
+    assert not rows["ever_all"].any() and rows["slip"].min() > 5.0
+    assert rows["w"][-1] < 0.85 * arm  # the spin settles short of co-rotation
