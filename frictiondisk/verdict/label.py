@@ -200,9 +200,11 @@ def _by_window(facts: RunFacts, vp: VerdictParams) -> tuple[str, str]:
         else:
             evidence = facts.evidence.describe() if facts.evidence else "no evidence"
             where = f"without evidence that it will not stick: {evidence}"
+        # the co-rotation rule reads a slip trend on the small orbit only
+        trend = f"; {_trend(revs)}" if revs.on_orbit else ""
         return "undetermined", (
-            f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}; "
-            f"{_trend(revs)} (raise numerics.horizon_budget or t_decide)"
+            f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}"
+            f"{trend} (raise numerics.horizon_budget or t_decide)"
         )
     why = ""
     if facts.evidence is not None and facts.evidence.kind == rc.EV_SHAKEDOWN:
