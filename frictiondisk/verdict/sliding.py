@@ -13,8 +13,9 @@ A spin that climbs towards the master's is no evidence against sliding by itself
 approach to sticking shows in the slip, which these tests read. A disk from rest on a
 large pure-sliding orbit spins up for thousands of seconds towards a spin short of the
 master's (0.72 and 0.83 of it in the second generator's scenes 3/5 and 2/7, slipping 5 to
-7 m a revolution) and never sticks; a guard that read every such climb as an approach to
-sticking left them undetermined at any budget (docs/model.md section 6).
+12 m a revolution), and watched to 15 000 s it does not stick; a guard that read every such
+climb as an approach to sticking left them undetermined at every retry (docs/model.md
+section 6).
 """
 
 import math
