@@ -119,7 +119,8 @@ def test_a_spin_climbing_towards_a_spin_short_of_the_masters_is_no_approach_to_s
     climbs at every revolution, for thousands of seconds, towards 0.83 of the master's. A
     guard that read every such climb as an approach to sticking (until NUMERICS_VERSION 9)
     left it undetermined at 958 s; its slip per revolution shows no approach, and watched
-    to 15 000 s it never sticks: a pure-sliding limit cycle."""
+    to 15 000 s it ends a pure-sliding limit cycle, not stuck as a whole at any instant of
+    the revolutions its ring still holds (the last 512)."""
     res = simulate(scene_from_dict(LARGE_ORBIT_DISK))
     assert res.outcome == "slide", res.reason
     assert res.t_end < 60.0
