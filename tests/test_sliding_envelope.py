@@ -114,17 +114,19 @@ LARGE_ORBIT_DISK = {
 }
 
 
-def test_a_spin_climbing_towards_a_spin_short_of_the_masters_is_no_approach_to_sticking():
+def test_a_spin_climbing_while_the_centre_slides_on_is_no_approach_to_sticking():
     """The disk slides 5-6 m a revolution on an orbit of about 1.3 m radius while its spin
-    climbs at every revolution, for thousands of seconds, towards 0.83 of the master's. A
-    guard that read every such climb as an approach to sticking (until NUMERICS_VERSION 9)
-    left it undetermined at 958 s; its slip per revolution shows no approach, and watched
-    to 15 000 s it ends a pure-sliding limit cycle, not stuck as a whole at any instant of
-    the revolutions its ring still holds (the last 512)."""
-    res = simulate(scene_from_dict(LARGE_ORBIT_DISK))
+    climbs at every revolution, for thousands of seconds, towards the master's. A guard
+    that read every such climb as an approach to sticking (until NUMERICS_VERSION 9) left
+    it undetermined at 958 s; its slip per revolution shows no approach, and watched to
+    15 000 s it ends a pure-sliding limit cycle: its spin within 1 % of co-rotation, its
+    centre still sliding over 5 m a revolution, not stuck as a whole at any instant of the
+    revolutions its ring still holds (the last 512)."""
+    cfg = scene_from_dict(LARGE_ORBIT_DISK)
+    arm = np.hypot(*np.asarray(cfg.contact_positions()).T).max()  # w at co-rotation [m]
+    res = simulate(cfg)
     assert res.outcome == "slide", res.reason
     assert res.t_end < 60.0
-    arm = LARGE_ORBIT_DISK["contact"]["outer_radius"]
     gap = np.abs(res.revolutions["w"][-VerdictParams().slide_revs :] - arm)
     assert np.all(np.diff(gap) < -(1e-7 + 1e-4 * arm))  # what the guard read as approach
 
@@ -134,4 +136,5 @@ def test_a_spin_climbing_towards_a_spin_short_of_the_masters_is_no_approach_to_s
     rows = long.revolutions
     assert long.outcome == "slide_cycle", long.reason
     assert not rows["ever_all"].any() and rows["slip"].min() > 5.0
-    assert rows["w"][-1] < 0.85 * arm  # the spin settles short of co-rotation
+    # the spin all but co-rotates, and still climbs: no whole-body stick for it
+    assert 0.99 * arm < rows["w"][-1] < arm and np.all(np.diff(rows["w"][-8:]) > 0)

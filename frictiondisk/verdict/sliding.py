@@ -11,11 +11,12 @@ least two of the oscillation's periods (`lowest_slip_holds`).
 
 A spin that climbs towards the master's is no evidence against sliding by itself: an
 approach to sticking shows in the slip, which these tests read. A disk from rest on a
-large pure-sliding orbit spins up for thousands of seconds towards a spin short of the
-master's (0.72 and 0.83 of it in the second generator's scenes 3/5 and 2/7, slipping 5 to
-12 m a revolution), and watched to 15 000 s it does not stick; a guard that read every such
-climb as an approach to sticking left them undetermined at every retry (docs/model.md
-section 6).
+large pure-sliding orbit spins up for thousands of seconds until its spin co-rotates with
+the master (the second generator's scene 3/5 within 1e-8 of it at 15 000 s, 2/7 at 0.993
+and still climbing), while its centre slides on, 5 to 12 m a revolution; watched to
+15 000 s it does not stick. A spin at co-rotation is no whole-body stick while the centre
+slides, and a guard that read every such climb as an approach to sticking left them
+undetermined at every retry (docs/model.md section 6).
 """
 
 import math
