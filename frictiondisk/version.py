@@ -7,4 +7,4 @@ __version__ = "0.1.0"
 # `kernel_version`, with the numba, numpy and scipy versions). Bump it with any change that
 # alters what a run computes (kernel, integrators, classification, result fields, derived
 # scene defaults), so that journals never reuse results of older numerics.
-NUMERICS_VERSION = 9
+NUMERICS_VERSION = 10

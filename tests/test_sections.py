@@ -377,3 +377,53 @@ def test_a_creep_below_the_repeat_tolerance_is_no_cycle_until_its_slip_is_steady
     points = np.array([[0.03, 0.02], [0.05, -0.01]] * (n // 2)) + along(pair[:-1]) - 0.05
     code, _ = evidence(points, pair, np.where(np.arange(n) % 2 == 0, 6.1, 0.02))
     assert code != rc.EV_REPEAT
+
+
+def test_a_slip_growing_below_the_repeat_tolerance_is_no_repeat():
+    """Generator 1's 1/42 at mu_lo 0.0666492 (a Stribeck pin): its section moves 2e-8 m a
+    step, far within cycle_tol, while its slip per step grows 1.2 % a step (and the step
+    with it) and its
+    sticking time shrinks; 100 revolutions later one large slip lands it on a sticking
+    circle (it sticks at 435 s). A slip shown to grow is a departure in progress, not a
+    cycle; the same section with a level slip repeats."""
+    n = 20
+    slip = 1.25e-7 * 1.012 ** np.arange(n)
+    stick = 3.9527 - 3.5e-4 * np.arange(n)
+    code, _ = evidence(along(2e-8 * 1.012 ** np.arange(n - 1)), slip, stick, rtol=1e-7)
+    assert code == rc.EV_DEPART
+    level = np.full(n, 1.25e-7)
+    code, _ = evidence(along(np.full(n - 1, 2e-8)), level, np.full(n, 3.95), rtol=1e-7)
+    assert code == rc.EV_REPEAT
+
+
+def test_a_growth_within_the_slip_that_counts_as_none_does_not_refuse_a_repeat():
+    """Below S0 a step slips nothing: the Coulomb pin at its jump slips 1e-13 m a
+    revolution at roundoff, and that noise may drift either way."""
+    n = 20
+    slip = 1e-13 * 1.05 ** np.arange(n)
+    code, _ = evidence(along(np.full(n - 1, 1e-10)), slip, np.full(n, 6.28), rtol=1e-7)
+    assert code == rc.EV_REPEAT
+
+
+def _followed(stick, t_stop, budget=960.0):
+    """The evidence of a departing section under numerics.follow_departures, the run's
+    horizon at t_stop and its budget `budget` [s] (one revolution: 1 s)."""
+    n = 6
+    rules, _, vs = records(S0)
+    rules["follow_departures"] = True
+    rules["budget"] = budget
+    vs["t_stop"] = t_stop
+    steps = 0.0175 * 1.09 ** np.arange(n - 1)
+    slip = 0.0073 * 1.25 ** np.arange(n)
+    seq = sequence(along(steps), slip, stick)
+    return int(section_evidence(DEFAULT, rules, vs, seq, n, S0))
+
+
+def test_a_followed_departure_decides_only_at_its_last_horizon_and_only_from_sticking():
+    """A certification check of an extrapolated verdict follows a departure to where it
+    lands: before the budget's last horizon it is no evidence; at it, a departure from
+    sticking decides, and a sliding slave's (no sticking in its steps) does not."""
+    sticking = 3.52 - 0.12 * np.arange(6)
+    assert _followed(sticking, t_stop=500.0) == rc.EV_NONE
+    assert _followed(sticking, t_stop=959.5) == rc.EV_DEPART
+    assert _followed(np.zeros(6), t_stop=959.5) == rc.EV_NONE

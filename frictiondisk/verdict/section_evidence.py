@@ -17,6 +17,13 @@ VerdictParams (vp); the cases that pin them are rows of tests/test_verdict_cases
   slow passage, or sticking ahead) is no evidence.
 * EV_DEPART: for depart_steps steps the slip per step (above the slip tolerance) grows,
   the sticking time shrinks and the distances do not shrink: it moves away from sticking.
+  Under numerics.follow_departures (a certification run's check of an extrapolated
+  verdict) a departure decides only at the last horizon of the budget, and only where the
+  slave stuck as a whole in each of its steps: a departure is a motion in progress, and
+  where it lands (a large cycle, or a stick: generator 1's 1/42 sticks at 435 s after 100
+  revolutions of growing slip) its trend cannot tell; a sliding slave has no sticking to
+  depart from (generator 1's 1/43: its check read a pure-sliding disk's oscillating slip as
+  a departure at 2 000 s, and the disk sticks at 7 232 s).
 * EV_SHAKEDOWN (stick): the slip per step falls at every step over the newer three
   quarters of the sequence, and extrapolates to a limit <= the slip tolerance and at most
   shakedown_zero of the slip still left (verdict/extrapolation.py).
@@ -82,14 +89,15 @@ def _approaching(vp, slip, stick, n, atol):
 
 
 @kernel_jit
-def _repeats(vp, rules, vs, pts, slip, stick, n):
+def _repeats(vp, rules, vs, pts, slip, stick, n, s0):
     """EV_REPEAT: the newest vp.repeat_count distances at some lag L <= vp.max_lag within
     tolerance, and, where they still shrink step after step, the travel still to come
     (geometric tail) within tolerance too: a slow algebraic approach moves little per
     step but far in all. Never while the motion creeps towards sticking (_approaching),
     nor at a lag whose slip per period is within the tolerance unless that slip is shown
     steady (steady_slip.steady): such a motion lies within tolerance of itself whether it
-    cycles or creeps. A steady slip below the tolerance repeats."""
+    cycles, creeps onto sticking or departs from it. A steady slip below the tolerance
+    repeats. s0: the slip per step that counts as none [m]."""
     if _approaching(vp, slip, stick, n, rules.atol):
         return False
     for lag in range(1, vp.max_lag + 1):
@@ -101,7 +109,7 @@ def _repeats(vp, rules, vs, pts, slip, stick, n):
         newest = _distance(pts, n - 1, n - 1 - lag)
         d_prev = 0.0
         tol = _repeat_tolerance(rules, pts, n - 1)
-        if period_slip(slip, n, lag, 0) <= tol and not steady(vp, slip, n, lag):
+        if period_slip(slip, n, lag, 0) <= tol and not steady(vp, slip, n, lag, s0):
             continue  # it slips less than tol a period: within tol whether it cycles or creeps
         for back in range(vp.repeat_count + 1):
             i = n - 1 - back
@@ -269,11 +277,33 @@ def section_evidence(vp, rules, vs, seq, n, s0):
     if limit <= s0 and limit <= vp.shakedown_zero * slip[n - 1]:
         vs.ev_limit = limit
         return EV_SHAKEDOWN
-    if _repeats(vp, rules, vs, pts, slip, stick, n):
+    if _repeats(vp, rules, vs, pts, slip, stick, n, s0):
         return EV_REPEAT
     share = vp.contract_slip_fall_stribeck if vs.stribeck else vp.contract_slip_fall
     if _contracts(vp, vs, pts, slip, n, s0, share):
         return EV_CONTRACT
     if _departs(vp, rules, vs, pts, slip, stick, n, s0):
+        if rules.follow_departures and not (
+            _last_horizon(rules, vs) and _sticks_throughout(vp, stick, n)
+        ):
+            return EV_NONE  # followed to where it lands
         return EV_DEPART
     return EV_NONE
+
+
+@kernel_jit
+def _last_horizon(rules, vs):
+    """Whether the run's horizon vs.t_stop is the last its budget allows (machine.at_horizon
+    extends it a revolution at a time while t_stop + T <= budget)."""
+    return vs.t_stop + rules.hold > rules.budget + 1e-12 * max(1.0, rules.budget)
+
+
+@kernel_jit
+def _sticks_throughout(vp, stick, n):
+    """Whether the slave stuck as a whole in each of the newest vp.depart_steps steps: a
+    departure *from sticking* (a sliding slave's revolutions show no sticking to depart
+    from; the sliding rule reads them)."""
+    for i in range(n - vp.depart_steps, n):
+        if not stick[i] > 0.0:
+            return False
+    return True

@@ -53,6 +53,9 @@ def run_config(
             reach = horizon_of(point_config, mode) * (horizon_factor**request.level)
             reach *= overrides["numerics.horizon_budget"]
             overrides["numerics.observe_until"] = min(request.watch, reach)
+            # and a departure from sticking decides only at the end of its budget: still
+            # departing after the watch, it is the same motion in progress (section_evidence)
+            overrides["numerics.follow_departures"] = True
     return point_config.with_overrides(overrides)
 
 
