@@ -45,7 +45,8 @@ class Certify(BaseModel):
         "a stricter run at a bracket end whose run before it was decided by an extrapolation "
         "(a trend or section read ahead) watches (numerics.observe_until) until this factor "
         "times that run's decision time, within its horizon budget, before it may "
-        "extrapolate; 0: off (docs/model.md section 7)",
+        "extrapolate, and follows a departure from sticking to where it lands "
+        "(numerics.follow_departures); 0: off (docs/model.md section 7)",
         ge=0,
     )
 

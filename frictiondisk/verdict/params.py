@@ -169,7 +169,9 @@ class VerdictParams:
     )
     fall_min: int = _param(8, "periods", "least periods in that window")
     steady_fall: float = _param(
-        0.01, "1", "a steady slip per period loses (or gains) at most this share over the window ..."
+        0.01,
+        "1",
+        "a steady slip per period loses (or gains) at most this share over the window ...",
     )
     fall_z: float = _param(2.0, "standard errors", "... at this many standard errors of its trend")
     # --- Melan's shakedown bound of a braked disk -------------------------------------------
