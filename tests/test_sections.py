@@ -382,10 +382,9 @@ def test_a_creep_below_the_repeat_tolerance_is_no_cycle_until_its_slip_is_steady
 def test_a_slip_growing_below_the_repeat_tolerance_is_no_repeat():
     """Generator 1's 1/42 at mu_lo 0.0666492 (a Stribeck pin): its section moves 2e-8 m a
     step, far within cycle_tol, while its slip per step grows 1.2 % a step (and the step
-    with it) and its
-    sticking time shrinks; 100 revolutions later one large slip lands it on a sticking
-    circle (it sticks at 435 s). A slip shown to grow is a departure in progress, not a
-    cycle; the same section with a level slip repeats."""
+    with it) and its sticking time shrinks; 100 revolutions later one large slip lands it
+    on a sticking circle (it sticks at 435 s). A slip shown to grow is a departure in
+    progress, not a cycle; the same section with a level slip repeats."""
     n = 20
     slip = 1.25e-7 * 1.012 ** np.arange(n)
     stick = 3.9527 - 3.5e-4 * np.arange(n)
