@@ -25,6 +25,7 @@ import math
 from frictiondisk.kernel.jit import kernel_jit
 from frictiondisk.kernel.monitor import stuck_for
 
+from .budget import may_extend
 from .corotation import corotation_verdict, still
 from .horizon_evidence import cannot_corotate, evidence_at_horizon, shaken_down
 from .records import (
@@ -214,7 +215,7 @@ def at_horizon(vp, rules, p, pts, t, t_eps, motion, vs, revs, phases, seq):
             evidence = EV_NONE
         go_on = evidence == EV_NONE
     if go_on:  # no not-stick verdict without evidence: extend, within the budget
-        if vs.t_stop + rules.hold <= rules.budget + t_eps:
+        if may_extend(rules, vs.t_stop, t_eps):
             vs.settle_revs += 1
             vs.t_stop += rules.hold
             return RECHECK

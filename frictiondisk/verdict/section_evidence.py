@@ -36,6 +36,7 @@ import math
 
 from frictiondisk.kernel.jit import kernel_jit
 
+from .budget import may_extend
 from .extrapolation import shakedown_limit
 from .records import EV_CONTRACT, EV_DEPART, EV_NONE, EV_REPEAT, EV_SHAKEDOWN
 from .section_sequence import N_COORD
@@ -283,19 +284,13 @@ def section_evidence(vp, rules, vs, seq, n, s0):
     if _contracts(vp, vs, pts, slip, n, s0, share):
         return EV_CONTRACT
     if _departs(vp, rules, vs, pts, slip, stick, n, s0):
-        if rules.follow_departures and not (
-            _last_horizon(rules, vs) and _sticks_throughout(vp, stick, n)
+        t_eps = 1e-12 * max(1.0, abs(vs.t_stop))  # as machine.check's
+        if rules.follow_departures and (
+            may_extend(rules, vs.t_stop, t_eps) or not _sticks_throughout(vp, stick, n)
         ):
             return EV_NONE  # followed to where it lands
         return EV_DEPART
     return EV_NONE
-
-
-@kernel_jit
-def _last_horizon(rules, vs):
-    """Whether the run's horizon vs.t_stop is the last its budget allows (machine.at_horizon
-    extends it a revolution at a time while t_stop + T <= budget)."""
-    return vs.t_stop + rules.hold > rules.budget + 1e-12 * max(1.0, rules.budget)
 
 
 @kernel_jit
