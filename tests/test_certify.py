@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import pytest
 
+from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.tasks.jump_search.bisection import RunRequest
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection, point_certification
 from frictiondisk.tasks.jump_search.jumps import JumpSearch
+from frictiondisk.tasks.jump_search.requests import run_config
 
 TOL = 1e-4
 
@@ -67,7 +69,41 @@ def test_an_undetermined_strict_run_makes_the_jump_uncertain():
 
     result = drive(bisection(), outcome)
     assert result.certification == "uncertain"
-    assert any(run.request.level == 2 for run in result.runs)  # retried first
+    # it ended at a horizon no budget extends (mode converge's t_max): retried first, each
+    # retry's budget covering the levels left above it
+    assert any(run.request.level == 2 for run in result.runs)
+    assert all(r.request.level + r.request.reach == 2 for r in result.runs if r.request.strict)
+
+
+def test_a_check_whose_budget_ran_out_is_not_restarted():
+    """A check's budget already reaches as far as its last retry would: one that spent it
+    is final (a retry would compute the same motion again from t = 0)."""
+
+    def answer(mu, strict):
+        if strict:
+            return {"outcome": "undetermined", "decided_by": "budget"}
+        return {"outcome": threshold(0.13)(mu, 0)}
+
+    result = drive_results(bisection(), answer)
+    assert result.certification == "uncertain"
+    strict = [run.request for run in result.runs if run.request.strict]
+    assert sorted(r.mu for r in strict) == [result.mu_lo, result.mu_hi]
+    assert all((r.level, r.reach) == (0, 2) for r in strict)
+
+
+def test_a_check_reaches_as_far_as_its_last_retry_without_restarting():
+    """A check's budget is the strict budget times horizon_factor per retry level it covers
+    (the reach of the retry it replaces, from the first horizon on); its departure is
+    followed only to the end of the strict budget, as before the check covered its retries."""
+    point = scene_from_dict({"scene": "pin", "params": {"mu": 0.2, "x_ms": 0.1, "x0": 0.0}})
+    budget = point.numerics.horizon_budget * DEFAULT.horizon
+    one = run_config(point, RunRequest(0.2, strict=1, watch=50.0, reach=2), 2.0, DEFAULT)
+    assert one.numerics.t_decide == point.numerics.t_decide
+    assert one.numerics.horizon_budget == pytest.approx(budget * 2.0**2)
+    last = run_config(point, RunRequest(0.2, level=2, strict=1, watch=50.0), 2.0, DEFAULT)
+    reach = one.numerics.t_decide * one.numerics.horizon_budget
+    assert reach == pytest.approx(last.numerics.t_decide * last.numerics.horizon_budget)
+    assert one.numerics.follow_departures_until == pytest.approx(point.numerics.t_decide * budget)
 
 
 def test_certification_off_makes_no_strict_run():
@@ -239,10 +275,6 @@ def test_the_guided_opening_replays_to_the_same_runs():
 
 
 def test_a_certification_level_tightens_rtol_atol_and_lengthens_the_budget():
-    from frictiondisk.model.scene import scene_from_dict
-    from frictiondisk.tasks.jump_search.bisection import RunRequest
-    from frictiondisk.tasks.jump_search.requests import run_config
-
     point = scene_from_dict({"scene": "disk", "params": {"beta_b": 0.005}})
     for strict in (1, 2):
         num = run_config(point, RunRequest(0.2, strict=strict), 2.0, DEFAULT).numerics
@@ -291,3 +323,24 @@ def test_certification_watches_only_when_asked():
     assert plain.numerics.evidence == base.numerics.evidence == "extrapolate"
     assert watched.numerics.evidence == "observe"
     assert Certify(observe=False).canonical() == Certify().canonical()  # journals keep
+
+
+def test_every_run_is_listed_by_the_request_that_ran():
+    """A check that flipped becomes the re-search's bracket end without running again; the
+    runs name it by the request that ran (its reach included), so that a caller keeping
+    its results by request (the trace's run log) finds every one."""
+    ran = []
+
+    def answer(mu, strict):
+        return {"outcome": threshold(0.13, 0.1337)(mu, strict)}
+
+    search = bisection()
+    while not search.done:
+        for request in list(search.pending()):
+            if not search.done and request in search.pending():
+                ran.append(request)
+                search.feed(request, answer(request.mu, request.strict))
+    result = search.result()
+    assert result.certification == "recertified"
+    assert all(run.request in ran for run in result.runs)
+    assert len(result.runs) == len(set(ran))

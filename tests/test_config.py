@@ -62,7 +62,7 @@ DEFAULTS = {
         "stick_rule": "corotation",
         "evidence": "extrapolate",
         "observe_until": 0.0,
-        "follow_departures": False,
+        "follow_departures_until": 0.0,
         "horizon_budget": 8.0,
         "max_steps": 2_000_000,
         "max_events": 200_000,

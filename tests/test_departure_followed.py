@@ -1,7 +1,7 @@
 """A departure from sticking is a motion in progress (issue 50): generator 1's 1/42, a
 Stribeck pin whose certified mu_lo was called `slide` by a departure at 32.5 s and sticks
 for good at 435 s. Its certification check follows the departure to where it lands
-(numerics.follow_departures, set with the watch: tasks/jump_search/requests.py)."""
+(numerics.follow_departures_until, set with the watch: tasks/jump_search/requests.py)."""
 
 from __future__ import annotations
 
@@ -52,18 +52,18 @@ def test_the_check_follows_the_departure_and_sees_it_stick(default_run):
     longer decided by the same departure after its watch: it follows it, and the pin
     sticks, seen (co-rotation), after about 100 revolutions of growing slip."""
     watch = Certify().watch * default_run.t_end
-    check = run_config(
-        scene_from_dict(PIN_1_42), RunRequest(MU_LO, strict=1, watch=watch), 2.0, Certify()
-    )
-    assert check.numerics.follow_departures
+    request = RunRequest(MU_LO, strict=1, watch=watch, reach=2)
+    check = run_config(scene_from_dict(PIN_1_42), request, 2.0, Certify())
+    # followed to the end of the budget of the check's first retry level, 30 s x 8 x 4
+    assert check.numerics.follow_departures_until == pytest.approx(960.0)
     run = simulate(check)
     assert (run.outcome, run.decided_by) == ("stick", "corotation")
-    assert 300.0 < run.t_end < check.numerics.t_decide * check.numerics.horizon_budget
+    assert 300.0 < run.t_end < check.numerics.follow_departures_until
 
 
 def test_only_a_watching_check_follows_departures():
     point = scene_from_dict(PIN_1_42)
-    assert not point.numerics.follow_departures
-    assert "follow_departures" not in point.canonical()["numerics"]  # journals keep
+    assert not point.numerics.follow_departures_until
+    assert "follow_departures_until" not in point.canonical()["numerics"]  # journals keep
     plain = run_config(point, RunRequest(MU_LO, strict=1), 2.0, Certify())
-    assert not plain.numerics.follow_departures
+    assert not plain.numerics.follow_departures_until

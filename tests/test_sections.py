@@ -404,13 +404,14 @@ def test_a_growth_within_the_slip_that_counts_as_none_does_not_refuse_a_repeat()
     assert code == rc.EV_REPEAT
 
 
-def _followed(stick, t_stop, budget=960.0):
-    """The evidence of a departing section under numerics.follow_departures, the run's
-    horizon at t_stop and its budget `budget` [s] (one revolution: 1 s)."""
+def _followed(stick, t_stop, until=960.0):
+    """The evidence of a departing section followed until `until` [s]
+    (numerics.follow_departures_until), the run's horizon at t_stop and a budget four times
+    as long [s] (one revolution: 1 s)."""
     n = 6
     rules, _, vs = records(S0)
-    rules["follow_departures"] = True
-    rules["budget"] = budget
+    rules["follow_until"] = until
+    rules["budget"] = 4.0 * until
     vs["t_stop"] = t_stop
     steps = 0.0175 * 1.09 ** np.arange(n - 1)
     slip = 0.0073 * 1.25 ** np.arange(n)
@@ -420,9 +421,12 @@ def _followed(stick, t_stop, budget=960.0):
 
 def test_a_followed_departure_decides_only_at_its_last_horizon_and_only_from_sticking():
     """A certification check of an extrapolated verdict follows a departure to where it
-    lands: before the budget's last horizon it is no evidence; at it, a departure from
-    sticking decides, and a sliding slave's (no sticking in its steps) does not."""
+    lands: before the last horizon of its following it is no evidence; at it and after it
+    (the check's budget reaches further), a departure from sticking decides, and a sliding
+    slave's (no sticking in its steps) does not."""
     sticking = 3.52 - 0.12 * np.arange(6)
     assert _followed(sticking, t_stop=500.0) == rc.EV_NONE
     assert _followed(sticking, t_stop=959.5) == rc.EV_DEPART
+    assert _followed(sticking, t_stop=2000.0) == rc.EV_DEPART
     assert _followed(np.zeros(6), t_stop=959.5) == rc.EV_NONE
+    assert _followed(sticking, t_stop=959.5, until=0.0) == rc.EV_DEPART  # not followed

@@ -268,14 +268,16 @@ class Numerics(BaseModel):
         ge=0,
         le=MAX_HORIZON,
     )
-    follow_departures: bool = _field(
-        False,
-        None,
+    follow_departures_until: float = _field(
+        0.0,
+        "s",
         "a departure from sticking (slip not falling, sticking time not growing, section "
-        "after section) decides only at the last horizon of the budget, and only where the "
-        "slave sticks as a whole in its steps: until then the run follows it to where it "
+        "after section) decides only at the last horizon before this time, and only where "
+        "the slave sticks as a whole in its steps: until then the run follows it to where it "
         "lands (a cycle, a stick, sliding). A certification run's check of an extrapolated "
-        "verdict sets it (docs/model.md section 7)",
+        "verdict sets it (docs/model.md section 7). 0: a departure decides when seen",
+        ge=0,
+        le=MAX_HORIZON,
     )
     horizon_budget: float = _field(
         8.0,
@@ -424,8 +426,8 @@ class SceneConfig(BaseModel):
         del data["numerics"]["preset"]
         if not data["numerics"]["observe_until"]:  # absent when off: run keys stay as they were
             del data["numerics"]["observe_until"]
-        if not data["numerics"]["follow_departures"]:
-            del data["numerics"]["follow_departures"]
+        if not data["numerics"]["follow_departures_until"]:
+            del data["numerics"]["follow_departures_until"]
         return _sorted(data)
 
     def content_hash(self) -> str:

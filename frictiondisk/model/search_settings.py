@@ -46,7 +46,7 @@ class Certify(BaseModel):
         "(a trend or section read ahead) watches (numerics.observe_until) until this factor "
         "times that run's decision time, within its horizon budget, before it may "
         "extrapolate, and follows a departure from sticking to where it lands "
-        "(numerics.follow_departures); 0: off (docs/model.md section 7)",
+        "(numerics.follow_departures_until); 0: off (docs/model.md section 7)",
         ge=0,
     )
 

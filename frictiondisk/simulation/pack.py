@@ -97,7 +97,7 @@ def fill_rules(rules: np.void, config) -> None:
     rules["stop_on_stick"] = num.stop_on_stick
     rules["observe"] = num.evidence == "observe" or num.observe_until > 0.0
     rules["watch"] = num.observe_until if num.evidence == "extrapolate" else 0.0
-    rules["follow_departures"] = num.follow_departures
+    rules["follow_until"] = num.follow_departures_until
     rules["bound"] = bound_applies(config)
     rules["hold"] = revolution(config.params.omega_m)
     rules["horizon"] = horizon

@@ -34,6 +34,7 @@ EXTRAPOLATED = frozenset(
         "envelope_trend",
     }
 )
+BUDGET_RAN_OUT = "budget"  # undetermined: the run looked as far as its horizon budget lets it
 DECIDING_RULES = (
     "corotation",  # co-rotates without net slip, seen (every contact stuck and still, or no slip)
     "corotation_limit",  # the slip per revolution extrapolated to a limit <= eps T
@@ -45,7 +46,7 @@ DECIDING_RULES = (
     *EVIDENCE_RULES.values(),  # the section evidence at the horizon (verdict/horizon_evidence.py)
     "window",  # the final window without section evidence (stick_rule contacts)
     "envelope_trend",  # a pure-sliding motion named by its envelope's trend read ahead
-    "budget",  # undetermined: the horizon budget ran out
+    BUDGET_RAN_OUT,  # undetermined: the horizon budget ran out
     "error",  # undetermined: the integrator failed or ran out of work
 )
 
@@ -71,6 +72,6 @@ def deciding_rule(facts: RunFacts) -> str:
     if status not in (rc.AT_HORIZON, rc.AT_T_MAX):
         return "error"
     if revs is not None and revs.settling:
-        return "budget"
+        return BUDGET_RAN_OUT
     kind = facts.evidence.kind if facts.evidence is not None else rc.EV_NONE
     return EVIDENCE_RULES.get(kind, "window")

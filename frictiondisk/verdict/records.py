@@ -53,7 +53,7 @@ RULES = np.dtype(
         ("stop_on_stick", np.bool_),  # stop at a stick verdict
         ("observe", np.bool_),  # evidence observe (now): verdicts only on what the run shows
         ("watch", np.float64),  # observe until this time, then extrapolate [s] (0: no watch)
-        ("follow_departures", np.bool_),  # a departure decides only at the budget's end
+        ("follow_until", np.float64),  # a departure decides only at the last horizon before [s]
         ("bound", np.bool_),  # the shakedown bound decides this braked disk too
         ("hold", np.float64),  # one master revolution T [s]
         ("horizon", np.float64),  # t_decide or t_max [s]

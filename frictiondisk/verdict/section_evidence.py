@@ -17,9 +17,10 @@ VerdictParams (vp); the cases that pin them are rows of tests/test_verdict_cases
   slow passage, or sticking ahead) is no evidence.
 * EV_DEPART: for depart_steps steps the slip per step (above the slip tolerance) grows,
   the sticking time shrinks and the distances do not shrink: it moves away from sticking.
-  Under numerics.follow_departures (a certification run's check of an extrapolated
-  verdict) a departure decides only at the last horizon of the budget, and only where the
-  slave stuck as a whole in each of its steps: a departure is a motion in progress, and
+  Under numerics.follow_departures_until (a certification run's check of an extrapolated
+  verdict sets it to the end of its strict budget, short of the further reach of its
+  retries) a departure decides only at the last horizon before that time, and only where the slave stuck as a
+  whole in each of its steps: a departure is a motion in progress, and
   where it lands (a large cycle, or a stick: generator 1's 1/42 sticks at 435 s after 100
   revolutions of growing slip) its trend cannot tell; a sliding slave has no sticking to
   depart from (generator 1's 1/43: its check read a pure-sliding disk's oscillating slip as
@@ -36,7 +37,7 @@ import math
 
 from frictiondisk.kernel.jit import kernel_jit
 
-from .budget import may_extend
+from .budget import still_following
 from .extrapolation import shakedown_limit
 from .records import EV_CONTRACT, EV_DEPART, EV_NONE, EV_REPEAT, EV_SHAKEDOWN
 from .section_sequence import N_COORD
@@ -285,8 +286,8 @@ def section_evidence(vp, rules, vs, seq, n, s0):
         return EV_CONTRACT
     if _departs(vp, rules, vs, pts, slip, stick, n, s0):
         t_eps = 1e-12 * max(1.0, abs(vs.t_stop))  # as machine.check's
-        if rules.follow_departures and (
-            may_extend(rules, vs.t_stop, t_eps) or not _sticks_throughout(vp, stick, n)
+        if rules.follow_until > 0.0 and (
+            still_following(rules, vs.t_stop, t_eps) or not _sticks_throughout(vp, stick, n)
         ):
             return EV_NONE  # followed to where it lands
         return EV_DEPART

@@ -9,7 +9,10 @@ numerics. `CertifiedBisection` then re-runs both ends at the next certification 
   at the stricter level from the end that flipped (its strict run is reused as a bracket
   end) and is certified again;
 * an end flips at the last level, both ends flip, or a strict run stays undetermined:
-  `uncertain`, with the best bracket kept;
+  `uncertain`, with the best bracket kept. A check's horizon budget reaches as far as its
+  last retry would (`RunRequest.reach`): one whose budget ran out is not retried (a retry
+  would restart from t = 0 and compute the same motion again before looking further);
+  one that ended at a horizon no budget extends (mode converge) is;
 * the re-search finds no jump within the bracket's limits: `vanished` (a jump that existed
   only because of the short horizon; a prescan drops it).
 
@@ -41,7 +44,7 @@ from frictiondisk.tasks.jump_search.bisection import (
 )
 from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
-from frictiondisk.verdict.deciding_rule import EXTRAPOLATED
+from frictiondisk.verdict.deciding_rule import BUDGET_RAN_OUT, EXTRAPOLATED
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
@@ -125,12 +128,18 @@ class CertifiedBisection:
             return [RunRequest(self._guide() if self._opened else self.search.hi)]
         if not self._checking:
             return self.search.pending()
+        # a check's horizon budget covers the retry levels above its own: where the budget
+        # extends a run (mode decide) it is not restarted from t = 0 to look further (it
+        # would compute the same motion again), it looks as far as its last retry would
         strict = self.search.strict + 1
-        requests = [
-            RunRequest(mu, self._check_level.get(mu, 0), strict=strict, watch=self._watch(mu))
-            for mu in (self.search.lo, self.search.hi)
-            if mu not in self._checks
-        ]
+        requests = []
+        for mu in (self.search.lo, self.search.hi):
+            if mu not in self._checks:
+                level = self._check_level.get(mu, 0)
+                reach = self.max_retries - level
+                requests.append(
+                    RunRequest(mu, level, strict=strict, watch=self._watch(mu), reach=reach)
+                )
         for request in requests:
             self._issued.setdefault(request, (len(self.searches), request.level, request.mu))
         return requests
@@ -173,8 +182,11 @@ class CertifiedBisection:
             raise ValueError(f"unexpected run {request}")
         record = RunRecord(request, result)
         self._check_runs.append(record)
-        if self.between.side(result["outcome"]) is None:
-            if request.level < self.max_retries:
+        if self.between.side(result["outcome"]) is None and request.level < self.max_retries:
+            # one whose budget ran out looked as far as its retries would; one that ended
+            # at its horizon without a budget to extend it (mode converge: t_max) or on an
+            # error is retried with a longer horizon
+            if result.get("decided_by") != BUDGET_RAN_OUT:
                 self._check_level[request.mu] = request.level + 1
                 return
         self._checks[request.mu] = record
@@ -339,6 +351,10 @@ class CertifiedBisection:
                 runs.append(record)
         # in the order requested, not the order results arrived: independent of timing
         runs.sort(key=lambda run: self.schedule_key(run.request))
+        # a check's run reused as a re-search's bracket end is named by the request that
+        # ran (its reach included), so that it can be found by it (tasks/trace)
+        ran = {id(check.result): check.request for check in self._check_runs}
+        runs = [RunRecord(ran.get(id(run.result), run.request), run.result) for run in runs]
         reason = final.reason
         if self._verdict not in ("off", "failed"):
             reason = f"{reason}; {self._verdict} ({self._describe()})"
@@ -356,7 +372,8 @@ class CertifiedBisection:
 
     def _describe(self) -> str:
         level = self.search.strict + (1 if self._verdict != "vanished" else 0)
+        reach = f", reaching as far as {self.max_retries} retries" if self.max_retries else ""
         return (
             f"ends re-run at rtol and atol x {self.certify.rtol**level:g}, "
-            f"horizon budget x {self.certify.horizon**level:g}"
+            f"horizon budget x {self.certify.horizon**level:g}{reach}"
         )

@@ -26,7 +26,7 @@ def run_config(
     scene key) = request.mu (and the request's numerics.mode, if it names one)
     set, horizon lengthened by the retry level; at certification level `request.strict`
     rtol and atol are multiplied by certify.rtol and the horizon budget by certify.horizon,
-    once per level."""
+    once per level, and by horizon_factor once per level of `request.reach`."""
     num = point_config.numerics
     mode = request.mode or num.mode
     key = f"numerics.{horizon_key(mode)}"
@@ -42,20 +42,24 @@ def run_config(
         # times the budget to find its evidence (docs/model.md section 7)
         overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
         overrides["numerics.atol"] = num.atol * certify.rtol**request.strict
-        budget = num.horizon_budget * certify.horizon**request.strict
-        overrides["numerics.horizon_budget"] = min(budget, MAX_HORIZON_BUDGET)
+        budget = min(num.horizon_budget * certify.horizon**request.strict, MAX_HORIZON_BUDGET)
+        # where one run covers `reach` retry levels, its budget reaches as far as the last
+        # of them would (their horizon times the budget): the same reach, not restarted
+        whole = min(budget * horizon_factor**request.reach, MAX_HORIZON_BUDGET)
+        overrides["numerics.horizon_budget"] = whole
         if certify.observe:
             # it decides only on what it sees (a repeating section, a stick): an
             # extrapolated verdict is then a prediction that certification checks
             overrides["numerics.evidence"] = "observe"
         elif request.watch > 0.0:
             # it watches before it may extrapolate (certify.py), within its budget
-            reach = horizon_of(point_config, mode) * (horizon_factor**request.level)
-            reach *= overrides["numerics.horizon_budget"]
-            overrides["numerics.observe_until"] = min(request.watch, reach)
-            # and a departure from sticking decides only at the end of its budget: still
-            # departing after the watch, it is the same motion in progress (section_evidence)
-            overrides["numerics.follow_departures"] = True
+            horizon_here = horizon * horizon_factor**request.level
+            overrides["numerics.observe_until"] = min(request.watch, horizon_here * whole)
+            # and a departure from sticking decides only at the last horizon of its strict
+            # budget at its own retry level (the further reach is for a motion that shows
+            # no evidence): still departing after the watch, it is the same motion in
+            # progress (section_evidence)
+            overrides["numerics.follow_departures_until"] = horizon_here * budget
     return point_config.with_overrides(overrides)
 
 

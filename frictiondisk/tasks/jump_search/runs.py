@@ -17,13 +17,17 @@ class RunRequest:
     certification level.
 
     The horizon of the run is the base horizon times horizon_factor ** level; a
-    certification level `strict` > 0 tightens the numerics further (certify.py)."""
+    certification level `strict` > 0 tightens the numerics further (certify.py). `reach`
+    retry levels are covered by one run: its horizon budget reaches as far as the run at
+    level + reach would, so that it need not be restarted from t = 0 to look further (a
+    certification check, certify.py)."""
 
     mu: float
     level: int = 0
     mode: str | None = None  # numerics.mode of the run; None: the point's own
     strict: int = 0  # certification level of the numerics (0: the point's own)
     watch: float = 0.0  # watch (observe) until this time before extrapolating [s] (certify.py)
+    reach: int = 0  # retry levels whose horizon budget this one run covers at once
 
 
 @dataclasses.dataclass(frozen=True)

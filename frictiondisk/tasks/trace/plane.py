@@ -45,10 +45,11 @@ class PlaneRequest:
     strict: int = 0
     mode: str | None = None
     watch: float = 0.0
+    reach: int = 0
 
     def mu_request(self) -> RunRequest:
         """The same run as a RunRequest of its point (the scene with the key set)."""
-        return RunRequest(self.mu, self.level, self.mode, self.strict, self.watch)
+        return RunRequest(self.mu, self.level, self.mode, self.strict, self.watch, self.reach)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -70,7 +71,9 @@ class Line:
     def to_plane(self, request: RunRequest) -> PlaneRequest:
         x = self.sign * request.mu
         key, mu = (self.value, x) if self.fixed == "key" else (x, self.value)
-        return PlaneRequest(key, mu, request.level, request.strict, request.mode, request.watch)
+        return PlaneRequest(
+            key, mu, request.level, request.strict, request.mode, request.watch, request.reach
+        )
 
     def coordinate(self, x: float) -> float:
         """c of the plane coordinate x along the line."""
