@@ -54,7 +54,7 @@ def test_the_check_follows_the_departure_and_sees_it_stick(default_run):
     watch = Certify().watch * default_run.t_end
     request = RunRequest(MU_LO, strict=1, watch=watch, reach=2)
     check = run_config(scene_from_dict(PIN_1_42), request, 2.0, Certify())
-    # followed to the end of the budget of the check's first retry level, 30 s x 8 x 4
+    # followed to the end of the check's strict budget, 30 s x 8 x 4, short of its reach
     assert check.numerics.follow_departures_until == pytest.approx(960.0)
     run = simulate(check)
     assert (run.outcome, run.decided_by) == ("stick", "corotation")

@@ -19,8 +19,8 @@ VerdictParams (vp); the cases that pin them are rows of tests/test_verdict_cases
   the sticking time shrinks and the distances do not shrink: it moves away from sticking.
   Under numerics.follow_departures_until (a certification run's check of an extrapolated
   verdict sets it to the end of its strict budget, short of the further reach of its
-  retries) a departure decides only at the last horizon before that time, and only where the slave stuck as a
-  whole in each of its steps: a departure is a motion in progress, and
+  retries) a departure decides only at the last horizon before that time, and only where
+  the slave stuck as a whole in each of its steps: a departure is a motion in progress, and
   where it lands (a large cycle, or a stick: generator 1's 1/42 sticks at 435 s after 100
   revolutions of growing slip) its trend cannot tell; a sliding slave has no sticking to
   depart from (generator 1's 1/43: its check read a pure-sliding disk's oscillating slip as

@@ -182,13 +182,16 @@ class CertifiedBisection:
             raise ValueError(f"unexpected run {request}")
         record = RunRecord(request, result)
         self._check_runs.append(record)
-        if self.between.side(result["outcome"]) is None and request.level < self.max_retries:
-            # one whose budget ran out looked as far as its retries would; one that ended
-            # at its horizon without a budget to extend it (mode converge: t_max) or on an
-            # error is retried with a longer horizon
-            if result.get("decided_by") != BUDGET_RAN_OUT:
-                self._check_level[request.mu] = request.level + 1
-                return
+        # an undetermined check whose budget ran out looked as far as its retries would; one
+        # that ended at its horizon without a budget to extend it (mode converge: t_max) or
+        # on an error is retried with a longer horizon
+        if (
+            self.between.side(result["outcome"]) is None
+            and request.level < self.max_retries
+            and result.get("decided_by") != BUDGET_RAN_OUT
+        ):
+            self._check_level[request.mu] = request.level + 1
+            return
         self._checks[request.mu] = record
         if len(self._checks) == 2:
             self._after_check()
