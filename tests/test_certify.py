@@ -286,6 +286,19 @@ def test_a_certification_level_tightens_rtol_atol_and_lengthens_the_budget():
         assert num.horizon_budget == pytest.approx(8.0 * DEFAULT.horizon**strict)
 
 
+def test_a_certification_level_checks_with_another_integrator():
+    """The stricter runs of a rodas4 point run rodas5 (certify.method); the point's own
+    runs, and a point that chose another method, keep theirs."""
+    point = scene_from_dict({"scene": "pin"})
+    assert run_config(point, RunRequest(0.2), 2.0, DEFAULT).numerics.method == "rodas4"
+    assert run_config(point, RunRequest(0.2, strict=1), 2.0, DEFAULT).numerics.method == "rodas5"
+    same = Certify(method="rodas4")
+    assert run_config(point, RunRequest(0.2, strict=1), 2.0, same).numerics.method == "rodas4"
+    radau = scene_from_dict({"scene": "pin", "numerics": {"method": "scipy-radau"}})
+    strict = run_config(radau, RunRequest(0.2, strict=1), 2.0, DEFAULT).numerics
+    assert strict.method == "scipy-radau"
+
+
 def test_a_jump_that_leaves_its_prescan_cell_at_stricter_numerics_is_followed():
     """Seed 0 scene 0 of the well-posedness study in miniature: the prescan value 0.08
     sticks at the point's numerics (an extrapolated shakedown) but not when watched, and the

@@ -402,7 +402,7 @@ def test_bad_method(tmp_path):
     found = problems(tmp_path, "scene: pin\nnumerics:\n  method: euler\n")
     assert found == [
         "numerics.method: 'euler' is not allowed: "
-        "must be one of 'rodas4', 'rodas4-fixed', 'scipy-radau', 'coulomb'"
+        "must be one of 'rodas4', 'rodas4-fixed', 'rodas5', 'scipy-radau', 'coulomb'"
     ]
 
 

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from frictiondisk.kernel import events, model, rodas
+from frictiondisk.kernel import coefficients_rodas5 as co5
+from frictiondisk.kernel import events, model, rodas, rodas5
 from frictiondisk.kernel.model import SLIDE, STICK
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.pack import initial_state, pack_parameters
@@ -79,48 +80,131 @@ def _exact_flow(p, pts, modes, y0, t):
     return (expm(aug * t) @ np.append(y0, 1.0))[:n]
 
 
-def test_rodas4_shows_fourth_order_convergence_on_a_smooth_problem():
-    p, pts, y0, modes = _linear_stuck_pin()
+def _fixed_steps(step, p, pts, modes, y0, t_end, steps, error_row):
+    """Integrate with `steps` fixed steps of `step`; the end state and the largest error
+    estimate of a step."""
     n = y0.size
+    h = t_end / steps
+    y, y1, f = y0.copy(), np.empty(n), np.empty(n)
+    jac, lu = np.empty((n, n)), np.empty((n, n))
+    piv = np.empty(n, dtype=np.int64)
+    wk = np.empty((rodas.N_WORK_ROWS, n))
+    estimate = 0.0
+    for _ in range(steps):
+        model.rhs(p, pts, modes, y, f)
+        assert step(p, pts, modes, y, f, h, jac, lu, piv, wk, y1)
+        estimate = max(estimate, np.abs(wk[error_row]).max())
+        y[:] = y1
+    return y, estimate
+
+
+@pytest.mark.parametrize(
+    "step, error_row, order",
+    [(rodas.rodas_step, rodas.W_K6, 4), (rodas5.rodas5_step, rodas.W_K8, 5)],
+    ids=["rodas4", "rodas5"],
+)
+def test_rosenbrock_steppers_converge_at_their_order_on_a_smooth_problem(step, error_row, order):
+    p, pts, y0, modes = _linear_stuck_pin()
     t_end = 2.0
     exact = _exact_flow(p, pts, modes, y0, t_end)
-
-    def integrate(steps):
-        h = t_end / steps
-        y, y1, f = y0.copy(), np.empty(n), np.empty(n)
-        jac, lu = np.empty((n, n)), np.empty((n, n))
-        piv = np.empty(n, dtype=np.int64)
-        wk = np.empty((rodas.N_WORK_ROWS, n))
-        for _ in range(steps):
-            model.rhs(p, pts, modes, y, f)
-            assert rodas.rodas_step(p, pts, modes, y, f, h, jac, lu, piv, wk, y1)
-            y[:] = y1
-        return np.abs(y - exact).max()
-
-    errors = [integrate(s) for s in (20, 40, 80, 160)]
+    runs = [_fixed_steps(step, p, pts, modes, y0, t_end, s, error_row) for s in (20, 40, 80, 160)]
+    errors = [np.abs(y - exact).max() for y, _ in runs]
     orders = [math.log2(errors[k] / errors[k + 1]) for k in range(3)]
-    assert min(orders) > 3.6, (errors, orders)
-    assert max(orders) < 4.6, (errors, orders)
+    assert order - 0.4 < min(orders) and max(orders) < order + 0.6, (errors, orders)
+    # the embedded estimate is a local error of the lower order: it falls as h^order
+    estimates = [estimate for _, estimate in runs]
+    assert math.log2(estimates[-2] / estimates[-1]) > order - 1.0, estimates
 
 
-def test_dense_output_has_third_order_accuracy_inside_the_step():
+def test_rodas5_tableau_is_the_transformed_alpha_gamma_form_of_di_marzo():
+    """The transformed coefficients (A, C) follow from the method's (alpha, beta) form:
+    a = alpha Gamma^-1, C = diag(1 / gamma) - Gamma^-1, Gamma = beta - alpha."""
+    alpha = np.zeros((8, 8))
+    beta = np.diag(np.full(8, 0.19))
+    alpha[1, 0] = 0.38
+    alpha[2, :2] = [0.1899188971074152, 0.1979321027247381]
+    alpha[3, :3] = [0.1110729281178426, 0.5456026683145674, -0.1727037026450261]
+    alpha[4, :4] = [0.2329444418850307, 0.025099380960713898, 0.1443314046300300,
+                    0.054672473406183418]  # fmt: skip
+    alpha[5, :5] = [-0.036201017843430883, 4.208448872731939, -7.549674427720996,
+                    -0.2076823626400282, 4.585108935472517]  # fmt: skip
+    beta[1, 0] = 0.0076920774666285364
+    beta[2, :2] = [-0.058129718999580252, -0.063251113355141360]
+    beta[3, :3] = [0.7075715596134048, -0.5980299539145789, 0.5294131505610923]
+    beta[4, :4] = [-0.034975026573934865, -0.1928476085817357, 0.089839586125126941,
+                   0.027613185520411822]  # fmt: skip
+    # stiffly accurate: stage 6's beta row is stage 7's alpha row, and so on
+    beta[5, :5] = [7.585261698003052, -15.57426208319938, -8.814406895608121,
+                   1.534698996826085, 16.07870828397837]  # fmt: skip
+    alpha[6, :6] = list(beta[5, :5]) + [0.19]
+    beta[6, :6] = [0.4646018839086969, 0.0, -1.720907508837576, 0.2910480220957973,
+                   1.821778861539924, -0.046521258706842056]  # fmt: skip
+    alpha[7, :7] = list(beta[6, :6]) + [0.19]
+    beta[7, :7] = list(beta[6, :5]) + [-0.026744882930135193, -0.019776375776706864]
+    gamma_inv = np.linalg.inv(beta - alpha)
+    a = alpha @ gamma_inv
+    c = np.diag(1.0 / np.diag(beta - alpha)) - gamma_inv
+    for i in range(1, 8):
+        for j in range(i):
+            if i < 6:
+                assert getattr(co5, f"A{i + 1}{j + 1}") == pytest.approx(
+                    a[i, j], rel=1e-12, abs=1e-12
+                )
+            assert getattr(co5, f"C{i + 1}{j + 1}") == pytest.approx(c[i, j], rel=1e-12)
+    # stages 7 and 8 are evaluated at stage 6's point plus k6 (and k7): a unit there
+    assert a[6, 5] == pytest.approx(1.0) and a[7, 6] == pytest.approx(1.0)
+    assert co5.GAMMA == 0.19
+
+
+@pytest.mark.parametrize(
+    "step, order", [(rodas.rodas_step, 3), (rodas5.rodas5_step, 4)], ids=["rodas4", "rodas5"]
+)
+def test_dense_output_has_its_order_inside_the_step(step, order):
     p, pts, y0, modes = _linear_stuck_pin()
     n = y0.size
 
-    def midpoint_error(h):
+    def interior_error(h):
         f, y1 = np.empty(n), np.empty(n)
         jac, lu = np.empty((n, n)), np.empty((n, n))
         piv = np.empty(n, dtype=np.int64)
         wk = np.empty((rodas.N_WORK_ROWS, n))
         model.rhs(p, pts, modes, y0, f)
-        rodas.rodas_step(p, pts, modes, y0, f, h, jac, lu, piv, wk, y1)
-        mid = np.empty(n)
-        rodas.dense_eval(y0, y1, wk, 0.37, mid)
-        exact = _exact_flow(p, pts, modes, y0, 0.37 * h)
-        return np.abs(mid - exact).max()
+        step(p, pts, modes, y0, f, h, jac, lu, piv, wk, y1)
+        out = np.empty(n)
+        error = 0.0
+        for s in (0.0, 0.37, 0.81, 1.0):
+            rodas.dense_eval(y0, y1, wk, s, out)
+            error = max(error, np.abs(out - _exact_flow(p, pts, modes, y0, s * h)).max())
+        rodas.dense_eval(y0, y1, wk, 1.0, out)
+        assert np.array_equal(out, y1)  # it ends where the step does
+        return error
 
-    e1, e2 = midpoint_error(0.1), midpoint_error(0.05)
-    assert math.log2(e1 / e2) > 3.5  # local error O(h^4) of an order-3 interpolant
+    e1, e2 = interior_error(0.04), interior_error(0.02)
+    # local error O(h^(order + 1)) of an order-`order` interpolant
+    assert math.log2(e1 / e2) > order + 0.5, (e1, e2)
+
+
+@pytest.mark.parametrize("mu", [0.09, 0.13, 0.25])
+def test_rodas5_and_rodas4_agree_on_verdict_and_measures(mu):
+    """Two integrators, each at a strict tolerance: the same verdict and decision time, and
+    the same measures (first sticking radius, slip per revolution) to within their
+    tolerance."""
+    runs = []
+    for method in ("rodas4", "rodas5"):
+        cfg = scene_from_dict(
+            {
+                "scene": "pin",
+                "params": {"mu": mu},
+                "numerics": {"method": method, "rtol": 1e-8, "atol": 1e-11},
+            }
+        )
+        runs.append(simulate(cfg))
+    four, five = runs
+    assert (four.outcome, four.decided_by) == (five.outcome, five.decided_by)
+    assert four.t_end == pytest.approx(five.t_end, abs=1e-6)
+    assert four.R1 == pytest.approx(five.R1, rel=1e-6, nan_ok=True)
+    assert four.slip_per_rev == pytest.approx(five.slip_per_rev, rel=1e-6, nan_ok=True)
+    assert five.n_steps < four.n_steps  # the higher order needs fewer steps here
 
 
 def test_fixed_step_locates_the_first_stick_strictly_inside_a_step():

@@ -27,6 +27,7 @@ OWN_RING = 512
 OPTIONS = np.dtype(
     [
         ("fixed_step", np.bool_),  # rodas4-fixed: steps of dt, no error control
+        ("stepper", np.int8),  # kernel/steppers.py RODAS4 or RODAS5
         ("dense_lu", np.bool_),  # factor the stage matrix densely (O(N^3)) instead of as an arrow
         ("record", np.bool_),  # keep the trajectory (kernel/recording.py)
         ("rtol", np.float64),  # relative tolerance

@@ -13,12 +13,14 @@ from .linalg import is_dense, stage_factor, stage_solve
 from .model import jacobian, jacobian_arrow, rhs
 
 # Rows of the work array wk (shape (N_WORK_ROWS, n)): the stages k1 .. k6 (k6 is the
-# error estimate), scratch for a stage's state, rate and right-hand side, and the
-# dense-output coefficients q1, q2 of the last step.
+# error estimate), scratch for a stage's state, rate and right-hand side, the
+# dense-output coefficients q1, q2, q3 of the last step (q3 = 0 here: RODAS4's dense output
+# is cubic), and RODAS5's stages k7, k8 (kernel/rodas5.py).
 W_K1, W_K2, W_K3, W_K4, W_K5, W_K6 = 0, 1, 2, 3, 4, 5
 W_Y, W_F, W_B = 6, 7, 8
-W_Q1, W_Q2 = 9, 10
-N_WORK_ROWS = 11
+W_Q1, W_Q2, W_Q3 = 9, 10, 11
+W_K7, W_K8 = 12, 13
+N_WORK_ROWS = 14
 
 
 @kernel_jit
@@ -89,10 +91,12 @@ def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
 
     q1 = wk[W_Q1]
     q2 = wk[W_Q2]
+    q3 = wk[W_Q3]
     for i in range(n):
         y1[i] = ytmp[i] + k6[i]
         q1[i] = co.D21 * k1[i] + co.D22 * k2[i] + co.D23 * k3[i] + co.D24 * k4[i] + co.D25 * k5[i]
         q2[i] = co.D31 * k1[i] + co.D32 * k2[i] + co.D33 * k3[i] + co.D34 * k4[i] + co.D35 * k5[i]
+        q3[i] = 0.0
         if not math.isfinite(y1[i]):
             return False
     return True
@@ -111,12 +115,14 @@ def error_norm(y0, y1, err, rtol, atol):
 
 @kernel_jit
 def dense_eval(y0, y1, wk, s, out):
-    """Dense output at fraction s in [0, 1] of the last step (order 3)."""
+    """Dense output at fraction s in [0, 1] of the last step (order 3 after a RODAS4 step,
+    4 after a RODAS5 step)."""
     q1 = wk[W_Q1]
     q2 = wk[W_Q2]
+    q3 = wk[W_Q3]
     s1 = 1.0 - s
     for i in range(y0.shape[0]):
-        out[i] = s1 * y0[i] + s * (y1[i] + s1 * (q1[i] + s * q2[i]))
+        out[i] = s1 * y0[i] + s * (y1[i] + s1 * (q1[i] + s * (q2[i] + s * q3[i])))
 
 
 @kernel_jit
@@ -125,8 +131,9 @@ def dense_eval_contact(y0, y1, wk, s, out, nq, i):
     coordinates out[0:2nq] and Z_i (O(1) instead of O(N)); the rest of out is left as is."""
     q1 = wk[W_Q1]
     q2 = wk[W_Q2]
+    q3 = wk[W_Q3]
     s1 = 1.0 - s
     zi = 2 * nq + 2 * i
     for k in range(2 * nq + 2):
         j = k if k < 2 * nq else zi + k - 2 * nq
-        out[j] = s1 * y0[j] + s * (y1[j] + s1 * (q1[j] + s * q2[j]))
+        out[j] = s1 * y0[j] + s * (y1[j] + s1 * (q1[j] + s * (q2[j] + s * q3[j])))

@@ -209,7 +209,7 @@ class Numerics(BaseModel):
 
     model_config = MODEL_CONFIG
 
-    method: Literal["rodas4", "rodas4-fixed", "scipy-radau", "coulomb"] = _field(
+    method: Literal["rodas4", "rodas4-fixed", "rodas5", "scipy-radau", "coulomb"] = _field(
         "rodas4", None, "integration method"
     )
     rtol: float = _field(
@@ -352,7 +352,7 @@ class SceneConfig(BaseModel):
             raise PydanticCustomError(
                 "scene_rule",
                 "the exact Coulomb pin has no watch: numerics.observe_until needs method "
-                "rodas4, rodas4-fixed or scipy-radau (or numerics.evidence: observe)",
+                "rodas4, rodas4-fixed, rodas5 or scipy-radau (or numerics.evidence: observe)",
                 {
                     "path": "numerics.observe_until",
                     "value": self.numerics.observe_until,

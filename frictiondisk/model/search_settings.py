@@ -4,7 +4,7 @@ the search itself lives in frictiondisk/tasks/jump_search/."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import BaseModel, model_validator
 
@@ -31,6 +31,13 @@ class Certify(BaseModel):
     )
     rtol: float = field(0.1, "1", "factor on numerics.rtol and atol per level", gt=0, le=1)
     levels: int = field(2, "1", "strictest certification level; 0: off", ge=0, le=4)
+    method: Literal["rodas5", "rodas4"] = field(
+        "rodas5",
+        None,
+        "integrator of the stricter runs where the point's numerics.method is rodas4: rodas5 "
+        "(5th order) reaches the stricter tolerance in fewer steps and is an integrator "
+        "independent of the run it checks; rodas4 re-runs the same one (docs/wellposed.md)",
+    )
     observe: bool = field(
         False,
         None,

@@ -7,8 +7,8 @@ simulation/buffers.py: stepper, counters, energy, motion, verdict) and each pass
    then frictiondisk/verdict/machine.py `revolution_closed`), and ask the machine
    (`check`): step on, ask again (the horizon moved) or stop;
 2. the work budget (options.max_steps, max_events);
-3. one RODAS4 step (kernel/rodas.py) to the landing time the machine allows, judged by
-   the step-size controller (kernel/controller.py);
+3. one Rosenbrock step (RODAS4 or RODAS5, kernel/steppers.py) to the landing time the
+   machine allows, judged by the step-size controller (kernel/controller.py);
 4. events and switching inside the step (kernel/switching.py): at the earliest event the
    step is cut, the contacts switch, the monitor records it and the machine hears of a
    whole-body sticking phase that opened; otherwise the whole step is accepted;
@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from frictiondisk.kernel import controller, monitor, own_section, switching
+from frictiondisk.kernel import controller, monitor, own_section, steppers, switching
 from frictiondisk.kernel import energy as en
 from frictiondisk.kernel import status as st
 from frictiondisk.kernel.events import SAME_TIME, T_TOL_ABS
@@ -32,7 +32,7 @@ from frictiondisk.kernel.jit import kernel_entry_allocating, kernel_jit, kernel_
 from frictiondisk.kernel.linalg import copy_vector, stage_workspace
 from frictiondisk.kernel.model import n_coords, rhs
 from frictiondisk.kernel.recording import record_dense, record_state
-from frictiondisk.kernel.rodas import N_WORK_ROWS, W_K6, dense_eval, rodas_step
+from frictiondisk.kernel.rodas import N_WORK_ROWS, dense_eval
 from frictiondisk.verdict import machine
 from frictiondisk.verdict.records import RECHECK, STOP
 from frictiondisk.verdict.section_sequence import new_sequence
@@ -128,8 +128,9 @@ def _attempt(p, pts, options, rules, y, modes, state, rings, recording, ws):
     if step.h <= STEP_UNDERFLOW * max(1.0, t):
         return st.STEP_TOO_SMALL
     h = step.h
-    ok = rodas_step(p, pts, modes, y, f, h, jac, lu, piv, wk, y1)
-    judged = controller.judge(step, options, ok, y, y1, wk[W_K6], state.counters)
+    ok = steppers.step(options, p, pts, modes, y, f, h, jac, lu, piv, wk, y1)
+    error_estimate = wk[steppers.error_row(options)]
+    judged = controller.judge(step, options, ok, y, y1, error_estimate, state.counters)
     if judged == controller.FAIL:
         return st.NONFINITE
     if judged == controller.REJECT:

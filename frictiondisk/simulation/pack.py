@@ -7,6 +7,7 @@ import numpy as np
 
 from frictiondisk.kernel import model as km
 from frictiondisk.kernel.records import one
+from frictiondisk.kernel.steppers import RODAS4, RODAS5
 from frictiondisk.model.limits import MAX_RECORD_ROWS
 from frictiondisk.verdict.horizon import horizon_of, revolution
 from frictiondisk.verdict.records import RULES
@@ -77,6 +78,7 @@ def initial_modes(p: np.void, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
 def fill_options(options: np.void, num, record: bool, dt_out: float, dense_lu: bool) -> None:
     """The integrator's options (kernel/records.py OPTIONS) from the scene's numerics."""
     options["fixed_step"] = num.method == "rodas4-fixed"
+    options["stepper"] = RODAS5 if num.method == "rodas5" else RODAS4
     options["dense_lu"] = dense_lu
     options["record"] = record
     options["rtol"] = num.rtol

@@ -17,6 +17,7 @@ from frictiondisk.verdict.params import VerdictParams
 METHODS = {
     "rodas4": "frictiondisk.simulation.rodas_method:simulate_rodas",
     "rodas4-fixed": "frictiondisk.simulation.rodas_method:simulate_rodas",
+    "rodas5": "frictiondisk.simulation.rodas_method:simulate_rodas",
     "scipy-radau": "frictiondisk.simulation.radau:simulate_radau",
     "coulomb": "frictiondisk.simulation.coulomb:simulate_coulomb",
 }

@@ -42,6 +42,9 @@ def run_config(
         # times the budget to find its evidence (docs/model.md section 7)
         overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
         overrides["numerics.atol"] = num.atol * certify.rtol**request.strict
+        if num.method == "rodas4":
+            # another integrator, of higher order: fewer steps at the stricter tolerance
+            overrides["numerics.method"] = certify.method
         budget = min(num.horizon_budget * certify.horizon**request.strict, MAX_HORIZON_BUDGET)
         # where one run covers `reach` retry levels, its budget reaches as far as the last
         # of them would (their horizon times the budget): the same reach, not restarted
