@@ -91,6 +91,38 @@ def test_a_check_whose_budget_ran_out_is_not_restarted():
     assert all((r.level, r.reach) == (0, 2) for r in strict)
 
 
+def _drive_requests(search, answer):
+    """drive_results, with answer(request) given the whole request."""
+    while not search.done:
+        for request in list(search.pending()):
+            if not search.done and request in search.pending():
+                search.feed(request, answer(request))
+    return search.result()
+
+
+def test_a_check_whose_integrator_fails_is_checked_again_with_the_points_own():
+    """certify.method's run of an end fails (a step-size underflow): a longer horizon
+    would compute the same failure, so the end is checked again at the same level with the
+    point's own integrator (request.own_method), whose verdict counts."""
+
+    def answer(request):
+        if request.strict and request.mu > 0.13 and not request.own_method:
+            return {"outcome": "undetermined", "decided_by": "error"}
+        return {"outcome": threshold(0.13)(request.mu, request.strict)}
+
+    result = _drive_requests(bisection(), answer)
+    assert result.certification == "certified", result.reason
+    strict = [run.request for run in result.runs if run.request.strict]
+    hi = [r for r in strict if r.mu == result.mu_hi]
+    assert [(r.own_method, r.level) for r in hi] == [(False, 0), (True, 0)]
+    assert [r.own_method for r in strict if r.mu == result.mu_lo] == [False]
+    # with the point's own integrator as certify.method there is nothing to switch to:
+    # the ladder retries with longer horizons, and the end stays undetermined
+    same = _drive_requests(bisection(Certify(method="rodas4")), answer)
+    assert same.certification == "uncertain"
+    assert not any(run.request.own_method for run in same.runs)
+
+
 def test_a_check_reaches_as_far_as_its_last_retry_without_restarting():
     """A check's budget is the strict budget times horizon_factor per retry level it covers
     (the reach of the retry it replaces, from the first horizon on); its departure is
@@ -294,6 +326,8 @@ def test_a_certification_level_checks_with_another_integrator():
     assert run_config(point, RunRequest(0.2, strict=1), 2.0, DEFAULT).numerics.method == "rodas5"
     same = Certify(method="rodas4")
     assert run_config(point, RunRequest(0.2, strict=1), 2.0, same).numerics.method == "rodas4"
+    own = RunRequest(0.2, strict=1, own_method=True)
+    assert run_config(point, own, 2.0, DEFAULT).numerics.method == "rodas4"
     radau = scene_from_dict({"scene": "pin", "numerics": {"method": "scipy-radau"}})
     strict = run_config(radau, RunRequest(0.2, strict=1), 2.0, DEFAULT).numerics
     assert strict.method == "scipy-radau"

@@ -35,6 +35,7 @@ EXTRAPOLATED = frozenset(
     }
 )
 BUDGET_RAN_OUT = "budget"  # undetermined: the run looked as far as its horizon budget lets it
+INTEGRATOR_FAILED = "error"  # undetermined: the integrator failed or ran out of work
 DECIDING_RULES = (
     "corotation",  # co-rotates without net slip, seen (every contact stuck and still, or no slip)
     "corotation_limit",  # the slip per revolution extrapolated to a limit <= eps T
@@ -47,7 +48,7 @@ DECIDING_RULES = (
     "window",  # the final window without section evidence (stick_rule contacts)
     "envelope_trend",  # a pure-sliding motion named by its envelope's trend read ahead
     BUDGET_RAN_OUT,  # undetermined: the horizon budget ran out
-    "error",  # undetermined: the integrator failed or ran out of work
+    INTEGRATOR_FAILED,  # undetermined: the integrator failed or ran out of work
 )
 
 
@@ -70,7 +71,7 @@ def deciding_rule(facts: RunFacts) -> str:
     if status == rc.CYCLE_FOUND:
         return "cycle"
     if status not in (rc.AT_HORIZON, rc.AT_T_MAX):
-        return "error"
+        return INTEGRATOR_FAILED
     if revs is not None and revs.settling:
         return BUDGET_RAN_OUT
     kind = facts.evidence.kind if facts.evidence is not None else rc.EV_NONE

@@ -44,7 +44,7 @@ from frictiondisk.tasks.jump_search.bisection import (
 )
 from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
-from frictiondisk.verdict.deciding_rule import BUDGET_RAN_OUT, EXTRAPOLATED
+from frictiondisk.verdict.deciding_rule import BUDGET_RAN_OUT, EXTRAPOLATED, INTEGRATOR_FAILED
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
@@ -111,6 +111,7 @@ class CertifiedBisection:
         self._checks: dict[float, RunRecord] = {}  # mu -> decided strict run of this check
         self._check_level: dict[float, int] = {}  # mu -> retry level to ask for next
         self._check_runs: list[RunRecord] = []
+        self._own_method: set[float] = set()  # ends checked again with the point's integrator
         self._issued: dict[RunRequest, tuple] = {}
         self._checking = False
         self._verdict: str | None = None  # set when done
@@ -138,7 +139,14 @@ class CertifiedBisection:
                 level = self._check_level.get(mu, 0)
                 reach = self.max_retries - level
                 requests.append(
-                    RunRequest(mu, level, strict=strict, watch=self._watch(mu), reach=reach)
+                    RunRequest(
+                        mu,
+                        level,
+                        strict=strict,
+                        watch=self._watch(mu),
+                        reach=reach,
+                        own_method=mu in self._own_method,
+                    )
                 )
         for request in requests:
             self._issued.setdefault(request, (len(self.searches), request.level, request.mu))
@@ -182,6 +190,15 @@ class CertifiedBisection:
             raise ValueError(f"unexpected run {request}")
         record = RunRecord(request, result)
         self._check_runs.append(record)
+        if (
+            result.get("decided_by") == INTEGRATOR_FAILED
+            and not request.own_method
+            and self.certify.method != "rodas4"
+        ):
+            # certify.method's integrator failed (a step-size underflow): a longer horizon
+            # would compute the same failure again; the point's own integrator checks it
+            self._own_method.add(request.mu)
+            return
         # an undetermined check whose budget ran out looked as far as its retries would; one
         # that ended at its horizon without a budget to extend it (mode converge: t_max) or
         # on an error is retried with a longer horizon

@@ -26,7 +26,8 @@ def run_config(
     scene key) = request.mu (and the request's numerics.mode, if it names one)
     set, horizon lengthened by the retry level; at certification level `request.strict`
     rtol and atol are multiplied by certify.rtol and the horizon budget by certify.horizon,
-    once per level, and by horizon_factor once per level of `request.reach`."""
+    once per level, and by horizon_factor once per level of `request.reach`, and a rodas4
+    point's run integrates with certify.method unless `request.own_method`."""
     num = point_config.numerics
     mode = request.mode or num.mode
     key = f"numerics.{horizon_key(mode)}"
@@ -42,7 +43,7 @@ def run_config(
         # times the budget to find its evidence (docs/model.md section 7)
         overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
         overrides["numerics.atol"] = num.atol * certify.rtol**request.strict
-        if num.method == "rodas4":
+        if num.method == "rodas4" and not request.own_method:
             # another integrator, of higher order: fewer steps at the stricter tolerance
             overrides["numerics.method"] = certify.method
         budget = min(num.horizon_budget * certify.horizon**request.strict, MAX_HORIZON_BUDGET)

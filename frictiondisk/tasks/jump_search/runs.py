@@ -28,6 +28,9 @@ class RunRequest:
     strict: int = 0  # certification level of the numerics (0: the point's own)
     watch: float = 0.0  # watch (observe) until this time before extrapolating [s] (certify.py)
     reach: int = 0  # retry levels whose horizon budget this one run covers at once
+    # a certification check with the point's own integrator instead of certify.method
+    # (after certify.method's run of it failed: certify.py)
+    own_method: bool = False
 
 
 @dataclasses.dataclass(frozen=True)

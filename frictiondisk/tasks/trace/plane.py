@@ -46,10 +46,13 @@ class PlaneRequest:
     mode: str | None = None
     watch: float = 0.0
     reach: int = 0
+    own_method: bool = False
 
     def mu_request(self) -> RunRequest:
         """The same run as a RunRequest of its point (the scene with the key set)."""
-        return RunRequest(self.mu, self.level, self.mode, self.strict, self.watch, self.reach)
+        return RunRequest(
+            self.mu, self.level, self.mode, self.strict, self.watch, self.reach, self.own_method
+        )
 
 
 @dataclasses.dataclass(frozen=True)
@@ -72,7 +75,14 @@ class Line:
         x = self.sign * request.mu
         key, mu = (self.value, x) if self.fixed == "key" else (x, self.value)
         return PlaneRequest(
-            key, mu, request.level, request.strict, request.mode, request.watch, request.reach
+            key,
+            mu,
+            request.level,
+            request.strict,
+            request.mode,
+            request.watch,
+            request.reach,
+            request.own_method,
         )
 
     def coordinate(self, x: float) -> float:
