@@ -24,6 +24,19 @@ N_WORK_ROWS = 14
 
 
 @kernel_jit
+def factor_stage_matrix(p, pts, modes, y0, gamma_h, jac, lu, piv, wk):
+    """The Jacobian at y0 and the LU factors of I / gamma_h - J (a Rosenbrock method's
+    stage matrix; gamma_h: its gamma times the step [s]). False if it is singular."""
+    n = y0.shape[0]
+    lin = wk[W_K2:W_K6]  # the stages k2 .. k5, not yet written: the Jacobian's scratch
+    if is_dense(piv, n):
+        jacobian(p, pts, modes, y0, jac, lin)
+    else:
+        jacobian_arrow(p, pts, modes, y0, jac, lin)
+    return stage_factor(jac, 1.0 / gamma_h, lu, piv)
+
+
+@kernel_jit
 def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     """Advance from y0 (with f0 = rhs(y0)) by h. Writes y1 and the dense output rows.
 
@@ -32,12 +45,7 @@ def rodas_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     estimate is left in wk[W_K6] (order-4 minus order-3 solution).
     """
     n = y0.shape[0]
-    lin = wk[W_K2:W_K6]  # the stages k2 .. k5, not yet written: the Jacobian's scratch
-    if is_dense(piv, n):
-        jacobian(p, pts, modes, y0, jac, lin)
-    else:
-        jacobian_arrow(p, pts, modes, y0, jac, lin)
-    if not stage_factor(jac, 1.0 / (co.GAMMA * h), lu, piv):
+    if not factor_stage_matrix(p, pts, modes, y0, co.GAMMA * h, jac, lu, piv, wk):
         return False
     ytmp = wk[W_Y]
     ftmp = wk[W_F]

@@ -12,9 +12,25 @@ import math
 
 from . import coefficients_rodas5 as co
 from .jit import kernel_jit
-from .linalg import is_dense, stage_factor, stage_solve
-from .model import jacobian, jacobian_arrow, rhs
-from .rodas import W_B, W_F, W_K1, W_K2, W_K3, W_K4, W_K5, W_K6, W_K7, W_K8, W_Q1, W_Q2, W_Q3, W_Y
+from .linalg import stage_solve
+from .model import rhs
+from .rodas import (
+    W_B,
+    W_F,
+    W_K1,
+    W_K2,
+    W_K3,
+    W_K4,
+    W_K5,
+    W_K6,
+    W_K7,
+    W_K8,
+    W_Q1,
+    W_Q2,
+    W_Q3,
+    W_Y,
+    factor_stage_matrix,
+)
 
 
 @kernel_jit
@@ -23,12 +39,7 @@ def rodas5_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     error estimate is left in wk[W_K8] (order-5 minus order-4 solution). Returns False if
     the iteration matrix is singular or a value is not finite."""
     n = y0.shape[0]
-    lin = wk[W_K2:W_K6]  # the stages k2 .. k5, not yet written: the Jacobian's scratch
-    if is_dense(piv, n):
-        jacobian(p, pts, modes, y0, jac, lin)
-    else:
-        jacobian_arrow(p, pts, modes, y0, jac, lin)
-    if not stage_factor(jac, 1.0 / (co.GAMMA * h), lu, piv):
+    if not factor_stage_matrix(p, pts, modes, y0, co.GAMMA * h, jac, lu, piv, wk):
         return False
     ytmp = wk[W_Y]
     ftmp = wk[W_F]
@@ -116,27 +127,19 @@ def rodas5_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
 @kernel_jit
 def dense_rows(wk, n):
     """The dense-output rows W_Q1 .. W_Q3 of the last step from its stages k1 .. k8."""
-    k1 = wk[W_K1]
-    k2 = wk[W_K2]
-    k3 = wk[W_K3]
-    k4 = wk[W_K4]
-    k5 = wk[W_K5]
-    k6 = wk[W_K6]
-    k7 = wk[W_K7]
-    k8 = wk[W_K8]
     q1 = wk[W_Q1]
     q2 = wk[W_Q2]
     q3 = wk[W_Q3]
     for i in range(n):
-        q1[i] = (
-            co.H21 * k1[i] + co.H22 * k2[i] + co.H23 * k3[i] + co.H24 * k4[i]
-            + co.H25 * k5[i] + co.H26 * k6[i] + co.H27 * k7[i] + co.H28 * k8[i]
-        )  # fmt: skip
-        q2[i] = (
-            co.H31 * k1[i] + co.H32 * k2[i] + co.H33 * k3[i] + co.H34 * k4[i]
-            + co.H35 * k5[i] + co.H36 * k6[i] + co.H37 * k7[i] + co.H38 * k8[i]
-        )  # fmt: skip
-        q3[i] = (
-            co.H41 * k1[i] + co.H42 * k2[i] + co.H43 * k3[i] + co.H44 * k4[i]
-            + co.H45 * k5[i] + co.H46 * k6[i] + co.H47 * k7[i] + co.H48 * k8[i]
-        )  # fmt: skip
+        q1[i] = stage_sum(wk, i, co.H21, co.H22, co.H23, co.H24, co.H25, co.H26, co.H27, co.H28)
+        q2[i] = stage_sum(wk, i, co.H31, co.H32, co.H33, co.H34, co.H35, co.H36, co.H37, co.H38)
+        q3[i] = stage_sum(wk, i, co.H41, co.H42, co.H43, co.H44, co.H45, co.H46, co.H47, co.H48)
+
+
+@kernel_jit
+def stage_sum(wk, i, c1, c2, c3, c4, c5, c6, c7, c8):
+    """sum_j c_j k_j[i] over the eight stages of the last step, summed in stage order."""
+    return (
+        c1 * wk[W_K1, i] + c2 * wk[W_K2, i] + c3 * wk[W_K3, i] + c4 * wk[W_K4, i]
+        + c5 * wk[W_K5, i] + c6 * wk[W_K6, i] + c7 * wk[W_K7, i] + c8 * wk[W_K8, i]
+    )  # fmt: skip
