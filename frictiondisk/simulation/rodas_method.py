@@ -1,5 +1,6 @@
-"""The methods rodas4, rodas4-fixed and rodas5: the scene packed into the step loop's records, the
-numba step loop (simulation/loop.py), the energy diagnostic and the labelled result."""
+"""The methods rodas4, rodas4-fixed and rodas5: the scene packed into the step loop's
+records, the numba step loop (simulation/loop.py), the energy diagnostic and the labelled
+result."""
 
 from __future__ import annotations
 
@@ -31,7 +32,8 @@ def simulate_rodas(
     verdict: VerdictParams | None = None,
 ) -> SimulationResult:
     """Run one scene with the numba kernel, RODAS4 (adaptive, or fixed steps of
-    numerics.dt for rodas4-fixed) or RODAS5 (adaptive), and label it (arguments: simulation/simulate.py)."""
+    numerics.dt for rodas4-fixed) or RODAS5 (adaptive), and label it (arguments:
+    simulation/simulate.py)."""
     verdict = verdict or VerdictParams()
     p, pts = pack_parameters(config)
     y0 = initial_state(config)
