@@ -92,7 +92,8 @@ def test_a_check_whose_budget_ran_out_is_not_restarted():
 
 
 def _drive_requests(search, answer):
-    """drive_results, with answer(request) given the whole request."""
+    """Feed `search` until done; answer(request) gives each run's result. As the engine
+    does (tasks/in_order.py), a run the search no longer waits for is dropped."""
     while not search.done:
         for request in list(search.pending()):
             if not search.done and request in search.pending():
@@ -236,13 +237,8 @@ def reserve_oracle(mu_star, reserve, undetermined=()):
 
 
 def drive_results(search, answer):
-    """Feed `search` until done; answer(mu, strict) gives each run's result. As the engine
-    does (tasks/in_order.py), a run the search no longer waits for is dropped."""
-    while not search.done:
-        for request in list(search.pending()):
-            if not search.done and request in search.pending():
-                search.feed(request, answer(request.mu, request.strict))
-    return search.result()
+    """Feed `search` until done; answer(mu, strict) gives each run's result."""
+    return _drive_requests(search, lambda request: answer(request.mu, request.strict))
 
 
 def guided(tol=TOL, bracket=(0.05, 0.3)):
