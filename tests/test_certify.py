@@ -309,9 +309,22 @@ def test_a_certification_level_tightens_rtol_atol_and_lengthens_the_budget():
         factor = DEFAULT.rtol**strict
         assert num.rtol == pytest.approx(1e-6 * factor)
         assert num.atol == pytest.approx(1e-9 * factor)  # atol moves a braked disk's mu*
+        # the friction law's resolution only where asked: a slip below eps T counts as none
+        assert run_config(point, RunRequest(0.2, strict=strict), 2.0, DEFAULT).contact.eps == 1e-9
+        finer = run_config(point, RunRequest(0.2, strict=strict), 2.0, Certify(eps=0.1))
+        assert finer.contact.eps == pytest.approx(1e-9 * 0.1**strict)
         # judged from the same horizon on, with more room to find its evidence
         assert num.t_decide == pytest.approx(30.0)
         assert num.horizon_budget == pytest.approx(8.0 * DEFAULT.horizon**strict)
+
+
+def test_a_certification_setting_survives_the_campaign_file_round_trip():
+    """A campaign written back to YAML (campaign.yaml, resume) keeps the certification it
+    was given: the integrator and the resolution factor too, not only the defaults."""
+    for given in ({"method": "rodas4"}, {"eps": 0.1}, {"eps": 0.3, "levels": 1}):
+        certify = Certify(**given)
+        again = Certify(**certify.canonical())
+        assert again == certify, given
 
 
 def test_a_certification_level_checks_with_another_integrator():

@@ -38,6 +38,15 @@ class Certify(BaseModel):
         "(5th order) reaches the stricter tolerance in fewer steps and is an integrator "
         "independent of the run it checks; rodas4 re-runs the same one (docs/wellposed.md)",
     )
+    eps: float = field(
+        1.0,
+        "1",
+        "factor on contact.eps (the slide->stick threshold, the friction law's resolution) "
+        "per level: 0.1 checks that a verdict a slip below eps T a revolution decided holds "
+        "at a finer resolution, at a cost; 1: off (docs/model.md section 7)",
+        gt=0,
+        le=1,
+    )
     observe: bool = field(
         False,
         None,
@@ -73,8 +82,13 @@ class Certify(BaseModel):
             "levels": self.levels,
             "rtol": self.rtol,
         }
-        if self.observe:  # absent when off: the journals of earlier campaigns stay valid
+        # absent when off or default: the journals of earlier campaigns stay valid
+        if self.observe:
             found["observe"] = True
+        if self.eps != 1.0:
+            found["eps"] = self.eps
+        if self.method != "rodas5":
+            found["method"] = self.method
         found["watch"] = self.watch  # on by default: 0 must survive a round trip
         return found
 

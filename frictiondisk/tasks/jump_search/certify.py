@@ -393,7 +393,8 @@ class CertifiedBisection:
     def _describe(self) -> str:
         level = self.search.strict + (1 if self._verdict != "vanished" else 0)
         reach = f", reaching as far as {self.max_retries} retries" if self.max_retries else ""
+        finer = f"eps x {self.certify.eps**level:g}, " if self.certify.eps != 1.0 else ""
         return (
-            f"ends re-run at rtol and atol x {self.certify.rtol**level:g}, "
+            f"ends re-run at rtol and atol x {self.certify.rtol**level:g}, {finer}"
             f"horizon budget x {self.certify.horizon**level:g}{reach}"
         )

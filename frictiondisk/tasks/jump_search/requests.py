@@ -25,7 +25,8 @@ def run_config(
     """The scene of one requested run: `parameter` (mu unless a find_jump bisects another
     scene key) = request.mu (and the request's numerics.mode, if it names one)
     set, horizon lengthened by the retry level; at certification level `request.strict`
-    rtol and atol are multiplied by certify.rtol and the horizon budget by certify.horizon,
+    rtol and atol are multiplied by certify.rtol, contact.eps by certify.eps and the
+    horizon budget by certify.horizon,
     once per level, and by horizon_factor once per level of `request.reach`, and a rodas4
     point's run integrates with certify.method unless `request.own_method`."""
     num = point_config.numerics
@@ -43,6 +44,10 @@ def run_config(
         # times the budget to find its evidence (docs/model.md section 7)
         overrides["numerics.rtol"] = num.rtol * certify.rtol**request.strict
         overrides["numerics.atol"] = num.atol * certify.rtol**request.strict
+        if certify.eps != 1.0:
+            # the friction law's resolution too: a slip below eps T a revolution counts as
+            # none, so a verdict that slip decided must hold at a finer one
+            overrides["contact.eps"] = point_config.contact.eps * certify.eps**request.strict
         if num.method == "rodas4" and not request.own_method:
             # another integrator, of higher order: fewer steps at the stricter tolerance
             overrides["numerics.method"] = certify.method
