@@ -96,6 +96,71 @@ def test_limit_capacity_has_a_static_certificate_and_beats_brute_force(force, to
     assert 12 * np.linalg.norm(elastic, axis=1).max() >= lam * (1 - 1e-9)
 
 
+def _static_limit(force, torque, pts, weights, sides=256):
+    """min over patterns carrying (force, torque) of N max_i |f_i| / W_i by a linear
+    programme: each |f_i| <= t W_i / N on a circumscribed polygon of `sides` sides, so a
+    lower bound within 1 / cos(pi / sides) of the true value (scipy's HiGHS, independent of
+    the kernel's IRLS)."""
+    from scipy.optimize import linprog
+
+    n = pts.shape[0]
+    ang = 2 * np.pi * np.arange(sides) / sides
+    # unknowns: f_1x, f_1y, ..., f_nx, f_ny, t (t = the demand N max |f_i| / W_i)
+    rows, rhs = [], []
+    for i in range(n):
+        for a in ang:
+            row = np.zeros(2 * n + 1)
+            row[2 * i : 2 * i + 2] = math.cos(a), math.sin(a)
+            row[-1] = -weights[i] / n
+            rows.append(row)
+            rhs.append(0.0)
+    eq = np.zeros((3, 2 * n + 1))
+    eq[0, 0 : 2 * n : 2] = 1.0
+    eq[1, 1 : 2 * n : 2] = 1.0
+    eq[2, 0 : 2 * n : 2] = -pts[:, 1]
+    eq[2, 1 : 2 * n : 2] = pts[:, 0]
+    cost = np.zeros(2 * n + 1)
+    cost[-1] = 1.0
+    found = linprog(
+        cost,
+        A_ub=np.array(rows),
+        b_ub=rhs,
+        A_eq=eq,
+        b_eq=[force[0], force[1], torque],
+        bounds=[(None, None)] * (2 * n) + [(0, None)],
+        method="highs",
+    )
+    assert found.status == 0, found.message
+    return found.fun
+
+
+@pytest.mark.parametrize(
+    "force,torque", [([1.0, 0.0], 0.05), ([0.1, 0.2], 0.004), ([0.0, 0.3], 0.1)]
+)
+def test_weighted_limit_matches_a_static_linear_programme(force, torque):
+    """Points of unequal weight W_i (mean 1), each with its share of mu F_n: an annulus's
+    points, weighted 1 : 3 in turn (an annulus's own weights differ by a few per cent). The
+    kernel's weighted Lambda (verdict/limit_analysis.py, as the shakedown bound reads it on
+    the run) equals the static optimum of a linear programme to the polygon's resolution,
+    and weights 1 give the unweighted value bit for bit."""
+    from frictiondisk.model import layouts
+    from frictiondisk.verdict.limit_analysis import limit_motion
+
+    positions, _ = layouts.annulus(16, 0.03, 0.08)
+    weights = layouts.relative_weights(np.tile([1.0, 3.0], 8))
+    pts = np.column_stack((positions, weights))
+    value = limit_motion(force[0], force[1], torque, pts)[3]
+    lam = 16 / value
+    static = _static_limit(force, torque, positions, weights)
+    assert static <= lam * (1 + 1e-6)
+    assert static >= lam * math.cos(math.pi / 256) * (1 - 1e-6)
+    # the weights change the answer by more than the programme resolves: it tells them apart
+    equal = 16 / limit_motion(force[0], force[1], torque, positions)[3]
+    assert abs(equal - lam) > 2 * (1 - math.cos(math.pi / 256)) * lam
+    ones = np.column_stack((positions, np.ones(16)))
+    assert 16 / limit_motion(force[0], force[1], torque, ones)[3] == equal
+
+
 def test_stuck_braked_disk_carries_the_required_load():
     """A simulated stuck disk: sum F_i and sum a_i x F_i equal the required force and torque
     (steady co-rotation, up to the contact transient), its worst point is within the

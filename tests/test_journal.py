@@ -5,6 +5,7 @@ Fast tests, no kernel runs: journal entries hold hand-made results.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import signal
@@ -75,6 +76,43 @@ def test_kernel_version_follows_the_numerics_version_not_the_sources(monkeypatch
     assert kernel_version() == before
 
 
+def test_a_run_key_names_the_last_version_that_changed_its_scene():
+    """Version 11 changed only braked disks on layouts of unequal weight (the shakedown
+    bound reads the weights): their keys change, every other scene keeps its version-10 key,
+    so journals stay valid where nothing changed."""
+    from frictiondisk.store.journal_entry import key_version
+    from frictiondisk.version import NUMERICS_VERSION, UNCHANGED_SINCE
+
+    annulus = {"layout": "annulus", "inner_radius": 0.03, "outer_radius": 0.08, "points": 16}
+    cases = {
+        "pin": ({"scene": "pin"}, UNCHANGED_SINCE),
+        "braked ring": ({"scene": "disk", "params": {"beta_b": 0.005}}, UNCHANGED_SINCE),
+        "unbraked annulus": ({"scene": "disk", "contact": annulus}, UNCHANGED_SINCE),
+        "braked annulus": (
+            {"scene": "disk", "params": {"beta_b": 0.005}, "contact": annulus},
+            NUMERICS_VERSION,
+        ),
+        "braked, equal points": (
+            {
+                "scene": "disk",
+                "params": {"beta_b": 0.005},
+                "contact": {"layout": "points", "positions": [[0.05, 0], [-0.05, 0]]},
+            },
+            UNCHANGED_SINCE,
+        ),
+    }
+    assert NUMERICS_VERSION > UNCHANGED_SINCE
+    for name, (data, version) in cases.items():
+        canonical = scene_from_dict(data).canonical()
+        assert key_version(canonical) == version, name
+        text = json.dumps(
+            {"scene": canonical, "kernel": kernel_version(version)},
+            sort_keys=True,
+            separators=(",", ":"),
+        )
+        assert run_key(scene_from_dict(data)) == hashlib.sha256(text.encode()).hexdigest()
+
+
 def test_kernel_version_follows_a_library_version(monkeypatch):
     real = journal_module.metadata.version
     before = kernel_version()
@@ -114,7 +152,7 @@ def test_run_key_ignores_how_defaults_are_written():
 def test_run_key_changes_with_kernel_version(monkeypatch):
     config = scene_from_dict({"scene": "pin"})
     before = run_key(config)
-    monkeypatch.setattr(journal_module, "kernel_version", lambda: "fedcba9876543210")
+    monkeypatch.setattr(journal_module, "kernel_version", lambda version=None: "fedcba9876543210")
     assert run_key(config) != before
 
 

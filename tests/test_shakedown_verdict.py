@@ -238,3 +238,53 @@ def test_a_stick_of_the_rules_waits_while_its_own_circle_cannot_hold_it():
     assert res.revolutions[-1]["reserve"] < -10 * sv.margin(config)
     rules = simulate(config.with_overrides({"numerics.evidence": "observe"}))
     assert rules.outcome == "stick" and rules.t_end < res.t_end, rules.reason
+
+
+# Well-posedness study, generator 2, seed 3 scene 29: a braked disk from rest on a 16-point
+# annulus (weights 0.98 and 1.01). Left to the rules (before NUMERICS_VERSION 11) its
+# certified stick end 0.1066638 co-rotated at eps = 1e-9 m/s with a slip of 96 % of eps T a
+# revolution, and ratchets at eps / 100. The weighted bound puts the jump near 0.10691.
+ANNULUS = {
+    "scene": "disk",
+    "params": {
+        "J_s": 0.027257297042697037,
+        "beta_b": 0.0008649380265505754,
+        "m_s": 1.3866889746378783,
+        "omega_m": 0.8355400137256128,
+        "x0": -0.006091341376040765,
+        "x_ms": 0.09263328072164023,
+    },
+    "contact": {
+        "layout": "annulus",
+        "inner_radius": 0.026422572699741267,
+        "outer_radius": 0.07627772809853586,
+        "points": 16,
+    },
+    "numerics": {"rtol": 1e-6, "atol": 1e-12, "t_decide": 30.0},
+}
+
+
+def test_an_annulus_is_decided_by_its_weighted_bound_and_the_watch_agrees():
+    """The bound reads the weights of a centred layout, so it decides the annulus, and the
+    oracle (watching at eps / 100, rtol and atol / 100, which never consults the bound)
+    agrees on both sides: 3 tol above the bound the disk sticks; the old stick end, 2.4 tol
+    below it, ratchets for good."""
+    config = scene_from_dict(ANNULUS)
+    assert sv.applies(config.with_overrides({"params.mu": 0.1}))
+    assert not np.all(config.contact_weights() == config.contact_weights()[0])
+    watch = {
+        "numerics.evidence": "observe",
+        "numerics.rtol": 1e-8,
+        "numerics.atol": 1e-14,
+        "numerics.t_decide": 1500.0,
+        "contact.eps": 1e-11,
+    }
+    above, below = 0.10691 + 3 * TOL, 0.1066638
+    run = simulate(config.with_overrides({"params.mu": above}))
+    assert run.outcome == "stick" and "Melan" in run.reason, run.reason
+    seen = simulate(config.with_overrides({"params.mu": above, **watch}))
+    assert seen.outcome == "stick", seen.reason
+    run = simulate(config.with_overrides({"params.mu": below}))
+    assert run.outcome != "stick", run.reason
+    seen = simulate(config.with_overrides({"params.mu": below, **watch}))
+    assert seen.outcome == "creep", seen.reason

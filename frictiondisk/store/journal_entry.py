@@ -13,7 +13,10 @@ import re
 from importlib import metadata
 from typing import Any
 
-from frictiondisk.version import NUMERICS_VERSION
+import numpy as np
+
+from frictiondisk.model import layouts
+from frictiondisk.version import NUMERICS_VERSION, UNCHANGED_SINCE
 
 __all__ = [
     "ENTRY_VERSION",
@@ -21,6 +24,7 @@ __all__ = [
     "encode",
     "kernel_version",
     "key_of_inputs",
+    "key_version",
     "run_key",
     "verify",
 ]
@@ -38,7 +42,7 @@ NUMERICS_LIBRARIES = ("numba", "numpy", "scipy")
 
 
 @functools.cache
-def kernel_version() -> str:
+def kernel_version(version: int | None = None) -> str:
     """Version of the numerics, part of every `run_key`, e.g.
     "numerics 1, numba 0.68.1, numpy 2.4.6, scipy 1.17.1".
 
@@ -46,21 +50,49 @@ def kernel_version() -> str:
     alters what a run computes; an edited comment or docstring leaves every key as it was.
     The library versions come from the installed distributions' metadata (nothing is
     imported): a new numba, numpy or scipy can change results in the last digits, so
-    journal entries computed with other versions are not reused. Computed once per process.
+    journal entries computed with other versions are not reused. Computed once per process
+    and version (None: NUMERICS_VERSION).
     """
+    version = NUMERICS_VERSION if version is None else version
     libraries = ", ".join(f"{name} {metadata.version(name)}" for name in NUMERICS_LIBRARIES)
-    return f"numerics {NUMERICS_VERSION}, {libraries}"
+    return f"numerics {version}, {libraries}"
+
+
+def _unequal_weights(contact: dict[str, Any]) -> bool:
+    """Whether a disk's canonical `contact` spreads its normal force unequally."""
+    layout = contact.get("layout", "ring")
+    if layout == "annulus":
+        shares = layouts.annulus(
+            contact["points"], contact["inner_radius"], contact["outer_radius"]
+        )[1]
+    elif layout == "points":
+        shares = np.asarray(contact.get("weights") or [1.0], dtype=float)
+    else:
+        return False
+    weights = layouts.relative_weights(shares)
+    return not bool(np.all(weights == weights[0]))
+
+
+def key_version(scene: dict[str, Any]) -> int:
+    """The numerics version in a run's key: the newest version that changed what this
+    canonical scene computes (frictiondisk/version.py UNCHANGED_SINCE): NUMERICS_VERSION for
+    a braked disk on a layout of unequal weight, UNCHANGED_SINCE for every other scene."""
+    braked = scene.get("scene") == "disk" and scene.get("params", {}).get("beta_b", 0.0) > 0.0
+    if braked and _unequal_weights(scene.get("contact", {})):
+        return NUMERICS_VERSION
+    return UNCHANGED_SINCE
 
 
 def run_key(config: Any) -> str:
     """Journal key of one run: sha256 hex of its canonical scene and the kernel version.
 
     `config` is a validated `SceneConfig` (anything with `.canonical()` works). The key is
-    the sha256 of `{"scene": config.canonical(), "kernel": kernel_version()}` as compact,
-    key-sorted JSON.
+    the sha256 of `{"scene": config.canonical(), "kernel": kernel_version(v)}` as compact,
+    key-sorted JSON, v = `key_version` of the scene.
     """
+    scene = config.canonical()
     text = json.dumps(
-        {"scene": config.canonical(), "kernel": kernel_version()},
+        {"scene": scene, "kernel": kernel_version(key_version(scene))},
         sort_keys=True,
         separators=(",", ":"),
     )

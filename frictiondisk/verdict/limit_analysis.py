@@ -1,6 +1,8 @@
 """The rigid-plastic limit of a force and a torque on a set of contact points (numba):
-Lambda(F, T) = min over contact force patterns carrying (F, T) of N max_i |f_i|, from its
-kinematic form, by iteratively reweighted least squares (IRLS). The shakedown bound
+Lambda(F, T) = min over contact force patterns carrying (F, T) of N max_i |f_i| / W_i, from
+its kinematic form, by iteratively reweighted least squares (IRLS). W_i is point i's
+relative weight (pts[i, 2], mean 1: its share of the normal force, so of the friction
+limit, times N; 1 where pts has no third column). Equal weights give N max_i |f_i|. The shakedown bound
 (verdict/shakedown_bound.py) reads it on the run; verdict/admissibility.py around it.
 IRLS_ITERS and IRLS_TOL are the solver's numerics; its accuracy enters the bound's margin
 (VerdictParams.bound_solver_rtol)."""
@@ -18,11 +20,14 @@ IRLS_TOL = 1e-10  # ... which stops once its value changes by less than this sha
 
 @kernel_entry_allocating
 def limit_motion(fx, fy, torque, pts):
-    """The optimal rigid slip motion behind Lambda(F, T) on the points pts[:, 0:2] [m]:
-    min over (v, w) of sum_i |v + w J a_i| subject to F.v + T w = 1, by iteratively
-    reweighted least squares. Returns (v_x, v_y, w, value); Lambda = N / value [N].
-    force (fx, fy) [N], torque [N m]; not for points all at the centre."""
+    """The optimal rigid slip motion behind Lambda(F, T) on the points pts[:, 0:2] [m]
+    with relative weights pts[:, 2] (if given): min over (v, w) of sum_i W_i |v + w J a_i|
+    subject to F.v + T w = 1, by iteratively reweighted least squares. Returns
+    (v_x, v_y, w, value); Lambda = N / value [N] (the dual: F.v + T w = sum f_i.s_i <=
+    sum |f_i| |s_i| <= (Lambda / N) sum W_i |s_i|). force (fx, fy) [N], torque [N m]; not
+    for points all at the centre."""
     n = pts.shape[0]
+    weighted = pts.shape[1] > 2
     c = np.array([fx, fy, torque])
     cc = fx * fx + fy * fy + torque * torque
     x = c / cc  # a feasible start
@@ -39,7 +44,8 @@ def limit_motion(fx, fy, torque, pts):
             ay = pts[i, 1]
             sx = x[0] - x[2] * ay
             sy = x[1] + x[2] * ax
-            wgt = 1.0 / math.sqrt(sx * sx + sy * sy + delta * delta)
+            share = pts[i, 2] if weighted else 1.0
+            wgt = share / math.sqrt(sx * sx + sy * sy + delta * delta)
             h[0, 0] += wgt
             h[1, 1] += wgt
             h[0, 2] -= wgt * ay
@@ -58,7 +64,8 @@ def limit_motion(fx, fy, torque, pts):
         for i in range(n):
             sx = x[0] - x[2] * pts[i, 1]
             sy = x[1] + x[2] * pts[i, 0]
-            value += math.sqrt(sx * sx + sy * sy)
+            share = pts[i, 2] if weighted else 1.0
+            value += share * math.sqrt(sx * sx + sy * sy)
         if abs(prev - value) <= IRLS_TOL * value:
             break
         prev = value

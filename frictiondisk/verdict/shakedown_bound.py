@@ -23,7 +23,8 @@ from .limit_analysis import limit_motion
 def corotation_reserve(p, pts, x, y, phi):
     """mu - shakedown demand / F_n [1] of the disk co-rotating with centre (x, y) [m] and
     spin angle phi [rad]: the body-frame direction of C = A r fixes the layout angle.
-    Equal normal force per point (the caller checks the weights)."""
+    Point i carries pts[i, 2] / N of F_n (limit_analysis); the preload's share follows
+    the same weights, which needs a layout centred on its weights (the caller checks)."""
     omega = p.omega_m
     k = p.c_s - p.m_s * omega * omega
     d = p.beta_s * omega
@@ -38,15 +39,16 @@ def corotation_reserve(p, pts, x, y, phi):
 @kernel_entry
 def floor_reserve(p, pts):
     """mu - the least shakedown demand over every sticking circle and layout angle / F_n
-    [1]: c_s |x_ms| + min over C of Lambda(C, T), and that minimum is N T / sum |a_i|
-    (every pattern carrying T has max |f_i| >= T / sum |a_i|; equal tangential forces
-    reach it, with a resultant C that some circle supplies, as C = A r covers the plane).
+    [1]: c_s |x_ms| + min over C of Lambda(C, T), and that minimum is N T / sum W_i |a_i|
+    (every pattern carrying T has max N |f_i| / W_i >= N T / sum W_i |a_i|; tangential
+    forces in proportion to the weights reach it, with a resultant C that some circle
+    supplies, as C = A r covers the plane).
     Below zero the disk can stick for good on no circle (Koiter): permanent sticking is
     a shaken-down state, which needs Melan's condition on its circle."""
     n = pts.shape[0]
     arms = 0.0
     for i in range(n):
-        arms += math.hypot(pts[i, 0], pts[i, 1])
+        arms += pts[i, 2] * math.hypot(pts[i, 0], pts[i, 1])
     if not arms > 0.0:
         return -math.inf  # no lever: the brake torque cannot be carried at all
     torque = abs(p.beta_b * p.omega_m)

@@ -28,7 +28,11 @@ this module words that verdict for the label, and applies it to runs that ended 
 Not applied with `numerics.evidence: observe` (watching runs count only what they show),
 with stick_rule `contacts`, to pins and unbraked disks (there the shakedown demand equals
 the elastic one, c_s |x_ms| + g R, and no residual pattern is at stake), or to layouts
-with unequal weights (the bound assumes equal normal force per point).
+with unequal weights whose weighted centre is off the disk's centre (there a force also
+twists the disk, and the preload's share of a point is not its weight). An annulus
+(points of unequal weight in bands, centred) is bounded like a ring, each point's limit
+its share of mu F_n (verdict/limit_analysis.py); before 2026-12-05 it was left to the
+rules, whose stick there is a ratchet slower than eps T (docs/wellposed.md).
 """
 
 from __future__ import annotations
@@ -38,7 +42,7 @@ import numpy as np
 from . import shakedown_bound as sdb
 from .params import VerdictParams
 
-__all__ = ["applies", "decide", "margin"]
+__all__ = ["applies", "centred", "decide", "margin"]
 
 
 def applies(config) -> bool:
@@ -49,7 +53,18 @@ def applies(config) -> bool:
     if num.stick_rule != "corotation" or num.evidence == "observe":
         return False
     weights = np.asarray(config.contact_weights(), dtype=float)
-    return bool(np.all(weights == weights[0]))
+    return bool(np.all(weights == weights[0])) or centred(config.contact_positions(), weights)
+
+
+def centred(positions: np.ndarray, weights: np.ndarray) -> bool:
+    """Whether the layout's weighted centre sum W_i a_i is the disk's centre (to round-off):
+    then a force on the disk is shared elastically in proportion to the weights, with no
+    twist, so the preload loads each point as its weight says (a ring, an annulus)."""
+    positions = np.asarray(positions, dtype=float)
+    weights = np.asarray(weights, dtype=float)
+    centre = np.abs((weights[:, None] * positions).sum(axis=0)).max()
+    arms = float((weights * np.hypot(positions[:, 0], positions[:, 1])).sum())
+    return bool(centre <= 1e-12 * arms)
 
 
 def margin(config, vp: VerdictParams | None = None) -> float:
