@@ -2,8 +2,9 @@
 Lambda(F, T) = min over contact force patterns carrying (F, T) of N max_i |f_i| / W_i, from
 its kinematic form, by iteratively reweighted least squares (IRLS). W_i is point i's
 relative weight (pts[i, 2], mean 1: its share of the normal force, so of the friction
-limit, times N; 1 where pts has no third column). Equal weights give N max_i |f_i|. The shakedown bound
-(verdict/shakedown_bound.py) reads it on the run; verdict/admissibility.py around it.
+limit, times N; 1 where pts has no third column); equal weights give N max_i |f_i|. The
+shakedown bound (verdict/shakedown_bound.py) reads it on the run; verdict/admissibility.py
+around it.
 IRLS_ITERS and IRLS_TOL are the solver's numerics; its accuracy enters the bound's margin
 (VerdictParams.bound_solver_rtol)."""
 
