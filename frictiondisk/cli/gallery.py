@@ -14,7 +14,7 @@ once). A campaign folder that OUT does not hold yet is copied from DIR first (if
 says `complete`), and the generator resumes the copy: a run is reused only if the journal
 holds it under this code's numerics version (the version is part of every journal key),
 so the figure is this code's either way, and a folder of older numerics is run again.
-No figure needs campaigns/clutch_annulus.yaml (hours).
+No figure needs campaigns/clutch_annulus.yaml.
 
 Cost, measured 2026-11-28 one campaign or study at a time on the shared 2-core machine
 (load 6-13; docs/user-guide.md, "The gallery"): the figure campaigns 15-21 min
