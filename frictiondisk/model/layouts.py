@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-__all__ = ["annulus", "annulus_bands", "relative_weights", "ring"]
+__all__ = ["annulus", "annulus_bands", "layout", "relative_weights", "ring"]
 
 
 def ring(n: int, radius: float) -> tuple[np.ndarray, np.ndarray]:
@@ -61,6 +61,25 @@ def annulus(n: int, inner: float, outer: float) -> tuple[np.ndarray, np.ndarray]
         positions.append(rho * np.column_stack((np.cos(angles), np.sin(angles))))
         shares.append(np.full(count, math.pi * (r1**2 - r0**2) / count))
     return np.vstack(positions), np.concatenate(shares)
+
+
+def layout(
+    kind: str,
+    n: int,
+    ring_radius: float | None = None,
+    inner_radius: float | None = None,
+    outer_radius: float | None = None,
+    positions=None,
+    weights=None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """(positions (N, 2) [m], shares) of a disk's `contact.layout` `kind` (ring, annulus or
+    points) with its keys; explicit points without weights share equally."""
+    if kind == "annulus":
+        return annulus(n, inner_radius, outer_radius)
+    if kind == "points":
+        shares = np.ones(n) if weights is None else np.array(weights)
+        return np.array(positions, dtype=float).reshape(-1, 2), shares
+    return ring(n, ring_radius)
 
 
 def relative_weights(shares: np.ndarray) -> np.ndarray:

@@ -394,12 +394,15 @@ class SceneConfig(BaseModel):
         con = self.contact
         if self.scene == "pin":
             return np.zeros((1, 2)), np.ones(1)
-        if con.layout == "annulus":
-            return layouts.annulus(self.n_contacts, con.inner_radius, con.outer_radius)
-        if con.layout == "points":
-            shares = np.ones(self.n_contacts) if con.weights is None else np.array(con.weights)
-            return np.array(con.positions, dtype=float).reshape(-1, 2), shares
-        return layouts.ring(self.n_contacts, con.ring_radius)
+        return layouts.layout(
+            con.layout,
+            self.n_contacts,
+            con.ring_radius,
+            con.inner_radius,
+            con.outer_radius,
+            con.positions,
+            con.weights,
+        )
 
     def contact_positions(self) -> np.ndarray:
         """Body-frame contact points p_i [m], shape (N, 2), of `contact.layout`

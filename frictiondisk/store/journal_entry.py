@@ -60,15 +60,17 @@ def kernel_version(version: int | None = None) -> str:
 
 def _unequal_weights(contact: dict[str, Any]) -> bool:
     """Whether a disk's canonical `contact` spreads its normal force unequally."""
-    layout = contact.get("layout", "ring")
-    if layout == "annulus":
-        shares = layouts.annulus(
-            contact["points"], contact["inner_radius"], contact["outer_radius"]
-        )[1]
-    elif layout == "points":
-        shares = np.asarray(contact.get("weights") or [1.0], dtype=float)
-    else:
+    kind = contact.get("layout", "ring")
+    if kind == "ring":
         return False
+    shares = layouts.layout(
+        kind,
+        contact["points"],
+        inner_radius=contact.get("inner_radius"),
+        outer_radius=contact.get("outer_radius"),
+        positions=contact.get("positions"),
+        weights=contact.get("weights"),
+    )[1]
     weights = layouts.relative_weights(shares)
     return not bool(np.all(weights == weights[0]))
 
