@@ -260,7 +260,7 @@ def test_the_report_counts_disagreements_silent_errors_and_failures(tmp_path):
     lines = report.report(rows_, 10.0)
     assert "1 disagree; settled run by run: reference right 1" in lines[1]
     assert lines[2].endswith(": 1")  # silent: settled against a certified default
-    assert "failed points (honest, with a reason): 1 of 3 (33.3 %)" in lines[5]
+    assert "failed points (honest, with a reason): 1 of 3 (33.3 %)" in lines[6]
     assert any("certification costs +56 %" in line for line in lines)  # 7.0 s over 4.5 s
     assert any(line.startswith("    1/2: 0.25000 [certified] vs 0.15000") for line in lines)
     assert any("failed 1/4: undetermined at 0.3" in line for line in lines)
@@ -312,6 +312,41 @@ def test_a_certified_end_that_its_watch_contradicts_is_a_silent_error_within_tol
     assert judge.end_contradicted(row)
     uncertain = {**row, "default": dataclasses.replace(default, certification="uncertain")}
     assert study.watched_mu(uncertain)[2] == [] and judge.silent_errors([uncertain]) == 0
+
+
+def test_the_exact_watch_may_have_a_shorter_horizon():
+    """--exact-horizon: the exact Coulomb watch runs to the given horizon, a watch scene,
+    so a campaign, of its own; without it the whole watch budget."""
+    scene = scenes.draw_scene(1, 48)  # a pin with Coulomb friction
+    point = campaigns.campaign(settings.locate_campaign("d", scene, "default")).points()[0]
+    whole = settings.watch_scene(point.config, exact=True)
+    short = settings.watch_scene(point.config, exact=True, exact_horizon=1500.0)
+    assert whole["numerics"]["t_decide"] == settings.SETTLE_HORIZON * settings.SETTLE_BUDGET
+    assert short["numerics"]["t_decide"] == 1500.0
+    assert short["numerics"]["method"] == "coulomb"
+    assert settings.watch_prefix(1, 48, "coulomb", short) != settings.watch_prefix(
+        1, 48, "coulomb", whole
+    )
+    assert settings.watch_scene(point.config, exact_horizon=1500.0) == settings.watch_scene(
+        point.config
+    )  # the regularized watch keeps its own
+
+
+def test_the_report_says_what_the_end_watches_showed():
+    default = found(0.15, [(0.14995, False), (0.15005, True)])
+    exact = {"outcome": "undetermined", "t_end": 1500.0, "reason": "horizon reached"}
+    row = {
+        "default": default,
+        "ends": [
+            {"mu": default.mu_lo, "sticks": None, "coulomb": exact},
+            {"mu": default.mu_hi, "sticks": True, "coulomb": {**exact, "outcome": "stick"}},
+        ],
+    }
+    line = report.end_watch_line([row])
+    assert "watched: 2: confirmed 1, contradicted 0, open 1" in line
+    assert "exact Coulomb watches 2 (stick 1, the longest to 1500 s)" in line
+    row["ends"][0]["sticks"] = True
+    assert "confirmed 1, contradicted 1, open 0" in report.end_watch_line([row])
 
 
 @pytest.mark.slow

@@ -8,6 +8,7 @@ from collections import Counter
 import numpy as np
 
 from frictiondisk.studies.wellposed.judge import (
+    certified_ends,
     disagrees,
     end_contradicted,
     missed_jump,
@@ -53,7 +54,37 @@ def settled_lines(rows: list[dict], differ: list[dict]) -> list[str]:
         f"{sum(1 for r in missed if r['default'].certified)} of them certified by the default",
         f"  certified brackets whose ends were watched: {len(watched)}; an end contradicted "
         f"by its watch: {len(contradicted)}",
+        end_watch_line(watched),
     ]
+
+
+def end_watch_line(watched: list[dict]) -> str:
+    """What the watches of certified bracket ends showed: the end's claim confirmed,
+    contradicted, or left open (undetermined, or the watches in conflict); how many the
+    exact Coulomb integrator watched, and to what horizon at most."""
+    shown = Counter()
+    exact = []
+    for row in watched:
+        ends = certified_ends(row["default"])
+        claims = {ends[0]: False, ends[1]: True}
+        for run in row["ends"]:
+            if run["sticks"] is None:
+                shown["open"] += 1
+            else:
+                shown["confirmed" if run["sticks"] == claims[run["mu"]] else "contradicted"] += 1
+            if "coulomb" in run:
+                exact.append(run["coulomb"])
+    text = (
+        f"  bracket ends watched: {sum(shown.values())}: confirmed {shown['confirmed']}, "
+        f"contradicted {shown['contradicted']}, open {shown['open']}"
+    )
+    if exact:
+        stuck = sum(1 for w in exact if w["outcome"] == "stick")
+        longest = max(w["t_end"] for w in exact)
+        text += (
+            f"; exact Coulomb watches {len(exact)} (stick {stuck}, the longest to {longest:.0f} s)"
+        )
+    return text
 
 
 def answer_lines(rows: list[dict], settings: list[str]) -> list[str]:

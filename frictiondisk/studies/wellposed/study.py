@@ -53,6 +53,7 @@ class Options:
     settled_from: tuple[Path, ...] = ()
     generator: int = 1
     watch_ends: bool = True
+    exact_horizon: float | None = None
 
 
 def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options()) -> list[dict]:
@@ -70,7 +71,7 @@ def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options
         scenes.update(defaults)
     if options.reference:
         known = known_watches(list(options.settled_from))
-        settle(rows, scenes, out, options.workers, known, options.generator, options.watch_ends)
+        settle(rows, scenes, out, options, known)
     write_rows(out, rows)
     return rows
 
@@ -130,33 +131,26 @@ def watches_of(scene: dict) -> tuple[str, ...]:
     return ("regularized", "coulomb") if coulomb_pin(scene) else ("regularized",)
 
 
-def settle(
-    rows: list[dict],
-    scenes: dict,
-    out: Path,
-    workers: int,
-    known: dict,
-    generator: int = 1,
-    watch_ends: bool = True,
-) -> None:
+def settle(rows: list[dict], scenes: dict, out: Path, options: Options, known: dict) -> None:
     """Watch every disagreement at its disputed mu and every certified bracket's ends (a
     scan campaign per scene and watch, of the mu no earlier study watched), then give each
     row its settling runs."""
     scans = {}  # (seed, index, watch) -> the scan campaign of the mu it watches here
     for row in rows:
         key = (row["seed"], row["index"])
-        wanted = sorted({mu for mus in _watched(row, watch_ends) for mu in mus})
+        wanted = sorted({mu for mus in _watched(row, options.watch_ends) for mu in mus})
         earlier = known.get(key, {})
         for watch in watches_of(row["scene"]):
             todo = [mu for mu in wanted if earlier_watch(earlier.get(mu), watch) is None]
             if todo:
-                scene = watch_scene(scenes[key], exact=watch == "coulomb")
-                prefix = watch_prefix(*key, watch, scene, generator)
+                exact = watch == "coulomb"
+                scene = watch_scene(scenes[key], exact=exact, exact_horizon=options.exact_horizon)
+                prefix = watch_prefix(*key, watch, scene, options.generator)
                 scans[(*key, watch)] = watch_campaign(prefix, scene, todo)
-    campaigns.run(scans.values(), out, workers)
+    campaigns.run(scans.values(), out, options.workers)
     shown = {where: read_watches(out / scan["name"]) for where, scan in scans.items()}
     for row in rows:
-        settled, persisted, ends = _watched(row, watch_ends)
+        settled, persisted, ends = _watched(row, options.watch_ends)
         row["settled"] = [settling_run(row, mu, shown, known) for mu in settled]
         row["persisted"] = [settling_run(row, mu, shown, known) for mu in persisted]
         row["ends"] = [settling_run(row, mu, shown, known) for mu in ends]
