@@ -380,3 +380,39 @@ def test_one_scene_agrees_with_the_dense_reference_or_is_settled_for_the_default
     journal = sorted((tmp_path / "s0-0-reference" / "journal").iterdir())
     assert study.run_study([(0, 0)], tmp_path, options) == [row]
     assert sorted((tmp_path / "s0-0-reference" / "journal").iterdir()) == journal
+
+
+def test_a_contradicted_end_is_watched_again_at_a_stricter_rtol():
+    """G1 10/49: the watch at rtol 1e-6 read a slip of 1.7e-10 m a revolution at the
+    certified mu_hi as a ratchet (`creep`), which the centre drift of its own integration
+    error (1e-7 m a revolution) fed; at rtol 1e-8 the slip decays and the disk sticks.
+    The stricter watch takes the first one's place where it decides; an end the exact
+    Coulomb integrator contradicts is not watched again."""
+    default = found(0.194305, [(0.194255, False), (0.194355, True)])
+    lo, hi = default.mu_lo, default.mu_hi
+    creep = {"outcome": "creep", "t_end": 2557.7, "reason": "ratchets"}
+    stick = {"outcome": "stick", "t_end": 4837.3, "reason": "co-rotates"}
+    open_ = {"outcome": "undetermined", "t_end": 12000.0, "reason": "budget"}
+    row = {
+        "seed": 10,
+        "index": 49,
+        "default": default,
+        "ends": [judge.combine_watches(lo, open_), judge.combine_watches(hi, creep)],
+    }
+    assert judge.contradicted_ends(row) == [hi] and study.to_recheck(row) == [hi]
+    again = study.rewatched(row["ends"][1], stick)
+    assert again["sticks"] is True and again["first"]["outcome"] == "creep"
+    row["ends"][1] = again
+    assert not judge.end_contradicted(row) and judge.silent_errors([row]) == 0
+    line = report.end_watch_line([row])
+    assert "confirmed 1, contradicted 0, open 1" in line
+    assert "watched again at rtol / 100: 1, then confirmed 1" in line
+    kept = study.rewatched(judge.combine_watches(hi, creep), open_)
+    assert kept["sticks"] is False and kept["stricter"] == open_  # undecided: it stands
+    exact = judge.combine_watches(lo, open_, stick)  # the exact integrator: mu_lo sticks
+    assert study.to_recheck({**row, "ends": [exact]}) == []
+    campaign = campaigns.campaign(settings.locate_campaign("d", scenes.draw_scene(1, 0), "default"))
+    point = campaign.points()[0].config
+    first, strict = settings.watch_scene(point), settings.watch_scene(point, stricter=True)
+    assert strict["numerics"]["rtol"] == pytest.approx(first["numerics"]["rtol"] / 100)
+    assert strict["numerics"]["max_steps"] == first["numerics"]["max_steps"] * 4

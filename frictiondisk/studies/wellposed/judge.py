@@ -145,15 +145,20 @@ def end_contradicted(row: dict) -> bool:
     sticks, or the one at mu_hi shows it does not (a watch that stays undetermined
     contradicts nothing). An error even where mu* lies within tol of the reference's
     (issue 50: a certified mu_lo that sticks at 171 s, mu* 0.4 tol off)."""
+    return bool(contradicted_ends(row))
+
+
+def contradicted_ends(row: dict) -> list[float]:
+    """The ends of a certified headline bracket that their watches contradict."""
     ends = certified_ends(row["default"])
     if not ends:
-        return False
+        return []
     claims = {ends[0]: False, ends[1]: True}
-    return any(
-        run["sticks"] is not None and run["sticks"] != claims[run["mu"]]
+    return [
+        run["mu"]
         for run in row.get("ends", [])
-        if run["mu"] in claims
-    )
+        if run["mu"] in claims and run["sticks"] is not None and run["sticks"] != claims[run["mu"]]
+    ]
 
 
 def silent(row: dict) -> bool:

@@ -60,24 +60,31 @@ def settled_lines(rows: list[dict], differ: list[dict]) -> list[str]:
 
 def end_watch_line(watched: list[dict]) -> str:
     """What the watches of certified bracket ends showed: the end's claim confirmed,
-    contradicted, or left open (undetermined, or the watches in conflict); how many the
+    contradicted, or left open (undetermined, or the watches in conflict); how many
+    contradicted ends were watched again at rtol / 100 and what that showed; how many the
     exact Coulomb integrator watched, and to what horizon at most."""
-    shown = Counter()
+    shown, again = Counter(), Counter()
     exact = []
     for row in watched:
         ends = certified_ends(row["default"])
         claims = {ends[0]: False, ends[1]: True}
         for run in row["ends"]:
-            if run["sticks"] is None:
-                shown["open"] += 1
-            else:
-                shown["confirmed" if run["sticks"] == claims[run["mu"]] else "contradicted"] += 1
+            verdict = _end_verdict(run["sticks"], claims[run["mu"]])
+            shown[verdict] += 1
+            if "stricter" in run:
+                again[verdict] += 1
             if "coulomb" in run:
                 exact.append(run["coulomb"])
     text = (
         f"  bracket ends watched: {sum(shown.values())}: confirmed {shown['confirmed']}, "
         f"contradicted {shown['contradicted']}, open {shown['open']}"
     )
+    if again:
+        text += (
+            f"; contradicted ends watched again at rtol / 100: {sum(again.values())}, "
+            f"then confirmed {again['confirmed']}, contradicted {again['contradicted']}, "
+            f"open {again['open']}"
+        )
     if exact:
         stuck = sum(1 for w in exact if w["outcome"] == "stick")
         longest = max(w["t_end"] for w in exact)
@@ -85,6 +92,12 @@ def end_watch_line(watched: list[dict]) -> str:
             f"; exact Coulomb watches {len(exact)} (stick {stuck}, the longest to {longest:.0f} s)"
         )
     return text
+
+
+def _end_verdict(sticks: bool | None, claim: bool) -> str:
+    if sticks is None:
+        return "open"
+    return "confirmed" if sticks == claim else "contradicted"
 
 
 def answer_lines(rows: list[dict], settings: list[str]) -> list[str]:

@@ -10,7 +10,9 @@ Per scene and setting one find_jump campaign of one point (along its own x_ms):
   the default's numerics, no certification.
 
 The ends of every certified default bracket are watched too (a certified end that its
-watch contradicts is a silent error even where mu* agrees with the reference, issue 50).
+watch contradicts is a silent error even where mu* agrees with the reference, issue 50);
+an end its regularized watch contradicts is watched again at rtol / 100 more, and that
+watch, where it decides, takes the first one's place (study.recheck_contradicted_ends).
 A watch is a scan campaign over the disputed mu of one scene: t_decide SETTLE_HORIZON,
 horizon budget SETTLE_BUDGET, rtol, atol and eps / 100, `numerics.evidence: observe`
 (only what a run shows counts); on a Coulomb pin the exact Coulomb integrator watches too
@@ -39,6 +41,10 @@ SETTLE_RTOL = 0.01  # factor on rtol and atol of a watch
 # answer moves with eps below its Melan bound (docs/model.md section 6)
 SETTLE_EPS = 0.01
 COULOMB_MAX_STEPS = 50_000_000  # scipy Radau steps of an exact Coulomb watch
+# a certified end its watch contradicts is watched again, rtol and atol / 100 more: a
+# `creep` read at the rim can be the watch's own integration error (docs/wellposed.md)
+RECHECK_RTOL = 0.01
+RECHECK_STEPS = 4  # factor on its step budget (RODAS4: steps ~ rtol^(-1/4), 100^(1/4) ~ 3.2)
 SETTLE_MAX = 6  # watched mu per disagreement at most (the nearest to the dispute)
 SETTINGS = ("default", "uncertified", "reference")
 PERSIST = 3.0  # [tol] a headline's persistence width (prescan.persist's default)
@@ -105,20 +111,27 @@ def locate_campaign(
 
 
 def watch_scene(
-    default_scene, longer: int = 1, exact: bool = False, exact_horizon: float | None = None
+    default_scene,
+    longer: int = 1,
+    exact: bool = False,
+    exact_horizon: float | None = None,
+    stricter: bool = False,
 ) -> dict[str, Any]:
     """The canonical scene of a watch (mu not set yet): the default's point scene
     (`default_scene`, a SceneConfig) with the long, strict, observing numerics above;
     `exact`: the Coulomb integrator's, to `exact_horizon` [s] (None: the whole budget).
-    longer: a factor on the horizon and step budgets."""
+    longer: a factor on the horizon and step budgets. stricter: rtol and atol a further
+    RECHECK_RTOL, and RECHECK_STEPS times the step budget (the re-watch of a contradicted
+    end)."""
     num = default_scene.numerics
+    tighter = RECHECK_RTOL if stricter else 1.0
     config = default_scene.with_overrides(
         {
             "numerics.t_decide": SETTLE_HORIZON,
             "numerics.horizon_budget": SETTLE_BUDGET * longer,
-            "numerics.max_steps": num.max_steps * longer,
-            "numerics.rtol": num.rtol * SETTLE_RTOL,
-            "numerics.atol": num.atol * SETTLE_RTOL,
+            "numerics.max_steps": num.max_steps * longer * (RECHECK_STEPS if stricter else 1),
+            "numerics.rtol": num.rtol * SETTLE_RTOL * tighter,
+            "numerics.atol": num.atol * SETTLE_RTOL * tighter,
             "contact.eps": default_scene.contact.eps * SETTLE_EPS,
             "numerics.evidence": "observe",
         }

@@ -13,8 +13,10 @@ from pathlib import Path
 from frictiondisk.studies import campaigns
 from frictiondisk.studies.wellposed.found import read_found
 from frictiondisk.studies.wellposed.judge import (
+    UNDETERMINED,
     certified_ends,
     combine_watches,
+    contradicted_ends,
     disagrees,
     disputed,
     lower_reference,
@@ -72,6 +74,7 @@ def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options
     if options.reference:
         known = known_watches(list(options.settled_from))
         settle(rows, scenes, out, options, known)
+        recheck_contradicted_ends(rows, scenes, out, options)
     write_rows(out, rows)
     return rows
 
@@ -154,6 +157,59 @@ def settle(rows: list[dict], scenes: dict, out: Path, options: Options, known: d
         row["settled"] = [settling_run(row, mu, shown, known) for mu in settled]
         row["persisted"] = [settling_run(row, mu, shown, known) for mu in persisted]
         row["ends"] = [settling_run(row, mu, shown, known) for mu in ends]
+
+
+def recheck_contradicted_ends(rows: list[dict], scenes: dict, out: Path, options: Options) -> None:
+    """Watch again, at rtol and atol / 100 more (settings.RECHECK_RTOL), each certified end
+    whose regularized watch contradicts it: a slip of 1e-10 m a revolution read as a
+    ratchet can be the watch's own integration error. The stricter watch takes the
+    regularized one's place where it decides; the first stays in the run as `first`. An end
+    the exact Coulomb integrator contradicts is not watched again (its tolerances are its
+    own)."""
+    scans = {}
+    for row in rows:
+        mus = to_recheck(row)
+        if mus:
+            key = (row["seed"], row["index"])
+            scene = watch_scene(scenes[key], stricter=True)
+            prefix = watch_prefix(*key, "regularized", scene, options.generator)
+            scans[key] = watch_campaign(prefix, scene, mus)
+    if not scans:
+        return
+    campaigns.run(scans.values(), out, options.workers)
+    for row in rows:
+        key = (row["seed"], row["index"])
+        if key in scans:
+            stricter = read_watches(out / scans[key]["name"])
+            row["ends"] = [rewatched(run, stricter.get(run["mu"])) for run in row["ends"]]
+
+
+def to_recheck(row: dict) -> list[float]:
+    """The contradicted ends of a row (judge.contradicted_ends) that the exact Coulomb
+    watch does not contradict itself."""
+    runs = {run["mu"]: run for run in row.get("ends", [])}
+
+    def exact_shows(run: dict) -> bool:
+        exact = run.get("coulomb")
+        return (
+            exact is not None
+            and exact["outcome"] != UNDETERMINED
+            and (exact["outcome"] == "stick") == run["sticks"]
+        )
+
+    return [mu for mu in contradicted_ends(row) if not exact_shows(runs[mu])]
+
+
+def rewatched(run: dict, stricter: dict | None) -> dict:
+    """The end's settling run with its regularized watch replaced by the stricter one
+    where that decides (None, or undetermined: the run as it was, the re-watch noted)."""
+    if stricter is None:
+        return run
+    if stricter["outcome"] == UNDETERMINED:
+        return {**run, "stricter": stricter}
+    first = {k: run[k] for k in ("outcome", "t_end", "reason")}
+    again = combine_watches(run["mu"], stricter, run.get("coulomb"))
+    return {**again, "first": first, "stricter": stricter}
 
 
 def _watched(row: dict, watch_ends: bool) -> tuple[list[float], list[float], list[float]]:
