@@ -400,6 +400,9 @@ def test_a_contradicted_end_is_watched_again_at_a_stricter_rtol():
         "ends": [judge.combine_watches(lo, open_), judge.combine_watches(hi, creep)],
     }
     assert judge.contradicted_ends(row) == [hi] and study.to_recheck(row) == [hi]
+    confirmed = {**row, "ends": [judge.combine_watches(lo, creep), row["ends"][1]]}
+    assert study.to_recheck(confirmed) == [hi]  # mu_lo's `creep`: does not stick, as claimed
+    assert study.to_recheck(confirmed, confirmed=True) == [lo, hi]  # the control
     again = study.rewatched(row["ends"][1], stick)
     assert again["sticks"] is True and again["first"]["outcome"] == "creep"
     row["ends"][1] = again

@@ -103,6 +103,12 @@ def parser() -> argparse.ArgumentParser:
         help="every exact Coulomb watch runs to this horizon [s] (default: the whole watch "
         "budget, 12 000 s; it costs about 0.06 s of wall time a simulated second)",
     )
+    p.add_argument(
+        "--recheck-confirmed",
+        action="store_true",
+        help="watch the confirmed bracket ends again at rtol / 100 too, not only the "
+        "contradicted ones (the control of that check)",
+    )
     return p
 
 
@@ -128,6 +134,7 @@ def main(argv: list[str] | None = None) -> int:
         settled_from=tuple(args.settled_from),
         generator=args.generator,
         exact_horizon=args.exact_horizon,
+        recheck_confirmed=args.recheck_confirmed,
     )
     t0 = time.perf_counter()
     rows = run_study(jobs_of(args), args.out, options)

@@ -56,6 +56,7 @@ class Options:
     generator: int = 1
     watch_ends: bool = True
     exact_horizon: float | None = None
+    recheck_confirmed: bool = False
 
 
 def run_study(jobs: list[tuple[int, int]], out: Path, options: Options = Options()) -> list[dict]:
@@ -165,10 +166,11 @@ def recheck_contradicted_ends(rows: list[dict], scenes: dict, out: Path, options
     ratchet can be the watch's own integration error. The stricter watch takes the
     regularized one's place where it decides; the first stays in the run as `first`. An end
     the exact Coulomb integrator contradicts is not watched again (its tolerances are its
-    own)."""
+    own). options.recheck_confirmed: the ends their watches confirmed too, the control of
+    that one-sided check."""
     scans = {}
     for row in rows:
-        mus = to_recheck(row)
+        mus = to_recheck(row, options.recheck_confirmed)
         if mus:
             key = (row["seed"], row["index"])
             scene = watch_scene(scenes[key], stricter=True)
@@ -184,10 +186,16 @@ def recheck_contradicted_ends(rows: list[dict], scenes: dict, out: Path, options
             row["ends"] = [rewatched(run, stricter.get(run["mu"])) for run in row["ends"]]
 
 
-def to_recheck(row: dict) -> list[float]:
-    """The contradicted ends of a row (judge.contradicted_ends) that the exact Coulomb
-    watch does not contradict itself."""
+def to_recheck(row: dict, confirmed: bool = False) -> list[float]:
+    """The contradicted ends of a row (judge.contradicted_ends), and with `confirmed` the
+    confirmed ones too, that the exact Coulomb watch has not decided itself."""
     runs = {run["mu"]: run for run in row.get("ends", [])}
+    contradicted = contradicted_ends(row)
+    chosen = [
+        mu
+        for mu, run in runs.items()
+        if run["sticks"] is not None and (confirmed or mu in contradicted)
+    ]
 
     def exact_shows(run: dict) -> bool:
         exact = run.get("coulomb")
@@ -197,7 +205,7 @@ def to_recheck(row: dict) -> list[float]:
             and (exact["outcome"] == "stick") == run["sticks"]
         )
 
-    return [mu for mu in contradicted_ends(row) if not exact_shows(runs[mu])]
+    return [mu for mu in chosen if not exact_shows(runs[mu])]
 
 
 def rewatched(run: dict, stricter: dict | None) -> dict:
