@@ -409,7 +409,7 @@ def test_a_contradicted_end_is_watched_again_at_a_stricter_rtol():
     assert not judge.end_contradicted(row) and judge.silent_errors([row]) == 0
     line = report.end_watch_line([row])
     assert "confirmed 1, contradicted 0, open 1" in line
-    assert "watched again at rtol / 100: 1, then confirmed 1" in line
+    assert "watched again at rtol / 100: 1 (decided there 1), then confirmed 1" in line
     kept = study.rewatched(judge.combine_watches(hi, creep), open_)
     assert kept["sticks"] is False and kept["stricter"] == open_  # undecided: it stands
     exact = judge.combine_watches(lo, open_, stick)  # the exact integrator: mu_lo sticks

@@ -80,10 +80,11 @@ def end_watch_line(watched: list[dict]) -> str:
         f"contradicted {shown['contradicted']}, open {shown['open']}"
     )
     if again:
+        decided = sum(1 for row in watched for run in row["ends"] if "first" in run)
         text += (
-            f"; contradicted ends watched again at rtol / 100: {sum(again.values())}, "
-            f"then confirmed {again['confirmed']}, contradicted {again['contradicted']}, "
-            f"open {again['open']}"
+            f"; ends watched again at rtol / 100: {sum(again.values())} (decided there "
+            f"{decided}), then confirmed {again['confirmed']}, contradicted "
+            f"{again['contradicted']}, open {again['open']}"
         )
     if exact:
         stuck = sum(1 for w in exact if w["outcome"] == "stick")
