@@ -148,12 +148,16 @@ def end_contradicted(row: dict) -> bool:
     return bool(contradicted_ends(row))
 
 
+def end_claims(found: Found) -> dict[float, bool]:
+    """What each end of a certified headline bracket claims: mu_lo does not stick, mu_hi
+    sticks (empty without one)."""
+    ends = certified_ends(found)
+    return {ends[0]: False, ends[1]: True} if ends else {}
+
+
 def contradicted_ends(row: dict) -> list[float]:
     """The ends of a certified headline bracket that their watches contradict."""
-    ends = certified_ends(row["default"])
-    if not ends:
-        return []
-    claims = {ends[0]: False, ends[1]: True}
+    claims = end_claims(row["default"])
     return [
         run["mu"]
         for run in row.get("ends", [])

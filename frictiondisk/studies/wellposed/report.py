@@ -8,8 +8,8 @@ from collections import Counter
 import numpy as np
 
 from frictiondisk.studies.wellposed.judge import (
-    certified_ends,
     disagrees,
+    end_claims,
     end_contradicted,
     missed_jump,
     silent,
@@ -66,8 +66,7 @@ def end_watch_line(watched: list[dict]) -> str:
     shown, again = Counter(), Counter()
     exact = []
     for row in watched:
-        ends = certified_ends(row["default"])
-        claims = {ends[0]: False, ends[1]: True}
+        claims = end_claims(row["default"])
         for run in row["ends"]:
             verdict = _end_verdict(run["sticks"], claims[run["mu"]])
             shown[verdict] += 1
