@@ -30,8 +30,7 @@ _BLOCK = re.compile(r"<!-- generated: ([a-z-]+) -->\n(.*?)<!-- end generated -->
 # names, their order and their side of the jump come from verdict/outcomes.py, and
 # tests/test_docs.py holds this mapping to exactly those names.
 OUTCOME_MEANING = {
-    "stick": "co-rotates with the master for good: its plastic slip per revolution has "
-    "died out",
+    "stick": "co-rotates with the master for good: its plastic slip per revolution has died out",
     "creep": "keeps its small orbit but ratchets: a steady slip every revolution that does "
     "not die out",
     "stick_slip": "runs on a limit cycle, sticking as a whole for part of it and sliding "
