@@ -22,6 +22,8 @@ myst_heading_anchors = 4
 myst_enable_extensions = ["dollarmath"]
 suppress_warnings = []
 autodoc_member_order = "bysource"
+# keep "--set" and straight quotes as the code and the shell spell them
+smartquotes = False
 autodoc_typehints = "description"
 html_theme = "alabaster"
 html_title = f"frictiondisk {release}"
