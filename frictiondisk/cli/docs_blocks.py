@@ -46,13 +46,20 @@ OUTCOME_MEANING = {
 _SIDE = {"stick": "stick", "not_stick": "not stick", "undetermined": "—"}
 
 
+def _cell(text: str) -> str:
+    """Text for one cell of a markdown table (a | inside would split the row)."""
+    return " ".join(text.split()).replace("|", "\\|")
+
+
 def outcomes_table() -> str:
     """Every outcome in listing order: what the slave does, and its side of the jump."""
     from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
 
     lines = ["| outcome | the slave … | side of the jump |", "|---|---|---|"]
     for name in OUTCOMES:
-        lines.append(f"| `{name}` | {OUTCOME_MEANING[name]} | {_SIDE[outcome_class(name)]} |")
+        lines.append(
+            f"| `{name}` | {_cell(OUTCOME_MEANING[name])} | {_SIDE[outcome_class(name)]} |"
+        )
     return "\n".join(lines)
 
 
@@ -64,7 +71,7 @@ def tasks_table() -> str:
     lines = ["| task | what it computes |", "|---|---|"]
     for name in TASKS:
         description = CampaignFile.model_fields[name].description or ""
-        lines.append(f"| `{name}` | {description.removeprefix('task: ')} |")
+        lines.append(f"| `{name}` | {_cell(description.removeprefix('task: '))} |")
     return "\n".join(lines)
 
 
@@ -74,7 +81,7 @@ def commands_table() -> str:
 
     lines = ["| command | what it does |", "|---|---|"]
     for name, command in main.commands.items():
-        lines.append(f"| `frictiondisk {name}` | {command.get_short_help_str(limit=300)} |")
+        lines.append(f"| `frictiondisk {name}` | {_cell(command.get_short_help_str(limit=300))} |")
     return "\n".join(lines)
 
 
