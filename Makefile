@@ -36,6 +36,9 @@
 #                numerics version has not journaled; GALLERY_ARGS="--only basin" picks
 #   make basin-figures  run the basin campaigns (campaigns/basin_*.yaml) into out/basin/
 #                and draw figures/basin_*.png (docs/user-guide.md, "Basin stability")
+#   make docs    build the documentation site (docs/*.md, the API reference from the public
+#                API's docstrings, the CLI reference from the click commands) into
+#                build/docs/html with Sphinx, warnings as errors; runs no campaign
 #   make lint    ruff check + ruff format --check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
@@ -70,7 +73,7 @@ DEMO_DISK_PNG := $(DEMO_DISK_DIR)/mu_star.png
 LOCK := requirements/lock.txt
 LOCK_ARGS ?= --upgrade
 
-.PHONY: all install lock demo test bench figures gallery basin-figures lint clean distclean \
+.PHONY: all install lock demo test bench figures gallery basin-figures docs lint clean distclean \
 	study-wellposed study-error-model study-brake study-layouts study-corotation
 
 all: test
@@ -89,12 +92,12 @@ $(STAMP): pyproject.toml $(LOCK)
 
 install: $(STAMP)
 
-# The lock file: runtime + test extras, resolved for CPython 3.11 on linux x86_64 by uv
+# The lock file: runtime + test, dashboard and docs extras, resolved for CPython 3.11 on linux x86_64 by uv
 # (installed into .venv for this purpose only). Commit the result.
 lock:
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q uv
-	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --extra dashboard $(LOCK_ARGS) --generate-hashes \
+	$(BIN)/uv pip compile --quiet pyproject.toml --extra test --extra dashboard --extra docs $(LOCK_ARGS) --generate-hashes \
 		--python-version 3.11 --python-platform x86_64-unknown-linux-gnu -o $(LOCK)
 
 # The main job: locate the jump mu* along two lines of axes offsets, the pin's and the
@@ -160,6 +163,13 @@ study-layouts: $(STAMP)
 
 study-corotation: $(STAMP)
 	$(BIN)/python -m frictiondisk.studies.corotation -o out/corotation --figure figures/brake_drift.png
+
+# The documentation site: -W turns every warning (a broken link, a page outside the
+# table of contents, a docstring that does not parse) into an error; -E rereads every page.
+DOCS_OUT := build/docs/html
+docs: $(STAMP)
+	$(BIN)/python -m sphinx -b html -W --keep-going -E docs $(DOCS_OUT)
+	@echo "Documentation site: $(abspath $(DOCS_OUT))/index.html"
 
 lint: $(STAMP)
 	$(BIN)/ruff check $(LINT_PATHS)

@@ -94,7 +94,10 @@ def run_campaign(
 ) -> RunSummary:
     """Run a campaign (a `Campaign` or the path of its YAML file) into out_dir, resuming
     whatever out_dir's journal already holds; campaign=None resumes out_dir's own campaign.
-    Writes out_dir/results.nc and runs.nc (trajectory.nc for a trajectory task)."""
+    Writes out_dir/results.nc and runs.nc (trajectory.nc for a trajectory task).
+
+    workers: local Dask workers (threads); progress: a progress bar on stderr. Returns the
+    run's summary (points, runs computed and read from the journal, wall time)."""
     from frictiondisk.engine.runner import run_campaign as _run_campaign
 
     if campaign is not None and not hasattr(campaign, "task"):

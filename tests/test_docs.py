@@ -166,3 +166,160 @@ def test_every_relative_link_of_the_guides_resolves(name):
     path = ROOT / name
     missing = [t for t in _links(path.read_text()) if not (path.parent / t).exists()]
     assert not missing, f"{name} links to missing files: {missing}"
+
+
+# --- the documentation says what the code has, and what the tool does now ----------------
+
+USER_PAGES = ("README.md", "docs/user-guide.md", "docs/model.md", "docs/reference.md")
+
+
+def _pages_outside_notes() -> list[Path]:
+    return [p for p in (ROOT / "docs").rglob("*.md") if "notes" not in p.relative_to(ROOT).parts]
+
+
+def test_every_generated_block_equals_what_the_code_generates():
+    """The outcome, task and command tables of README.md and docs/ come from the code
+    (frictiondisk/cli/docs_blocks.py); a renamed outcome or a new option makes them stale."""
+    from frictiondisk.cli.docs_blocks import stale_blocks
+
+    stale = stale_blocks(ROOT)
+    assert not stale, f"regenerate with `python -m frictiondisk.cli.docs_blocks`: {stale}"
+
+
+def test_the_outcome_meanings_name_exactly_the_outcomes_of_the_code():
+    from frictiondisk.cli.docs_blocks import OUTCOME_MEANING, outcomes_table
+
+    assert tuple(OUTCOME_MEANING) == OUTCOMES
+    table = outcomes_table()
+    assert table.count("\n| `") == len(OUTCOMES)
+    for page in ("README.md", "docs/user-guide.md", "docs/model.md"):
+        assert table in (ROOT / page).read_text(), page
+
+
+def test_the_generated_blocks_follow_a_change_of_the_code(monkeypatch):
+    """A block is rebuilt from the code, not kept: a new outcome shows up in the table."""
+    from frictiondisk.cli import docs_blocks
+    from frictiondisk.verdict import outcomes
+
+    monkeypatch.setattr(outcomes, "OUTCOMES", (*OUTCOMES, "wobble"))
+    monkeypatch.setattr(
+        outcomes, "OUTCOME_CLASS", {**outcomes.OUTCOME_CLASS, "wobble": "not_stick"}
+    )
+    monkeypatch.setitem(docs_blocks.OUTCOME_MEANING, "wobble", "wobbles")
+    assert "| `wobble` | wobbles | not stick |" in docs_blocks.outcomes_table()
+    assert "README.md" in docs_blocks.stale_blocks(ROOT)
+
+
+def test_the_readme_leads_a_newcomer_in_order():
+    """What the tool answers, the two commands, one picture, all eight outcomes, the tasks
+    (with `between`), and where the rest is: in that order."""
+    from frictiondisk.tasks.registry import TASKS
+
+    text = (ROOT / "README.md").read_text()
+    marks = [
+        text.index("answers"),
+        text.index("make demo"),
+        text.index("make test"),
+        text.index("!["),
+        text.index("<!-- generated: outcomes -->"),
+        text.index("<!-- generated: tasks -->"),
+        text.index("## Where the rest is"),
+    ]
+    assert marks == sorted(marks), marks
+    assert text.count("![") == 1, "one picture"
+    tasks = text[marks[5] : marks[6]]
+    for task in (*TASKS, "between"):
+        assert f"`{task}`" in tasks, task
+    assert {"find_jump", "trace", "map", "basin", "scan", "trajectory"} <= set(TASKS)
+
+
+@pytest.mark.parametrize("page", USER_PAGES)
+def test_user_pages_carry_no_dates_loads_or_issue_history(page):
+    import re
+
+    text = (ROOT / page).read_text()
+    patterns = (
+        r"\b20\d\d-[01]\d",  # a date
+        r"\bload (average )?\d",  # a machine load
+        r"\bissues? \d+",  # an issue number
+        r"NUMERICS_VERSION \d",  # the history of the numerics
+        r"this machine",
+    )
+    found = [m.group(0) for p in patterns for m in re.finditer(p, text, flags=re.IGNORECASE)]
+    assert not found, f"{page}: {found} (history goes to docs/notes/ or a commit message)"
+
+
+def test_no_page_of_docs_names_a_scratch_path_outside_the_repository():
+    import re
+
+    bad = {
+        str(p.relative_to(ROOT)): re.findall(r"(?:/tmp/|/work/|/home/)\S*", p.read_text())
+        for p in [ROOT / "README.md", *(ROOT / "docs").rglob("*.md")]
+    }
+    bad = {page: paths for page, paths in bad.items() if paths}
+    assert not bad, bad
+
+
+def test_the_user_docs_stay_within_their_length():
+    lines = {p.name: p.read_text().count("\n") for p in _pages_outside_notes()}
+    assert sum(lines.values()) <= 3500, f"docs/ outside notes/: {sum(lines.values())} lines"
+    assert lines["wellposed.md"] <= 300, lines["wellposed.md"]
+
+
+def test_the_model_has_a_subsection_per_outcome_and_names_every_verdict_parameter_in_a_rule():
+    import dataclasses
+
+    from frictiondisk.verdict.params import VerdictParams
+
+    text = (ROOT / "docs" / "model.md").read_text()
+    for outcome in OUTCOMES:
+        assert f"\n#### `{outcome}`\n" in text, outcome
+    rules = text[text.index("### 6.2 The rules") : text.index("### 6.3")]
+    assert rules.count("\n#### 6.2.") >= 7
+    missing = [f.name for f in dataclasses.fields(VerdictParams) if f"`{f.name}`" not in rules]
+    assert not missing, f"no rule of docs/model.md section 6.2 names {missing}"
+
+
+def test_the_benchmarks_page_has_one_command_per_table_section():
+    text = (ROOT / "docs" / "benchmarks.md").read_text()
+    sections = text.split("\n## ")[1:]
+    assert "Campaign engine (bench_engine)" in text
+    for section in sections:
+        title = section.splitlines()[0]
+        if title.startswith("Campaign engine"):
+            continue
+        assert "```sh" in section, f"benchmarks.md, '{title}': no command"
+        assert section.count("\n| ") >= 2 or "no standing table" in section, title
+
+
+def test_the_documentation_site_builds_without_a_warning(tmp_path):
+    """`make docs` builds the site with -W; here the same sources through the dummy
+    builder (every page read, the API and CLI references generated, no HTML written)."""
+    result = subprocess.run(
+        [sys.executable, "-m", "sphinx", "-b", "dummy", "-W", "--keep-going", "-q", "docs"]
+        + [str(tmp_path / "site")],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert result.returncode == 0, result.stderr[-3000:]
+    makefile = (ROOT / "Makefile").read_text()
+    assert "-m sphinx -b html -W" in makefile and "\ndocs: $(STAMP)" in makefile
+
+
+def test_the_site_documents_the_public_api_and_every_command():
+    import frictiondisk
+    from frictiondisk.cli.main import main
+
+    api = (ROOT / "docs" / "api.md").read_text()
+    cli = (ROOT / "docs" / "cli.md").read_text()
+    assert ".. automodule:: frictiondisk" in api and ":members:" in api
+    assert ".. click:: frictiondisk.cli.main:main" in cli and ":nested: full" in cli
+    for name in frictiondisk.__all__:
+        if name != "__version__":
+            assert getattr(frictiondisk, name).__doc__, f"{name} has no docstring"
+    assert all(command.help for command in main.commands.values())
+    index = (ROOT / "docs" / "index.md").read_text()
+    pages = {p.stem for p in (ROOT / "docs").glob("*.md")} - {"index"}
+    assert all(page in index for page in pages), pages - {p for p in pages if p in index}
