@@ -132,30 +132,12 @@ class Bisection:
             deferred = self.deferrals.deferred
             mus = [mu for mu in ends if mu not in state.known and mu not in deferred]
         else:
-            mus = self._round_points()
+            mus = [mu for mu in self.probes.interior() if mu not in state.known]
         level, strict = state.level, self.settings.strict
         requests = [RunRequest(mu, level.get(mu, 0), strict=strict) for mu in mus]
         for request in requests:
             state.issue(request)
         return requests
-
-    def _round_points(self) -> list[float]:
-        """This round's points not decided yet. A round whose points are all decided
-        already is closed first; one whose points cannot split the bracket ends the search
-        (every search ends)."""
-        while not self.done:
-            mus = self.probes.interior()
-            if not self.probes.splits(mus):
-                self._unresolved()
-                break
-            wanted = [mu for mu in mus if mu not in self.state.known]
-            if wanted:
-                return wanted
-            before = self.state.round
-            self._after_round()
-            if self.state.round == before and not self.done:
-                self._unresolved()
-        return []
 
     def schedule_key(self, request: RunRequest) -> tuple[int, int, float] | None:
         """(round, level, mu) of a request this bisection asked for (None otherwise)."""
@@ -166,6 +148,10 @@ class Bisection:
         """Take the outcome of a requested run and advance."""
         if self.done or request not in self.pending():
             raise ValueError(f"unexpected run {request}")
+        self._take(request, result)
+        self._close_rounds()
+
+    def _take(self, request: RunRequest, result: dict[str, Any]) -> None:
         state = self.state
         state.runs.append(RunRecord(request, result))
         side = self.settings.between.side(result["outcome"])
@@ -177,6 +163,22 @@ class Bisection:
             self._after_check()
         else:
             self._after_round()
+
+    def _close_rounds(self) -> None:
+        """After every result: a round whose points are all decided already is closed (the
+        bracket moves); one whose points cannot split the bracket ends the search, so that
+        a search always ends, and ends within `feed` (the searches built on it look then)."""
+        while self.state.phase == "bisect" and not self.done:
+            mus = self.probes.interior()
+            if not self.probes.splits(mus):
+                self._unresolved()
+            elif all(mu in self.state.known for mu in mus):
+                before = self.state.round
+                self._after_round()
+                if self.state.round == before and not self.done:
+                    self._unresolved()
+            else:
+                return
 
     def _undecided_run(self, request: RunRequest, result: dict[str, Any]) -> None:
         """A run on neither side: deferred (a missed prediction), retried with a longer

@@ -12,7 +12,8 @@ bracket.
 
 The round budget counts halvings down to tol, or down to the narrowest bracket mu resolves
 where tol lies below it (bisection_settings.py), so that the window keeps the promise of a
-bisection that ends.
+bisection that ends. Past `STEPPING_BUDGETS` times the budget the steps away from deferred
+runs (deferral.py) stop too, and the search bisects.
 """
 
 from __future__ import annotations
@@ -23,6 +24,10 @@ from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.bracket import BracketState
 
 ITP_SLACK = 3  # rounds an interpolating search may lag behind bisection at worst (ITP's n0)
+# rounds, in units of the budget, after which a search steps no longer away from deferred
+# runs (deferral.py) but bisects: in a slow band far wider than tol those steps would walk
+# through it a few tol a round
+STEPPING_BUDGETS = 2
 
 
 def zero_crossing(mu_a: float, signal_a: float, mu_b: float, signal_b: float) -> float:
@@ -46,6 +51,13 @@ class ItpProbe:
         reach = max(self.settings.tol, self.settings.floor(max(abs(state.lo), abs(state.hi))))
         rounds = math.ceil(math.log2((state.hi - state.lo) / reach) - 1e-9)
         self.budget = (state.round, max(0, rounds) + ITP_SLACK)
+
+    def overspent(self, state: BracketState) -> bool:
+        """Whether the search has made STEPPING_BUDGETS times its round budget of rounds."""
+        if self.budget is None:
+            return False
+        first, budget = self.budget
+        return state.round - first > STEPPING_BUDGETS * budget
 
     def choose(self, state: BracketState) -> tuple[str, float]:
         """This round's point ("itp": the signal's root estimate, nudged past it, inside

@@ -70,6 +70,7 @@ class JumpSearch:
         stride: int = 1,
         persist: float = 3.0,
         between: Between = NOT_STICK_STICK,
+        resolution: float = 0.0,
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -85,6 +86,7 @@ class JumpSearch:
         self.persist = persist  # [tol] a headline sticks this far above its bracket
         # the boundary's two sides (sides.py): "stick" below reads side B, "not stick" A
         self.between = between
+        self.resolution = resolution  # [mu] no bracket is split below it (bisection_settings.py)
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}  # mu -> retry level to ask for next
@@ -257,6 +259,7 @@ class JumpSearch:
             self.root_finder,
             outer=(self.mus[0], self.mus[-1]),
             between=self.between,
+            resolution=self.resolution,
         )
         # its end checks are runs already made: fed, not run again
         decided = self._decided()

@@ -3,7 +3,8 @@
 One strategy picks each round's interior points, in this order:
 
 * `straddle`: around undecided mu inside the bracket (straddle.py);
-* `expand`, `aim`, `ladder`: away from a deferred run, or its retry (deferral.py);
+* `expand`, `aim`, `ladder`: away from a deferred run, or its retry (deferral.py), until
+  the search has spent a multiple of its round budget (itp.py `overspent`);
 * `itp`, `mid`: the friction reserve's root estimate inside ITP's window, or the midpoint
   (itp.py; split 2 with `root_finder: itp`);
 * `split`: the fixed schedule (`split_points`): k - 1 points cutting the bracket into
@@ -77,7 +78,7 @@ class Probes:
         if span is not None:
             return "straddle", self.straddle.probes(state, span)
         deferred = self.deferrals.inside(state, self.straddle.undecided)
-        if deferred is not None:
+        if deferred is not None and not self.itp.overspent(state):
             return self.deferrals.away_from(state, deferred)
         if self.settings.interpolates:
             kind, probe = self.itp.choose(state)
