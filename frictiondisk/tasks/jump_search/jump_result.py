@@ -258,7 +258,7 @@ def _problems(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str],
     """Why the point fails (empty: it does not), and the note on prescan values left
     undetermined."""
     # an undetermined prescan value inside a converged jump's bracket is that jump's
-    # slow approach (bisection.Bisection.undecided), not a gap in the scan
+    # slow approach (straddle.Straddle.undecided), not a gap in the scan
     undetermined = [
         r.request.mu
         for r in scan

@@ -11,10 +11,10 @@ where the verdicts and friction reserves do not explain an interval.
 The headline is the lowest rising jump whose sticking side persists, and it comes with a
 verdict at every prescan value below it:
 
-* persistence: a run at mu_hi + `persist` tol must stick too. If it does not, the sticking
-  set above that jump is a *window* narrower than the persistence width: its falling edge
-  is bisected, the search goes on above, and the window is reported
-  (`JumpSearchResult.windows`), never the headline;
+* persistence (headline.py): a run at mu_hi + `persist` tol must stick too. If it does
+  not, the sticking set above that jump is a *window* narrower than the persistence
+  width: its falling edge is bisected, the search goes on above, and the window is
+  reported (`JumpSearchResult.windows`), never the headline;
 * the grid below: every prescan value below the headline that the adaptive prescan
   skipped is run (an interval skipped on the friction reserve alone is unexamined), and a
   change it reveals is bisected like any other (`JumpSearchResult.grid_below`). The
@@ -40,6 +40,7 @@ from typing import Any
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.tasks.jump_search.bisection import RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
+from frictiondisk.tasks.jump_search.headline import Persistence
 from frictiondisk.tasks.jump_search.jump_result import (
     RUN_ROLES,
     JumpSearchResult,
@@ -100,8 +101,10 @@ class JumpSearch:
         self._checks: dict[float, RunRecord] = {}  # mu -> settled persistence or fill run
         self._check_runs: list[RunRecord] = []  # every such run, retries included
         self._waiting: set[float] = set()  # persistence / fill values without a settled run
-        self._persistence: dict[int, float] = {}  # bisection index -> its persistence mu
-        self.unjudged: set[int] = set()  # rising jumps whose persistence run stayed undetermined
+        self.persistence = Persistence(persist * tol)  # which jump is the headline
+        self.unjudged = (
+            self.persistence.unjudged
+        )  # rising jumps whose persistence run stayed undetermined
         self._filled = False  # every grid value below the headline asked for
         self._complete = False  # nothing left to run (set by _advance)
         self._pending: list[RunRequest] | None = None  # pending() until the next change
@@ -268,45 +271,9 @@ class JumpSearch:
         self.bisections.append(bisection)
         self._covered.add((mu_a, mu_b))
 
-    def _rising_jumps(self):
-        """(index, result, base) of the converged rising jumps, increasing in mu: the
-        reported result (after certification) and the bracket at the point's own numerics."""
-        found = []
-        for index, bisection in enumerate(self.bisections):
-            res = bisection.result()
-            base = bisection.searches[0].result()
-            if (
-                res.status == base.status == "converged"
-                and res.rising
-                and res.certification != "vanished"
-            ):
-                found.append((index, res, base))
-        return sorted(found, key=lambda item: item[2].mu_lo)
-
-    def _persists(self, index: int, base, known: dict[float, bool]) -> bool | None:
-        """Whether rising jump `index` sticks over the persistence width above the mu_hi of
-        its bracket at the point's own numerics: by the decided values in
-        (mu_hi, mu_hi + width]; None until one is there."""
-        mu = self._persistence.setdefault(index, base.mu_hi + self.persist * self.tol)
-        above = [m for m in known if base.mu_hi < m <= mu]
-        if not above:
-            if mu in self._checks:  # undetermined after every retry: taken, but not certified
-                self.unjudged.add(index)
-                return True
-            return None
-        return all(known[m] for m in above)
-
     def _persistence_wanted(self) -> set[float]:
-        """The persistence run that the lowest rising jump not yet judged needs; empty once
-        the headline is found (or no rising jump is left)."""
-        known = dict(self.known())
-        for index, _, base in self._rising_jumps():
-            persists = self._persists(index, base, known)
-            if persists is None:
-                return {self._persistence[index]}
-            if persists:
-                return set()
-        return set()
+        """The persistence run that the lowest rising jump not yet judged needs (headline.py)."""
+        return self.persistence.wanted(self.bisections, dict(self.known()), self._checks)
 
     def headline(self):
         """The lowest rising jump that persists, else (`persists_nowhere`) the lowest rising
@@ -316,21 +283,14 @@ class JumpSearch:
 
     def _headline(self):
         """(bisection index, result) of the headline, or None."""
-        known = dict(self.known())
-        rising = self._rising_jumps()
-        for index, res, base in rising:
-            if self._persists(index, base, known):
-                return index, res
-        return (rising[0][0], rising[0][1]) if rising else None
+        return self.persistence.headline(self.bisections, dict(self.known()), self._checks)
 
     @property
     def persists_nowhere(self) -> bool:
         """Rising jumps, but none persists: every sticking set found is narrower than the
         persistence width at the point's own numerics (a structure at the resolution
         limit, which stricter numerics may join up)."""
-        known = dict(self.known())
-        rising = self._rising_jumps()
-        return bool(rising) and not any(self._persists(i, base, known) for i, _, base in rising)
+        return self.persistence.nowhere(self.bisections, dict(self.known()), self._checks)
 
     def headline_judged(self) -> bool:
         """Whether the headline's persistence run was decided (not undetermined) and showed
