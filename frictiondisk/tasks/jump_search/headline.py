@@ -79,3 +79,14 @@ class Persistence:
         return bool(rising) and not any(
             self.persists(i, base, known, checks) for i, _, base in rising
         )
+
+
+def never_sticks(scan, checks, between) -> bool:
+    """Every prescan value run decided not stick (`scan`: its last retry at each), and no
+    fill run sticks (`checks`; one left undetermined leaves the grid less than wholly
+    decided)."""
+    return (
+        bool(scan)
+        and all(between.is_low(run.outcome) for run in scan)
+        and all(not between.is_high(run.outcome) for run in checks)
+    )

@@ -40,11 +40,12 @@ from typing import Any
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.tasks.jump_search.bisection import RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
-from frictiondisk.tasks.jump_search.headline import Persistence
+from frictiondisk.tasks.jump_search.headline import Persistence, never_sticks
 from frictiondisk.tasks.jump_search.jump_result import (
     RUN_ROLES,
     JumpSearchResult,
     JumpSearchState,
+    RunOrder,
     compose_result,
     run_role,
 )
@@ -123,8 +124,9 @@ class JumpSearch:
         feed, since a driver asks for it after every result of every point)."""
         if self._pending is None:
             if self.scanning:
+                mus = [self.mus[k] for k in sorted(self._grid.waiting)]
                 self._pending = [
-                    self._scan_request(self.mus[k]) for k in sorted(self._grid.waiting)
+                    RunRequest(mu, self._level.get(mu, 0), self.scan_mode) for mu in mus
                 ]
                 self._issued.update(self._pending)
             else:
@@ -133,9 +135,6 @@ class JumpSearch:
                 wanted += [self._check_request(mu) for mu in sorted(self._waiting)]
                 self._pending = list(dict.fromkeys(wanted))
         return self._pending
-
-    def _scan_request(self, mu: float) -> RunRequest:
-        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
 
     def _check_request(self, mu: float) -> RunRequest:
         """A persistence run (off the grid: the bisections' numerics) or a grid value below
@@ -198,7 +197,7 @@ class JumpSearch:
             if all(b.done for b in self.bisections):
                 self._advance()  # every new bisection ended on its fed ends (a failure)
             return
-        wanted = self._persistence_wanted()
+        wanted = self.persistence.wanted(self.bisections, dict(self.known()), self._checks)
         if not wanted and not self._filled:
             self._filled = True
             wanted = self._fill_wanted()
@@ -271,10 +270,6 @@ class JumpSearch:
         self.bisections.append(bisection)
         self._covered.add((mu_a, mu_b))
 
-    def _persistence_wanted(self) -> set[float]:
-        """The persistence run that the lowest rising jump not yet judged needs (headline.py)."""
-        return self.persistence.wanted(self.bisections, dict(self.known()), self._checks)
-
     def headline(self):
         """The lowest rising jump that persists, else (`persists_nowhere`) the lowest rising
         jump; None without one."""
@@ -285,19 +280,6 @@ class JumpSearch:
         """(bisection index, result) of the headline, or None."""
         return self.persistence.headline(self.bisections, dict(self.known()), self._checks)
 
-    @property
-    def persists_nowhere(self) -> bool:
-        """Rising jumps, but none persists: every sticking set found is narrower than the
-        persistence width at the point's own numerics (a structure at the resolution
-        limit, which stricter numerics may join up)."""
-        return self.persistence.nowhere(self.bisections, dict(self.known()), self._checks)
-
-    def headline_judged(self) -> bool:
-        """Whether the headline's persistence run was decided (not undetermined) and showed
-        it persists."""
-        found = self._headline()
-        return found is None or (found[0] not in self.unjudged and not self.persists_nowhere)
-
     def _fill_wanted(self) -> set[float]:
         """Every grid value below the headline not run yet; the whole grid where the
         prescan found no change and every value it ran does not stick (the answer "no
@@ -305,22 +287,13 @@ class JumpSearch:
         ran = set(self._last_scan()) | set(self._checks)
         head = self.headline()
         if head is None:
-            if not self.bisections and self.never_sticks():
+            scan, checks = self._last_scan().values(), self._checks.values()
+            if not self.bisections and never_sticks(scan, checks, self.between):
                 return {mu for mu in self.mus if mu not in ran}
             return set()
         base = self.bisections[self._headline()[0]].searches[0].result()
         below = min(head.mu_lo, base.mu_lo)  # certification may have moved the bracket
         return {mu for mu in self.mus if mu < below and mu not in ran}
-
-    def never_sticks(self) -> bool:
-        """Every prescan value run decided not stick (its last retry), and no fill run
-        sticks (one left undetermined leaves the grid less than wholly decided)."""
-        scan = self._last_scan().values()
-        return (
-            bool(scan)
-            and all(self.between.is_low(run.outcome) for run in scan)
-            and all(not self.between.is_high(run.outcome) for run in self._checks.values())
-        )
 
     # ---- the answer -------------------------------------------------------------------
     def result(self) -> JumpSearchResult:
@@ -331,9 +304,18 @@ class JumpSearch:
     def snapshot(self) -> JumpSearchState:
         """What the finished search found, as its answer is composed from it."""
         last = self._last_scan()
-        runs = tuple(
-            sorted([*self._scan_runs, *self._bisection_runs, *self._check_runs], key=self._order)
+        order = RunOrder(
+            frozenset(self._issued),
+            frozenset(run.request for run in self._check_runs),
+            frozenset(self.mus),
+            tuple(self.bisections),
         )
+        runs = tuple(
+            sorted([*self._scan_runs, *self._bisection_runs, *self._check_runs], key=order.key)
+        )
+        known, checks = dict(self.known()), self._checks
+        found = self.persistence.headline(self.bisections, known, checks)
+        nowhere = self.persistence.nowhere(self.bisections, known, checks)
         return JumpSearchState(
             mus=self.mus,
             tol=self.tol,
@@ -341,45 +323,20 @@ class JumpSearch:
             certified=self.certify.enabled,
             found=tuple(b.result() for b in self.bisections),
             last_scan=last,
-            checks=self.checks(),
+            checks=dict(checks),
             never_ran=tuple(k for k in self._grid.wanted if self.mus[k] not in last),
             failure=self._failure,
-            headline=self.headline(),
-            headline_judged=self.headline_judged(),
-            persists_nowhere=self.persists_nowhere,
-            never_sticks=self.never_sticks(),
+            headline=None if found is None else found[1],
+            # its persistence run was decided (not undetermined) and showed it persists
+            headline_judged=found is None or (found[0] not in self.unjudged and not nowhere),
+            persists_nowhere=nowhere,
+            never_sticks=never_sticks(last.values(), checks.values(), self.between),
             runs=runs,
-            prescan_runs=tuple(sorted(self._scan_runs, key=self._order)),
-            roles={run.request: self.role(run.request) for run in runs},
+            prescan_runs=tuple(sorted(self._scan_runs, key=order.key)),
+            roles={run.request: order.role(run.request) for run in runs},
             between=self.between,
         )
 
     def _last_scan(self) -> dict[float, RunRecord]:
         """mu -> its last prescan run (the one at the highest retry level)."""
         return {run.request.mu: run for run in self._scan_runs}
-
-    def checks(self) -> dict[float, RunRecord]:
-        """mu -> the settled persistence or fill run."""
-        return dict(self._checks)
-
-    def role(self, request: RunRequest) -> str:
-        """`prescan` (the prescan's runs, and the grid values below the headline it skipped),
-        `search` (bisections and persistence runs) or `certification` (stricter numerics)."""
-        if request in self._issued:
-            return "prescan"
-        if any(run.request == request for run in self._check_runs):
-            return "prescan" if request.mu in self._index else "search"
-        return run_role(request)
-
-    def _order(self, run: RunRecord) -> tuple:
-        """Prescan runs first (by retry level, then mu), then each bisection's runs in its
-        own schedule order, then the persistence and fill runs: fixed by the campaign, not by
-        the order results arrived in."""
-        request = run.request
-        if request in self._issued:
-            return (0, request.level, request.mu)
-        for index, bisection in enumerate(self.bisections):
-            key = bisection.schedule_key(request)
-            if key is not None:
-                return (1, index, *key)
-        return (2, request.level, request.mu)
