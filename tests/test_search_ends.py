@@ -17,9 +17,11 @@ from hypothesis import strategies as st
 from frictiondisk.model.search_settings import Certify
 from frictiondisk.tasks.jump_search.bisection import Bisection, BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
-from frictiondisk.tasks.jump_search.expanding import PLAIN, PREDICTED
+from frictiondisk.tasks.jump_search.expanding import PLAIN, PREDICTED, Expanding
+from frictiondisk.tasks.jump_search.jumps import JumpSearch
 
-MAX_RUNS = 2000  # far above any search's bound (module docstring of bisection.py)
+MAX_RUNS = 1500  # far above any search's bound (module docstring of bisection.py)
+COLD = Expanding(defer=True)  # a cold find_jump point's search (find_jump/planner.py)
 MAX_SECONDS = 20.0  # per search: a loop inside one call fails the test instead of hanging
 
 
@@ -43,17 +45,23 @@ def no_longer_than(seconds: float):
         signal.signal(signal.SIGALRM, previous)
 
 
-def pattern(mu_star: float, band: float, p_undecided: float, p_flip: float, seed: int):
+def pattern(
+    mu_star: float, band: float, p_undecided: float, p_flip: float, seed: int, slow: float = 0.0
+):
     """A seeded outcome pattern: a jump at mu_star; within `band` of it a run is
     undetermined with probability p_undecided and flipped with p_flip (the numerics resolve
-    nothing finer); a reserve mu - mu_star, or none. Deterministic per request."""
+    nothing finer); within `slow` above it undetermined below the last retry level (the
+    jump's slow approach); a reserve mu - mu_star (biased), or none. Deterministic per
+    request."""
 
     def answer(request) -> dict:
         key = repr((request.mu, request.level, request.strict, seed)).encode()
         draw = int.from_bytes(hashlib.sha256(key).digest()[:8], "big") / 2.0**64
         sticks = request.mu >= mu_star
         near = abs(request.mu - mu_star) <= band
-        if near and draw < p_undecided:
+        if sticks and request.mu - mu_star <= slow and request.level < 2:
+            outcome = "undetermined"
+        elif near and draw < p_undecided:
             outcome = "undetermined"
         elif near and draw > 1.0 - p_flip:
             outcome = "stick_slip" if sticks else "stick"
@@ -133,21 +141,58 @@ def test_every_bisection_ends_and_its_resume_ends_alike(
     p_undecided=chances,
     p_flip=st.sampled_from([0.0, 0.2, 0.5]),
     seed=st.integers(0, 10**6),
+    slow=st.sampled_from([0.0, 1e-11, 1e-9, 1e-7]),
     guided=st.booleans(),
+    expanding=st.sampled_from([PLAIN, COLD, PREDICTED]),
 )
 def test_every_certified_search_ends_and_its_resume_ends_alike(
-    tol, mu_star, band, p_undecided, p_flip, seed, guided
+    tol, mu_star, band, p_undecided, p_flip, seed, slow, guided, expanding
 ):
-    """The campaign's own search (find_jump: a cold, guided, certified bisection)."""
-    answer = pattern(mu_star, band, p_undecided, p_flip, seed)
+    """The campaign's own search (find_jump: a cold, guided, certified bisection whose
+    undetermined probes are deferred), also across a slow approach far wider than tol."""
+    answer = pattern(mu_star, band, p_undecided, p_flip, seed, slow)
 
     def make():
         return CertifiedBisection(
-            (0.04, 0.3), tol, (1e-6, 10.0), 2, certify=Certify(), guided=guided
+            (0.04, 0.3),
+            tol,
+            (1e-6, 10.0),
+            2,
+            certify=Certify(),
+            guided=guided,
+            expanding=expanding,
         )
 
     asked, found = drive(make(), answer)
     assert found.status in ("converged", "failed") and found.reason
+    journal = {request: answer(request) for request in asked}
+    again, refound = replay(make, journal)
+    assert again == asked
+    assert (refound.status, refound.reason) == (found.status, found.reason)
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    tol=tols,
+    mu_star=mus,
+    band=bands,
+    p_undecided=chances,
+    p_flip=st.sampled_from([0.0, 0.2, 0.5]),
+    seed=st.integers(0, 10**6),
+    stride=st.sampled_from([1, 4]),
+)
+def test_every_jump_search_ends_and_its_resume_ends_alike(
+    tol, mu_star, band, p_undecided, p_flip, seed, stride
+):
+    """A prescan over a grid, then a certified bisection of every change."""
+    answer = pattern(mu_star, band, p_undecided, p_flip, seed)
+    grid = tuple(0.04 + 0.01 * k for k in range(26))
+
+    def make():
+        return JumpSearch(grid, tol, 2, certify=Certify(), stride=stride)
+
+    asked, found = drive(make(), answer)
+    assert found.status in ("converged", "failed", "no_jump") and found.reason
     journal = {request: answer(request) for request in asked}
     again, refound = replay(make, journal)
     assert again == asked
