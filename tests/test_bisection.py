@@ -1,11 +1,14 @@
 """The bisection state machine against synthetic outcome oracles (no simulation)."""
 
+import ast
 import math
+import pathlib
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import frictiondisk.tasks.jump_search as package
 from frictiondisk.tasks.jump_search.bisection import Bisection, RunRequest
 
 
@@ -171,3 +174,19 @@ def test_a_bracket_end_cannot_move_past_its_limit():
 def test_both_ends_undecided_beyond_the_span_fail():
     res = drive(Bisection((0.140, 0.160), 1e-4, (0.1, 0.3), 1), slow_near(0.139, 0.161, 0.15))
     assert res.status == "failed" and "undetermined at mu" in res.reason
+
+
+def test_the_jump_searches_stay_in_small_parts():
+    """tasks/jump_search: no module over 400 lines, no class over 20 methods (the bisection
+    is its settings, its bracket state and its probe strategies, not one class)."""
+    too_big = []
+    for path in sorted(pathlib.Path(package.__file__).parent.glob("*.py")):
+        source = path.read_text()
+        if len(source.splitlines()) > 400:
+            too_big.append(f"{path.name}: {len(source.splitlines())} lines")
+        for node in ast.parse(source).body:
+            if isinstance(node, ast.ClassDef):
+                methods = [b for b in node.body if isinstance(b, ast.FunctionDef)]
+                if len(methods) > 20:
+                    too_big.append(f"{path.name}: {node.name} has {len(methods)} methods")
+    assert not too_big

@@ -240,6 +240,7 @@ class JumpPlanner(Planner):
                 stride_of(prescan, self.points[i].config.numerics.stick_rule, self.task.sides),
                 prescan.persist,
                 self.task.sides,
+                self._resolution(),
             )
             return
         bracket = self._predicted_bracket(i)
@@ -259,7 +260,15 @@ class JumpPlanner(Planner):
             expanding=dataclasses.replace(PREDICTED, full=full) if bracket else COLD,
             between=self.task.sides,
             reserve_offset=self._reserve_offset(i),
+            resolution=self._resolution(),
         )
+
+    def _resolution(self) -> float:
+        """The narrowest bracket the numerics resolve: their expected mu* error (0 where
+        unknown); a tol below it ends a point `failed` there (bisection_settings.py)."""
+        choice = self.campaign.numerics_choice
+        expected = None if choice is None else choice.expected
+        return 0.0 if expected is None or self.task.parameter != "mu" else float(expected)
 
     def _reserve_offset(self, i: int) -> float:
         """The reserve's offset at the jump learned from the first point (reserve_offset.py):

@@ -39,6 +39,7 @@ from frictiondisk.tasks.jump_search.bisection import (
     UNDETERMINED,
     Bisection,
     BisectionResult,
+    BisectionSettings,
     RunRecord,
     RunRequest,
 )
@@ -74,6 +75,7 @@ class CertifiedBisection:
         expanding: Expanding = PLAIN,
         between: Between = NOT_STICK_STICK,
         reserve_offset: float = 0.0,
+        resolution: float = 0.0,
     ):
         self.tol = tol
         self.between = between  # the two sides of the boundary (sides.py)
@@ -90,8 +92,9 @@ class CertifiedBisection:
         self.root_finder = root_finder
         self.expanding = expanding  # how its first search reaches past a missed prediction
         self.reserve_offset = reserve_offset  # the reserve at the jump per unit mu (learned)
-        self.search = Bisection(
-            bracket,
+        # the rules of every search of this jump; a re-search at stricter numerics
+        # differs in its level and limits alone (_research)
+        self.settings = BisectionSettings(
             tol,
             limits,
             max_retries,
@@ -101,7 +104,9 @@ class CertifiedBisection:
             expanding=expanding,
             between=between,
             reserve_offset=reserve_offset,
+            resolution=resolution,
         )
+        self.search = Bisection(bracket, self.settings)
         self.searches: list[Bisection] = [self.search]
         # the guided opening (module docstring): the stick end, then the reserve's zero
         self._opening = (
@@ -242,18 +247,7 @@ class CertifiedBisection:
             hi, ends = guide.request.mu, [guide]
         elif guide is not None and guide.outcome != UNDETERMINED:  # a not-stick: the bracket
             lo, ends = guide.request.mu, self._opened
-        self.search = Bisection(
-            (lo, hi),
-            self.tol,
-            self.limits,
-            self.max_retries,
-            self.rising,
-            self.split,
-            root_finder=self.root_finder,
-            expanding=self.expanding,
-            between=self.between,
-            reserve_offset=self.reserve_offset,
-        )
+        self.search = Bisection((lo, hi), self.settings)
         self.searches = [self.search]
         for run in ends:
             self.search.pending()
@@ -327,15 +321,7 @@ class CertifiedBisection:
             return
         search = Bisection(
             bracket,
-            self.tol,
-            limits,
-            self.max_retries,
-            self.rising,
-            self.split,
-            strict,
-            self.root_finder,
-            between=self.between,
-            reserve_offset=self.reserve_offset,
+            dataclasses.replace(self.settings, limits=limits, strict=strict, expanding=PLAIN),
         )
         self.search = search
         self.searches.append(search)

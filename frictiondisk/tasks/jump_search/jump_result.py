@@ -24,6 +24,38 @@ def run_role(request: RunRequest) -> str:
 
 
 @dataclasses.dataclass(frozen=True)
+class RunOrder:
+    """The role of each run of a jump search and the order its runs are reported in: prescan
+    runs first (by retry level, then mu), then each bisection's runs in its own schedule
+    order, then the persistence and fill runs: fixed by the campaign, not by the order
+    results arrived in."""
+
+    prescan: frozenset  # the requests the prescan asked for
+    checks: frozenset  # the persistence and fill runs' requests
+    grid: frozenset  # the prescan's values of mu
+    bisections: tuple  # the jump's searches (their schedule_key)
+
+    def role(self, request: RunRequest) -> str:
+        """`prescan` (the prescan's runs, and the grid values below the headline it skipped),
+        `search` (bisections and persistence runs) or `certification` (stricter numerics)."""
+        if request in self.prescan:
+            return "prescan"
+        if request in self.checks:
+            return "prescan" if request.mu in self.grid else "search"
+        return run_role(request)
+
+    def key(self, run: RunRecord) -> tuple:
+        request = run.request
+        if request in self.prescan:
+            return (0, request.level, request.mu)
+        for index, bisection in enumerate(self.bisections):
+            key = bisection.schedule_key(request)
+            if key is not None:
+                return (1, index, *key)
+        return (2, request.level, request.mu)
+
+
+@dataclasses.dataclass(frozen=True)
 class Window:
     """A sticking interval closed on both sides: a rising jump and the falling jump above it."""
 
@@ -258,7 +290,7 @@ def _problems(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str],
     """Why the point fails (empty: it does not), and the note on prescan values left
     undetermined."""
     # an undetermined prescan value inside a converged jump's bracket is that jump's
-    # slow approach (bisection.Bisection.undecided), not a gap in the scan
+    # slow approach (straddle.Straddle.undecided), not a gap in the scan
     undetermined = [
         r.request.mu
         for r in scan

@@ -11,10 +11,10 @@ where the verdicts and friction reserves do not explain an interval.
 The headline is the lowest rising jump whose sticking side persists, and it comes with a
 verdict at every prescan value below it:
 
-* persistence: a run at mu_hi + `persist` tol must stick too. If it does not, the sticking
-  set above that jump is a *window* narrower than the persistence width: its falling edge
-  is bisected, the search goes on above, and the window is reported
-  (`JumpSearchResult.windows`), never the headline;
+* persistence (headline.py): a run at mu_hi + `persist` tol must stick too. If it does
+  not, the sticking set above that jump is a *window* narrower than the persistence
+  width: its falling edge is bisected, the search goes on above, and the window is
+  reported (`JumpSearchResult.windows`), never the headline;
 * the grid below: every prescan value below the headline that the adaptive prescan
   skipped is run (an interval skipped on the friction reserve alone is unexamined), and a
   change it reveals is bisected like any other (`JumpSearchResult.grid_below`). The
@@ -40,10 +40,12 @@ from typing import Any
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.tasks.jump_search.bisection import RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
+from frictiondisk.tasks.jump_search.headline import Persistence, never_sticks
 from frictiondisk.tasks.jump_search.jump_result import (
     RUN_ROLES,
     JumpSearchResult,
     JumpSearchState,
+    RunOrder,
     compose_result,
     run_role,
 )
@@ -70,6 +72,7 @@ class JumpSearch:
         stride: int = 1,
         persist: float = 3.0,
         between: Between = NOT_STICK_STICK,
+        resolution: float = 0.0,
     ):
         if len(mus) < 2 or len(set(mus)) != len(mus):
             raise ValueError(f"a prescan needs at least 2 distinct values of mu, got {mus}")
@@ -85,6 +88,7 @@ class JumpSearch:
         self.persist = persist  # [tol] a headline sticks this far above its bracket
         # the boundary's two sides (sides.py): "stick" below reads side B, "not stick" A
         self.between = between
+        self.resolution = resolution  # [mu] no bracket is split below it (bisection_settings.py)
         self._scan_runs: list[RunRecord] = []  # every prescan run, retries included
         self._failure: str | None = None
         self._level: dict[float, int] = {}  # mu -> retry level to ask for next
@@ -98,8 +102,10 @@ class JumpSearch:
         self._checks: dict[float, RunRecord] = {}  # mu -> settled persistence or fill run
         self._check_runs: list[RunRecord] = []  # every such run, retries included
         self._waiting: set[float] = set()  # persistence / fill values without a settled run
-        self._persistence: dict[int, float] = {}  # bisection index -> its persistence mu
-        self.unjudged: set[int] = set()  # rising jumps whose persistence run stayed undetermined
+        self.persistence = Persistence(persist * tol)  # which jump is the headline
+        self.unjudged = (
+            self.persistence.unjudged
+        )  # rising jumps whose persistence run stayed undetermined
         self._filled = False  # every grid value below the headline asked for
         self._complete = False  # nothing left to run (set by _advance)
         self._pending: list[RunRequest] | None = None  # pending() until the next change
@@ -118,8 +124,9 @@ class JumpSearch:
         feed, since a driver asks for it after every result of every point)."""
         if self._pending is None:
             if self.scanning:
+                mus = [self.mus[k] for k in sorted(self._grid.waiting)]
                 self._pending = [
-                    self._scan_request(self.mus[k]) for k in sorted(self._grid.waiting)
+                    RunRequest(mu, self._level.get(mu, 0), self.scan_mode) for mu in mus
                 ]
                 self._issued.update(self._pending)
             else:
@@ -128,9 +135,6 @@ class JumpSearch:
                 wanted += [self._check_request(mu) for mu in sorted(self._waiting)]
                 self._pending = list(dict.fromkeys(wanted))
         return self._pending
-
-    def _scan_request(self, mu: float) -> RunRequest:
-        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode)
 
     def _check_request(self, mu: float) -> RunRequest:
         """A persistence run (off the grid: the bisections' numerics) or a grid value below
@@ -193,7 +197,7 @@ class JumpSearch:
             if all(b.done for b in self.bisections):
                 self._advance()  # every new bisection ended on its fed ends (a failure)
             return
-        wanted = self._persistence_wanted()
+        wanted = self.persistence.wanted(self.bisections, dict(self.known()), self._checks)
         if not wanted and not self._filled:
             self._filled = True
             wanted = self._fill_wanted()
@@ -257,6 +261,7 @@ class JumpSearch:
             self.root_finder,
             outer=(self.mus[0], self.mus[-1]),
             between=self.between,
+            resolution=self.resolution,
         )
         # its end checks are runs already made: fed, not run again
         decided = self._decided()
@@ -264,46 +269,6 @@ class JumpSearch:
             bisection.feed(RunRequest(mu, 0), decided[mu])
         self.bisections.append(bisection)
         self._covered.add((mu_a, mu_b))
-
-    def _rising_jumps(self):
-        """(index, result, base) of the converged rising jumps, increasing in mu: the
-        reported result (after certification) and the bracket at the point's own numerics."""
-        found = []
-        for index, bisection in enumerate(self.bisections):
-            res = bisection.result()
-            base = bisection.searches[0].result()
-            if (
-                res.status == base.status == "converged"
-                and res.rising
-                and res.certification != "vanished"
-            ):
-                found.append((index, res, base))
-        return sorted(found, key=lambda item: item[2].mu_lo)
-
-    def _persists(self, index: int, base, known: dict[float, bool]) -> bool | None:
-        """Whether rising jump `index` sticks over the persistence width above the mu_hi of
-        its bracket at the point's own numerics: by the decided values in
-        (mu_hi, mu_hi + width]; None until one is there."""
-        mu = self._persistence.setdefault(index, base.mu_hi + self.persist * self.tol)
-        above = [m for m in known if base.mu_hi < m <= mu]
-        if not above:
-            if mu in self._checks:  # undetermined after every retry: taken, but not certified
-                self.unjudged.add(index)
-                return True
-            return None
-        return all(known[m] for m in above)
-
-    def _persistence_wanted(self) -> set[float]:
-        """The persistence run that the lowest rising jump not yet judged needs; empty once
-        the headline is found (or no rising jump is left)."""
-        known = dict(self.known())
-        for index, _, base in self._rising_jumps():
-            persists = self._persists(index, base, known)
-            if persists is None:
-                return {self._persistence[index]}
-            if persists:
-                return set()
-        return set()
 
     def headline(self):
         """The lowest rising jump that persists, else (`persists_nowhere`) the lowest rising
@@ -313,27 +278,7 @@ class JumpSearch:
 
     def _headline(self):
         """(bisection index, result) of the headline, or None."""
-        known = dict(self.known())
-        rising = self._rising_jumps()
-        for index, res, base in rising:
-            if self._persists(index, base, known):
-                return index, res
-        return (rising[0][0], rising[0][1]) if rising else None
-
-    @property
-    def persists_nowhere(self) -> bool:
-        """Rising jumps, but none persists: every sticking set found is narrower than the
-        persistence width at the point's own numerics (a structure at the resolution
-        limit, which stricter numerics may join up)."""
-        known = dict(self.known())
-        rising = self._rising_jumps()
-        return bool(rising) and not any(self._persists(i, base, known) for i, _, base in rising)
-
-    def headline_judged(self) -> bool:
-        """Whether the headline's persistence run was decided (not undetermined) and showed
-        it persists."""
-        found = self._headline()
-        return found is None or (found[0] not in self.unjudged and not self.persists_nowhere)
+        return self.persistence.headline(self.bisections, dict(self.known()), self._checks)
 
     def _fill_wanted(self) -> set[float]:
         """Every grid value below the headline not run yet; the whole grid where the
@@ -342,22 +287,13 @@ class JumpSearch:
         ran = set(self._last_scan()) | set(self._checks)
         head = self.headline()
         if head is None:
-            if not self.bisections and self.never_sticks():
+            scan, checks = self._last_scan().values(), self._checks.values()
+            if not self.bisections and never_sticks(scan, checks, self.between):
                 return {mu for mu in self.mus if mu not in ran}
             return set()
         base = self.bisections[self._headline()[0]].searches[0].result()
         below = min(head.mu_lo, base.mu_lo)  # certification may have moved the bracket
         return {mu for mu in self.mus if mu < below and mu not in ran}
-
-    def never_sticks(self) -> bool:
-        """Every prescan value run decided not stick (its last retry), and no fill run
-        sticks (one left undetermined leaves the grid less than wholly decided)."""
-        scan = self._last_scan().values()
-        return (
-            bool(scan)
-            and all(self.between.is_low(run.outcome) for run in scan)
-            and all(not self.between.is_high(run.outcome) for run in self._checks.values())
-        )
 
     # ---- the answer -------------------------------------------------------------------
     def result(self) -> JumpSearchResult:
@@ -368,9 +304,18 @@ class JumpSearch:
     def snapshot(self) -> JumpSearchState:
         """What the finished search found, as its answer is composed from it."""
         last = self._last_scan()
-        runs = tuple(
-            sorted([*self._scan_runs, *self._bisection_runs, *self._check_runs], key=self._order)
+        order = RunOrder(
+            frozenset(self._issued),
+            frozenset(run.request for run in self._check_runs),
+            frozenset(self.mus),
+            tuple(self.bisections),
         )
+        runs = tuple(
+            sorted([*self._scan_runs, *self._bisection_runs, *self._check_runs], key=order.key)
+        )
+        known, checks = dict(self.known()), self._checks
+        found = self.persistence.headline(self.bisections, known, checks)
+        nowhere = self.persistence.nowhere(self.bisections, known, checks)
         return JumpSearchState(
             mus=self.mus,
             tol=self.tol,
@@ -378,45 +323,20 @@ class JumpSearch:
             certified=self.certify.enabled,
             found=tuple(b.result() for b in self.bisections),
             last_scan=last,
-            checks=self.checks(),
+            checks=dict(checks),
             never_ran=tuple(k for k in self._grid.wanted if self.mus[k] not in last),
             failure=self._failure,
-            headline=self.headline(),
-            headline_judged=self.headline_judged(),
-            persists_nowhere=self.persists_nowhere,
-            never_sticks=self.never_sticks(),
+            headline=None if found is None else found[1],
+            # its persistence run was decided (not undetermined) and showed it persists
+            headline_judged=found is None or (found[0] not in self.unjudged and not nowhere),
+            persists_nowhere=nowhere,
+            never_sticks=never_sticks(last.values(), checks.values(), self.between),
             runs=runs,
-            prescan_runs=tuple(sorted(self._scan_runs, key=self._order)),
-            roles={run.request: self.role(run.request) for run in runs},
+            prescan_runs=tuple(sorted(self._scan_runs, key=order.key)),
+            roles={run.request: order.role(run.request) for run in runs},
             between=self.between,
         )
 
     def _last_scan(self) -> dict[float, RunRecord]:
         """mu -> its last prescan run (the one at the highest retry level)."""
         return {run.request.mu: run for run in self._scan_runs}
-
-    def checks(self) -> dict[float, RunRecord]:
-        """mu -> the settled persistence or fill run."""
-        return dict(self._checks)
-
-    def role(self, request: RunRequest) -> str:
-        """`prescan` (the prescan's runs, and the grid values below the headline it skipped),
-        `search` (bisections and persistence runs) or `certification` (stricter numerics)."""
-        if request in self._issued:
-            return "prescan"
-        if any(run.request == request for run in self._check_runs):
-            return "prescan" if request.mu in self._index else "search"
-        return run_role(request)
-
-    def _order(self, run: RunRecord) -> tuple:
-        """Prescan runs first (by retry level, then mu), then each bisection's runs in its
-        own schedule order, then the persistence and fill runs: fixed by the campaign, not by
-        the order results arrived in."""
-        request = run.request
-        if request in self._issued:
-            return (0, request.level, request.mu)
-        for index, bisection in enumerate(self.bisections):
-            key = bisection.schedule_key(request)
-            if key is not None:
-                return (1, index, *key)
-        return (2, request.level, request.mu)
