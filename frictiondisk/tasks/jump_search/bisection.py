@@ -103,6 +103,7 @@ class Bisection:
         expanding: Expanding = PLAIN,
         between: Between = NOT_STICK_STICK,
         reserve_offset: float = 0.0,
+        watch: float = 0.0,
     ):
         lo, hi = bracket
         if not (limits[0] <= lo < hi <= limits[1]) or tol <= 0:
@@ -115,6 +116,7 @@ class Bisection:
         self.between = between
         self.split = split
         self.strict = strict  # certification level of every run this bisection asks for
+        self.watch = watch  # [s] every run watches this long (a re-search: certify.py)
         self.lo = lo
         self.hi = hi
         self.tol = tol
@@ -161,7 +163,10 @@ class Bisection:
             mus = [mu for mu in ends if mu not in self._known and mu not in self._deferred]
         else:
             mus = [mu for mu in self._interior() if mu not in self._known]
-        requests = [RunRequest(mu, self._level.get(mu, 0), strict=self.strict) for mu in mus]
+        level = self._level.get
+        requests = [
+            RunRequest(mu, level(mu, 0), strict=self.strict, watch=self.watch) for mu in mus
+        ]
         for request in requests:
             self._issued.setdefault(request, (self._round, request.level, request.mu))
         return requests

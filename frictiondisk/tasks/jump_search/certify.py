@@ -46,6 +46,9 @@ from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 from frictiondisk.verdict.deciding_rule import BUDGET_RAN_OUT, EXTRAPOLATED, INTEGRATOR_FAILED
 
+# a check of a motion boundary's end watches at least this many times the decision time of
+# the run that decided it (a longer horizon, not only a stricter rtol)
+MOTION_WATCH = 2.0
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
 
@@ -153,16 +156,27 @@ class CertifiedBisection:
         return requests
 
     def _watch(self, mu: float) -> float:
-        """How long [s] the check of bracket end `mu` watches before it may extrapolate:
-        `certify.watch` times the decision time of the run that decided that end, where an
-        extrapolation decided it (verdict/deciding_rule.py EXTRAPOLATED); 0 otherwise. The
-        same rule on later motion is a test of the verdict, not a repetition of it."""
-        if not self.certify.watch or self.certify.observe:
-            return 0.0
+        """How long [s] the check of bracket end `mu` watches before it may reach a
+        not-stick verdict: at least as long as the search it checks watched; `certify.watch`
+        times the decision time of the run that decided that end, where an extrapolation
+        decided it (verdict/deciding_rule.py EXTRAPOLATED); and at a motion boundary
+        (`between` other than not_stick | stick) at least `MOTION_WATCH` times that decision
+        time whatever decided it: a motion named at one horizon (a slow spiral, a ripple)
+        is checked on a longer one, not only at a stricter rtol. The same rule on later
+        motion is a test of the verdict, not a repetition of it."""
+        watched = self.search.watch
+        if not self.certify.enabled:
+            return watched
         decided = [r for r in self.search.runs if r.request.mu == mu and r.outcome != UNDETERMINED]
-        if not decided or decided[-1].result.get("decided_by") not in EXTRAPOLATED:
-            return 0.0
-        return self.certify.watch * float(decided[-1].result["t_end"])
+        if not decided:
+            return watched
+        t_end = float(decided[-1].result.get("t_end", 0.0))
+        if not self.between.is_default:
+            watched = max(watched, max(MOTION_WATCH, self.certify.watch) * t_end)
+        if self.certify.watch and not self.certify.observe:
+            if decided[-1].result.get("decided_by") in EXTRAPOLATED:
+                watched = max(watched, self.certify.watch * t_end)
+        return watched
 
     def schedule_key(self, request: RunRequest) -> tuple | None:
         for index, search in enumerate(self.searches):
@@ -300,16 +314,15 @@ class CertifiedBisection:
             return
         flipped = runs[1] if not hi_holds else runs[0]
         if flipped.request.watch > 0.0:
-            # watching refuted the extrapolation that decided this end: a re-search would
-            # decide the values beside it by the same rule, unwatched (and bracket the
-            # difference between watching and not, not a jump)
+            # watching refuted the verdict that decided this end: the re-search watches
+            # every run as long (else it would decide the values beside it by the same
+            # rule, unwatched, and bracket the difference between watching and not)
             self._watched_flip = flipped.request.mu
-            self._finish("uncertain")
-            return
-        self._research(strict, hi_flipped=not hi_holds)
+        self._research(strict, hi_flipped=not hi_holds, watch=flipped.request.watch)
 
-    def _research(self, strict: int, hi_flipped: bool) -> None:
-        """Search again at `strict` from the end that flipped: it joins the other side."""
+    def _research(self, strict: int, hi_flipped: bool, watch: float = 0.0) -> None:
+        """Search again at `strict` from the end that flipped: it joins the other side.
+        Every run of the new search watches until `watch` [s] (0: none)."""
         old = self.search
         step = max(2.0 * (old.hi - old.lo), 2.0 * self.tol)
         limits = self.outer
@@ -336,13 +349,16 @@ class CertifiedBisection:
             self.root_finder,
             between=self.between,
             reserve_offset=self.reserve_offset,
+            watch=watch,
         )
         self.search = search
         self.searches.append(search)
         # the strict run at the end that flipped is this search's check of that end
         record = self._checks[near]
         search.pending()
-        search.feed(RunRequest(near, 0, strict=strict), record.result)
+        search.feed(RunRequest(near, 0, strict=strict, watch=watch), record.result)
+        if search.done:
+            self._after_search()
 
     def _finish(self, verdict: str) -> None:
         self._verdict = verdict
@@ -381,7 +397,8 @@ class CertifiedBisection:
         if self._watched_flip is not None:
             reason = (
                 f"{reason}: watched, the end mu = {self._watched_flip:.10g} flipped, so the "
-                "extrapolation that decided it did not hold"
+                "verdict that decided it did not hold; searched again from it, every run "
+                f"watched until {self.searches[-1].watch:.4g} s"
             )
         return dataclasses.replace(
             final,
