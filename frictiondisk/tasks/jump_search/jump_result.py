@@ -10,6 +10,7 @@ from typing import Any
 
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.certify import point_certification
+from frictiondisk.tasks.jump_search.prescan import motion_boundaries
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 RUN_ROLES = ("search", "prescan", "certification")
@@ -46,6 +47,10 @@ class GridBelow:
     decided: int  # grid values below the headline with a decided verdict
     total: int  # grid values below the headline
     resolution: float  # largest gap between decided values below the headline [1]
+    # runs between neighbours that name different motions (prescan.MotionRefinement), and
+    # such neighbours left wider apart than the persistence width (its budget ran out)
+    motion_runs: int = 0
+    unrefined: int = 0
 
     @property
     def share(self) -> float:
@@ -73,6 +78,7 @@ class JumpSearchState:
     prescan_runs: tuple[RunRecord, ...]  # every prescan run, retries included, in order
     roles: dict[RunRequest, str]  # the role of every run
     between: Between = NOT_STICK_STICK  # the boundary's sides ("stick" reads side B)
+    motion_runs: int = 0  # runs between neighbours naming different motions
 
 
 @dataclasses.dataclass(frozen=True)
@@ -168,12 +174,20 @@ def _grid_below(state: JumpSearchState, top: float) -> GridBelow:
     for source in (state.last_scan, state.checks):
         for mu, run in source.items():
             if state.between.side(run.outcome) is not None:
-                decided[mu] = state.between.is_high(run.outcome)
+                decided[mu] = run.outcome
     below = [mu for mu in state.mus if mu < top]
     end = top if math.isfinite(top) else state.mus[-1]
     seen = sorted(mu for mu in decided if mu < top) + [end]
     gaps = [b - a for a, b in zip([state.mus[0], *seen], seen, strict=False)]
-    return GridBelow(sum(mu in decided for mu in below), len(below), max(gaps) if gaps else 0.0)
+    width = state.persist * state.tol
+    unrefined = len(motion_boundaries(decided, top, width, state.between))
+    return GridBelow(
+        sum(mu in decided for mu in below),
+        len(below),
+        max(gaps) if gaps else 0.0,
+        state.motion_runs,
+        unrefined,
+    )
 
 
 def _distinct(jumps):
@@ -230,7 +244,7 @@ def compose_result(state: JumpSearchState) -> JumpSearchResult:
             f"no jump: no value from mu = {state.mus[0]:.6g} to {state.mus[-1]:.6g} "
             f"{sticks}; {grid.decided} of {grid.total} grid values decided {low} "
             f"(resolution {grid.resolution:.3g})"
-        )
+        ) + _motion_note(state, grid)
     elif problems:
         status, reason = "failed", "; ".join(problems)
     else:
@@ -312,6 +326,7 @@ def _converged_reason(state, jumps, unresolved, windows, grid, scan, vanished: i
             f"; {grid.decided} of {grid.total} prescan values below mu* decided "
             f"(resolution {grid.resolution:.3g})"
         )
+        reason += _motion_note(state, grid)
         if state.persists_nowhere:
             reason += (
                 f"; no rising jump persists over {state.persist:g} tol (every sticking "
@@ -320,6 +335,20 @@ def _converged_reason(state, jumps, unresolved, windows, grid, scan, vanished: i
         elif not state.headline_judged:
             reason += "; the persistence run above mu* stayed undetermined"
     return reason
+
+
+def _motion_note(state, grid) -> str:
+    """What the refinement at motion boundaries below mu* did, where it ran."""
+    if not grid.motion_runs and not grid.unrefined:
+        return ""
+    width = state.persist * state.tol
+    note = f"; {grid.motion_runs} run(s) between neighbours naming different motions"
+    if grid.unrefined:
+        return note + (
+            f", {grid.unrefined} such pair(s) left wider than the persistence width "
+            f"{width:.3g} (refinement budget spent)"
+        )
+    return note + f", each pair refined to the persistence width {width:.3g}"
 
 
 def _tail_notes(state, scan, vanished: int) -> str:
@@ -335,6 +364,8 @@ def _tail_notes(state, scan, vanished: int) -> str:
 def _grid_flag(state, grid, no_jump: bool) -> str:
     """Certification of the grid below the headline (of the whole grid without a jump)."""
     if state.certified and grid is not None:
-        whole = grid.decided == grid.total and (no_jump or state.headline_judged)
+        whole = (
+            grid.decided == grid.total and not grid.unrefined and (no_jump or state.headline_judged)
+        )
         return "certified" if whole else "uncertain"
     return "uncertain" if state.persists_nowhere else "off"

@@ -47,7 +47,7 @@ from frictiondisk.tasks.jump_search.jump_result import (
     compose_result,
     run_role,
 )
-from frictiondisk.tasks.jump_search.prescan import AdaptiveGrid
+from frictiondisk.tasks.jump_search.prescan import AdaptiveGrid, MotionRefinement
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 __all__ = ["RUN_ROLES", "JumpSearch", "JumpSearchResult", "run_role"]
@@ -101,6 +101,8 @@ class JumpSearch:
         self._persistence: dict[int, float] = {}  # bisection index -> its persistence mu
         self.unjudged: set[int] = set()  # rising jumps whose persistence run stayed undetermined
         self._filled = False  # every grid value below the headline asked for
+        # runs between neighbours below the headline that name different motions
+        self._motions = MotionRefinement(len(self.mus), persist * tol, between)
         self._complete = False  # nothing left to run (set by _advance)
         self._pending: list[RunRequest] | None = None  # pending() until the next change
 
@@ -135,7 +137,8 @@ class JumpSearch:
     def _check_request(self, mu: float) -> RunRequest:
         """A persistence run (off the grid: the bisections' numerics) or a grid value below
         the headline (the prescan's)."""
-        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode if mu in self._index else None)
+        prescan = mu in self._index or mu in self._motions.asked
+        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode if prescan else None)
 
     # ---- what came back ---------------------------------------------------------------
     def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
@@ -197,6 +200,8 @@ class JumpSearch:
         if not wanted and not self._filled:
             self._filled = True
             wanted = self._fill_wanted()
+        if not wanted:
+            wanted = self._motions.wanted(self._decided_outcomes(), self._grid_top())
         if wanted:
             self._waiting.update(wanted)
         else:
@@ -335,6 +340,20 @@ class JumpSearch:
         found = self._headline()
         return found is None or (found[0] not in self.unjudged and not self.persists_nowhere)
 
+    def _grid_top(self) -> float:
+        """Where the grid the headline stands on ends: below its bracket (also below the
+        bracket at the point's own numerics); the whole grid (inf) for the answer "no jump";
+        -inf where neither stands yet."""
+        found = self._headline()
+        if found is None:
+            return float("inf") if not self.bisections and self.never_sticks() else -float("inf")
+        base = self.bisections[found[0]].searches[0].result()
+        return min(found[1].mu_lo, base.mu_lo)
+
+    def _decided_outcomes(self) -> dict[float, str]:
+        """mu -> outcome of every decided prescan, persistence, fill and refinement run."""
+        return {mu: run["outcome"] for mu, run in self._decided().items()}
+
     def _fill_wanted(self) -> set[float]:
         """Every grid value below the headline not run yet; the whole grid where the
         prescan found no change and every value it ran does not stick (the answer "no
@@ -389,6 +408,7 @@ class JumpSearch:
             prescan_runs=tuple(sorted(self._scan_runs, key=self._order)),
             roles={run.request: self.role(run.request) for run in runs},
             between=self.between,
+            motion_runs=len(self._motions.asked),
         )
 
     def _last_scan(self) -> dict[float, RunRecord]:
@@ -405,7 +425,8 @@ class JumpSearch:
         if request in self._issued:
             return "prescan"
         if any(run.request == request for run in self._check_runs):
-            return "prescan" if request.mu in self._index else "search"
+            prescan = request.mu in self._index or request.mu in self._motions.asked
+            return "prescan" if prescan else "search"
         return run_role(request)
 
     def _order(self, run: RunRecord) -> tuple:

@@ -150,3 +150,54 @@ def _reserve_zero(*ends: tuple[float, dict[str, Any]]) -> float | None:
         mu, r = finite[0]
         return mu - r
     return None
+
+
+# runs per prescan value that the refinement at motion boundaries may spend at one point
+MOTION_REFINE_BUDGET = 1.0
+
+
+def motions_differ(a: str, b: str, between: Between = NOT_STICK_STICK) -> bool:
+    """Two outcomes on the low (not-stick) side that name different motions: a boundary
+    between them where a sticking window can sit. `slide` (a motion not yet shown) next to
+    a shown one counts as different; two runs of one name do not."""
+    return between.is_low(a) and between.is_low(b) and a != b
+
+
+def motion_boundaries(
+    decided: dict[float, str], top: float, width: float, between: Between = NOT_STICK_STICK
+) -> list[tuple[float, float]]:
+    """The neighbouring decided values (mu -> outcome) below `top` whose motions differ
+    and lie more than `width` (the persistence width) apart, increasing in mu: each still
+    needs a run between them before the grid below `top` counts as decided."""
+    below = sorted(mu for mu in decided if mu < top)
+    limit = width * (1 + 1e-9)
+    return [
+        (a, b)
+        for a, b in zip(below, below[1:], strict=False)
+        if b - a > limit and motions_differ(decided[a], decided[b], between)
+    ]
+
+
+class MotionRefinement:
+    """Where two neighbouring decided values below the headline name different motions,
+    a run at their middle, round after round, until they lie within the persistence width
+    (a sticking window at least that wide sitting on the boundary covers more than half of
+    the interval, so a middle lands in it), within a budget of runs per point. Which
+    intervals are refined depends on the verdicts only: the lowest first."""
+
+    def __init__(self, n_values: int, width: float, between: Between = NOT_STICK_STICK):
+        self.budget = math.ceil(MOTION_REFINE_BUDGET * n_values)
+        self.width = width  # [mu] the persistence width: persist x tol
+        self.between = between
+        self.asked: set[float] = set()  # every mu it asked for
+
+    def wanted(self, decided: dict[float, str], top: float) -> set[float]:
+        """The middles of this round (none already asked for), lowest intervals first, at
+        most the budget left."""
+        middles = [
+            0.5 * (a + b) for a, b in motion_boundaries(decided, top, self.width, self.between)
+        ]
+        fresh = [mu for mu in middles if mu not in self.asked]
+        chosen = set(fresh[: max(0, self.budget - len(self.asked))])
+        self.asked |= chosen
+        return chosen
