@@ -77,8 +77,10 @@ class CertifiedBisection:
         expanding: Expanding = PLAIN,
         between: Between = NOT_STICK_STICK,
         reserve_offset: float = 0.0,
+        strict: int = 0,
     ):
         self.tol = tol
+        self.strict = strict  # certification level of its first search (a repair goes on there)
         self.between = between  # the two sides of the boundary (sides.py)
         self.limits = limits
         # where a re-search at stricter numerics may look: a jump that leaves its prescan
@@ -100,6 +102,7 @@ class CertifiedBisection:
             max_retries,
             rising,
             split,
+            strict,
             root_finder=root_finder,
             expanding=expanding,
             between=between,
@@ -263,6 +266,7 @@ class CertifiedBisection:
             self.max_retries,
             self.rising,
             self.split,
+            self.strict,
             root_finder=self.root_finder,
             expanding=self.expanding,
             between=self.between,
