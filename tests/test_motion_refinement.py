@@ -113,3 +113,23 @@ def test_which_neighbours_differ():
     decided = {0.08: "self_centring", 0.09: "self_centring", 0.10: "slide_cycle", 0.1001: "slide"}
     assert motion_boundaries(decided, 1.0, 3 * TOL) == [(0.09, 0.10)]
     assert motion_boundaries(decided, 0.095, 3 * TOL) == []  # only below the top
+
+
+def test_a_middle_left_undetermined_is_named_and_leaves_the_grid_uncertain():
+    """A run between two motions that stays undetermined after every retry (a slow
+    approach) decides nothing: the pair stays wider than the persistence width, the reason
+    names the mu, and the grid below is not certified."""
+
+    def motions(mu):
+        if mu >= MAIN_JUMP:
+            return "stick"
+        if 0.085 < mu < 0.095:
+            return "undetermined"
+        return "self_centring" if mu < 0.09 else "slide_cycle"
+
+    jumps = search()
+    drive(jumps, motions)
+    res = jumps.result()
+    assert res.grid_below.unrefined == 1 and res.grid_below.unrefined_at == (0.09,)
+    assert "undetermined after every retry at mu = 0.09" in res.reason
+    assert res.certification == "uncertain"

@@ -51,6 +51,8 @@ class GridBelow:
     # such neighbours left wider apart than the persistence width (its budget ran out)
     motion_runs: int = 0
     unrefined: int = 0
+    # undetermined runs (after every retry) inside such pairs: why they were left
+    unrefined_at: tuple[float, ...] = ()
 
     @property
     def share(self) -> float:
@@ -180,13 +182,16 @@ def _grid_below(state: JumpSearchState, top: float) -> GridBelow:
     seen = sorted(mu for mu in decided if mu < top) + [end]
     gaps = [b - a for a, b in zip([state.mus[0], *seen], seen, strict=False)]
     width = state.persist * state.tol
-    unrefined = len(motion_boundaries(decided, top, width, state.between))
+    pairs = motion_boundaries(decided, top, width, state.between)
+    undetermined = [mu for mu in state.checks if mu not in decided]
+    stuck = tuple(sorted(mu for mu in undetermined for a, b in pairs if a < mu < b))
     return GridBelow(
         sum(mu in decided for mu in below),
         len(below),
         max(gaps) if gaps else 0.0,
         state.motion_runs,
-        unrefined,
+        len(pairs),
+        stuck,
     )
 
 
@@ -344,9 +349,13 @@ def _motion_note(state, grid) -> str:
     width = state.persist * state.tol
     note = f"; {grid.motion_runs} run(s) between neighbours naming different motions"
     if grid.unrefined:
+        why = "refinement budget spent"
+        if grid.unrefined_at:
+            mus = ", ".join(f"{mu:.6g}" for mu in grid.unrefined_at)
+            why = f"undetermined after every retry at mu = {mus}"
         return note + (
             f", {grid.unrefined} such pair(s) left wider than the persistence width "
-            f"{width:.3g} (refinement budget spent)"
+            f"{width:.3g} ({why})"
         )
     return note + f", each pair refined to the persistence width {width:.3g}"
 
