@@ -103,6 +103,7 @@ def test_the_refinement_stays_within_its_budget_and_says_what_it_left():
     assert res.grid_below.unrefined > 0
     assert res.certification == "uncertain"
     assert "left wider than the persistence width" in res.reason
+    assert "refinement budget spent" in res.reason
 
 
 def test_which_neighbours_differ():
@@ -113,13 +114,37 @@ def test_which_neighbours_differ():
     decided = {0.08: "self_centring", 0.09: "self_centring", 0.10: "slide_cycle", 0.1001: "slide"}
     assert motion_boundaries(decided, 1.0, 3 * TOL) == [(0.09, 0.10)]
     assert motion_boundaries(decided, 0.095, 3 * TOL) == []  # only below the top
+    # around a value undetermined after every retry: the parts beside it, to width / 2
+    assert motion_boundaries(decided, 1.0, 0.01, undetermined=(0.095,)) == []
+    assert motion_boundaries(decided, 1.0, 0.0099, undetermined=(0.095,)) == [
+        (0.09, 0.095),
+        (0.095, 0.10),
+    ]
 
 
-def test_a_middle_left_undetermined_is_named_and_leaves_the_grid_uncertain():
+def test_a_middle_left_undetermined_is_refined_around_and_named():
     """A run between two motions that stays undetermined after every retry (a slow
-    approach) decides nothing: the pair stays wider than the persistence width, the reason
-    names the mu, and the grid below is not certified."""
+    approach) decides nothing: the parts beside it are refined to half the persistence
+    width (a window wider than the persistence width that holds it then holds a decided
+    value too), and the reason names it."""
+    slow = 0.5 * (0.08 + 0.10)
 
+    def motions(mu):
+        if mu >= MAIN_JUMP:
+            return "stick"
+        if mu == slow:
+            return "undetermined"
+        return "self_centring" if mu < slow else "slide_cycle"  # no window
+
+    jumps = search()
+    drive(jumps, motions)
+    res = jumps.result()
+    assert res.grid_below.unrefined == 0 and res.grid_below.unrefined_at == (slow,)
+    assert "undetermined after every retry at mu = 0.09" in res.reason
+    assert res.certification == "certified"
+
+
+def test_a_band_left_undetermined_spends_the_budget_and_leaves_the_grid_uncertain():
     def motions(mu):
         if mu >= MAIN_JUMP:
             return "stick"
@@ -130,6 +155,7 @@ def test_a_middle_left_undetermined_is_named_and_leaves_the_grid_uncertain():
     jumps = search()
     drive(jumps, motions)
     res = jumps.result()
-    assert res.grid_below.unrefined == 1 and res.grid_below.unrefined_at == (0.09,)
-    assert "undetermined after every retry at mu = 0.09" in res.reason
+    assert res.grid_below.unrefined > 0
+    assert res.grid_below.motion_runs <= MOTION_REFINE_BUDGET * len(GRID)
+    assert "refinement budget spent" in res.reason
     assert res.certification == "uncertain"

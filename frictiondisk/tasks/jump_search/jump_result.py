@@ -48,10 +48,11 @@ class GridBelow:
     total: int  # grid values below the headline
     resolution: float  # largest gap between decided values below the headline [1]
     # runs between neighbours that name different motions (prescan.MotionRefinement), and
-    # such neighbours left wider apart than the persistence width (its budget ran out)
+    # the intervals between them still wider than the persistence width (its budget ran
+    # out; beside an undetermined value, wider than half that)
     motion_runs: int = 0
     unrefined: int = 0
-    # undetermined runs (after every retry) inside such pairs: why they were left
+    # values undetermined after every retry between such neighbours
     unrefined_at: tuple[float, ...] = ()
 
     @property
@@ -182,9 +183,11 @@ def _grid_below(state: JumpSearchState, top: float) -> GridBelow:
     seen = sorted(mu for mu in decided if mu < top) + [end]
     gaps = [b - a for a, b in zip([state.mus[0], *seen], seen, strict=False)]
     width = state.persist * state.tol
-    pairs = motion_boundaries(decided, top, width, state.between)
-    undetermined = [mu for mu in state.checks if mu not in decided]
-    stuck = tuple(sorted(mu for mu in undetermined for a, b in pairs if a < mu < b))
+    runs = {**state.last_scan, **state.checks}
+    undetermined = [mu for mu in runs if mu not in decided]
+    pairs = motion_boundaries(decided, top, width, state.between, undetermined)
+    boundaries = motion_boundaries(decided, top, 0.0, state.between)  # every such pair
+    stuck = tuple(sorted({mu for mu in undetermined for a, b in boundaries if a < mu < b}))
     return GridBelow(
         sum(mu in decided for mu in below),
         len(below),
@@ -349,15 +352,16 @@ def _motion_note(state, grid) -> str:
     width = state.persist * state.tol
     note = f"; {grid.motion_runs} run(s) between neighbours naming different motions"
     if grid.unrefined:
-        why = "refinement budget spent"
-        if grid.unrefined_at:
-            mus = ", ".join(f"{mu:.6g}" for mu in grid.unrefined_at)
-            why = f"undetermined after every retry at mu = {mus}"
-        return note + (
-            f", {grid.unrefined} such pair(s) left wider than the persistence width "
-            f"{width:.3g} ({why})"
+        note += (
+            f", {grid.unrefined} interval(s) between them left wider than the persistence "
+            f"width {width:.3g} (refinement budget spent)"
         )
-    return note + f", each pair refined to the persistence width {width:.3g}"
+    else:
+        note += f", every interval between them refined to the persistence width {width:.3g}"
+    if grid.unrefined_at:
+        mus = ", ".join(f"{mu:.6g}" for mu in grid.unrefined_at)
+        note += f" (undetermined after every retry at mu = {mus}: refined around)"
+    return note
 
 
 def _tail_notes(state, scan, vanished: int) -> str:

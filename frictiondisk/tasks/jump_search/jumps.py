@@ -201,7 +201,9 @@ class JumpSearch:
             self._filled = True
             wanted = self._fill_wanted()
         if not wanted:
-            wanted = self._motions.wanted(self._decided_outcomes(), self._grid_top())
+            wanted = self._motions.wanted(
+                self._decided_outcomes(), self._grid_top(), self._undetermined()
+            )
         if wanted:
             self._waiting.update(wanted)
         else:
@@ -353,6 +355,11 @@ class JumpSearch:
     def _decided_outcomes(self) -> dict[float, str]:
         """mu -> outcome of every decided prescan, persistence, fill and refinement run."""
         return {mu: run["outcome"] for mu, run in self._decided().items()}
+
+    def _undetermined(self) -> list[float]:
+        """The prescan, fill and refinement values undetermined after every retry."""
+        runs = [*self._last_scan().values(), *self._checks.values()]
+        return [run.request.mu for run in runs if self.between.side(run.outcome) is None]
 
     def _fill_wanted(self) -> set[float]:
         """Every grid value below the headline not run yet; the whole grid where the
