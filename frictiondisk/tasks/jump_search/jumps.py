@@ -353,8 +353,15 @@ class JumpSearch:
         return min(found[1].mu_lo, base.mu_lo)
 
     def _decided_outcomes(self) -> dict[float, str]:
-        """mu -> outcome of every decided prescan, persistence, fill and refinement run."""
-        return {mu: run["outcome"] for mu, run in self._decided().items()}
+        """mu -> outcome of every decided run with the prescan's numerics (prescan, fill
+        and refinement runs): motions are compared as one numerics names them."""
+        runs = {**self._last_scan(), **self._checks}
+        prescan = set(self._index) | self._motions.asked
+        return {
+            mu: run.outcome
+            for mu, run in runs.items()
+            if mu in prescan and self.between.side(run.outcome) is not None
+        }
 
     def _undetermined(self) -> list[float]:
         """The prescan, fill and refinement values undetermined after every retry."""
