@@ -26,10 +26,8 @@ further out at stricter numerics: while a stricter level is left, the search goe
 the probe (it lies inside) with every run at that level; where a jump at key_in vanishes
 there, the tip lies further in: it is located again at that level between the start point
 and key_in. Either is checked one level above (`recertified`); at the last level the fold
-is `uncertain`. A tip that lies beyond the
-plane, two
-jumps that stay apart (the window ends abruptly), or a search that fails, is reported
-`not located` with the reason.
+is `uncertain`. A tip that lies beyond the plane, two jumps that stay apart (the window
+ends abruptly), or a search that fails, is reported `not located` with the reason.
 """
 
 from __future__ import annotations
