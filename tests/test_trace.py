@@ -242,3 +242,31 @@ def test_a_correction_does_not_widen_across_a_narrow_gap_onto_another_jump():
         levels = {round(p.bracket.mu, 2) for p in curve.points}
         assert len(levels) == 1, levels  # one jump per curve: 0.4, 0.5 or 0.54
     assert sorted(round(c.points[0].bracket.mu, 2) for c in result.curves) == [0.4, 0.5, 0.54]
+
+
+@pytest.mark.parametrize("shift", [5 * TOL, -5 * TOL])
+def test_a_fold_whose_tip_moves_at_stricter_numerics_is_followed_there(shift):
+    """At the next level the window reaches 5 tol further (the check's probe a key
+    tolerance beyond the tip still sticks) or ends 5 tol sooner (a jump at the tip
+    vanishes): the fold is located again at that level and certified one level above,
+    `recertified`, not left `uncertain`."""
+    centre, b = (0.5, 0.5), 0.2
+
+    def sticks(key, mu, strict):
+        a = 0.3 + (shift if strict else 0.0)
+        return ((key - centre[0]) / a) ** 2 + ((mu - centre[1]) / b) ** 2 <= 1.0
+
+    tracer = Tracer(settings((0.0, 1.0), (0.0, 1.0), keys=3))
+    while not tracer.done:
+        for request in list(tracer.pending()):
+            if request in tracer.pending():
+                outcome = "stick" if sticks(request.key, request.mu, request.strict) else "slide"
+                tracer.feed(request, {"outcome": outcome, "reserve": None})
+    result = tracer.result()
+    assert result.status == "converged", result.reason
+    folds = sorted((f for _, f in result.folds), key=lambda f: f.key)
+    assert len(folds) == 2
+    for fold, tip in zip(folds, (0.2 - shift, 0.8 + shift), strict=True):
+        assert fold.status == "located" and fold.certification == "recertified"
+        low, high = sorted((fold.key_in, fold.key_out))
+        assert low <= tip <= high and high - low <= TOL * (1 + 1e-9)

@@ -133,8 +133,8 @@ class Bisection:
             mus = [mu for mu in ends if mu not in state.known and mu not in deferred]
         else:
             mus = [mu for mu in self.probes.interior() if mu not in state.known]
-        level, strict = state.level, self.settings.strict
-        requests = [RunRequest(mu, level.get(mu, 0), strict=strict) for mu in mus]
+        level, strict, watch = state.level, self.settings.strict, self.settings.watch
+        requests = [RunRequest(mu, level.get(mu, 0), strict=strict, watch=watch) for mu in mus]
         for request in requests:
             state.issue(request)
         return requests

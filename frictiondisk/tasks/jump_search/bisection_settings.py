@@ -40,6 +40,7 @@ class BisectionSettings:
     between: Between = NOT_STICK_STICK  # the two sides of the boundary (sides.py)
     reserve_offset: float = 0.0  # the reserve at the jump per unit mu (reserve_offset.py)
     resolution: float = 0.0  # [mu] the narrowest bracket the numerics resolve (0: unknown)
+    watch: float = 0.0  # [s] every run watches this long (a re-search after a flip: certify.py)
 
     def __post_init__(self):
         if not (self.tol > 0 and math.isfinite(self.tol)):

@@ -45,7 +45,8 @@ from frictiondisk.tasks.jump_search.bisection import (
 )
 from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
-from frictiondisk.verdict.deciding_rule import BUDGET_RAN_OUT, EXTRAPOLATED, INTEGRATOR_FAILED
+from frictiondisk.tasks.jump_search.watch import check_watch
+from frictiondisk.verdict.deciding_rule import BUDGET_RAN_OUT, INTEGRATOR_FAILED
 
 # how much a flag weighs when a point with several jumps is summed up in one flag
 _RANK = {"off": 0, "certified": 1, "vanished": 1, "recertified": 2, "uncertain": 3, "failed": 4}
@@ -76,8 +77,10 @@ class CertifiedBisection:
         between: Between = NOT_STICK_STICK,
         reserve_offset: float = 0.0,
         resolution: float = 0.0,
+        strict: int = 0,
     ):
         self.tol = tol
+        self.strict = strict  # certification level of its first search (a repair goes on there)
         self.between = between  # the two sides of the boundary (sides.py)
         self.limits = limits
         # where a re-search at stricter numerics may look: a jump that leaves its prescan
@@ -100,6 +103,7 @@ class CertifiedBisection:
             max_retries,
             rising,
             split,
+            strict,
             root_finder=root_finder,
             expanding=expanding,
             between=between,
@@ -148,7 +152,7 @@ class CertifiedBisection:
                         mu,
                         level,
                         strict=strict,
-                        watch=self._watch(mu),
+                        watch=check_watch(self.search, mu, self.certify, self.between),
                         reach=reach,
                         own_method=mu in self._own_method,
                     )
@@ -156,18 +160,6 @@ class CertifiedBisection:
         for request in requests:
             self._issued.setdefault(request, (len(self.searches), request.level, request.mu))
         return requests
-
-    def _watch(self, mu: float) -> float:
-        """How long [s] the check of bracket end `mu` watches before it may extrapolate:
-        `certify.watch` times the decision time of the run that decided that end, where an
-        extrapolation decided it (verdict/deciding_rule.py EXTRAPOLATED); 0 otherwise. The
-        same rule on later motion is a test of the verdict, not a repetition of it."""
-        if not self.certify.watch or self.certify.observe:
-            return 0.0
-        decided = [r for r in self.search.runs if r.request.mu == mu and r.outcome != UNDETERMINED]
-        if not decided or decided[-1].result.get("decided_by") not in EXTRAPOLATED:
-            return 0.0
-        return self.certify.watch * float(decided[-1].result["t_end"])
 
     def schedule_key(self, request: RunRequest) -> tuple | None:
         for index, search in enumerate(self.searches):
@@ -294,16 +286,15 @@ class CertifiedBisection:
             return
         flipped = runs[1] if not hi_holds else runs[0]
         if flipped.request.watch > 0.0:
-            # watching refuted the extrapolation that decided this end: a re-search would
-            # decide the values beside it by the same rule, unwatched (and bracket the
-            # difference between watching and not, not a jump)
+            # watching refuted the verdict that decided this end: the re-search watches
+            # every run as long (else it would decide the values beside it by the same
+            # rule, unwatched, and bracket the difference between watching and not)
             self._watched_flip = flipped.request.mu
-            self._finish("uncertain")
-            return
-        self._research(strict, hi_flipped=not hi_holds)
+        self._research(strict, hi_flipped=not hi_holds, watch=flipped.request.watch)
 
-    def _research(self, strict: int, hi_flipped: bool) -> None:
-        """Search again at `strict` from the end that flipped: it joins the other side."""
+    def _research(self, strict: int, hi_flipped: bool, watch: float = 0.0) -> None:
+        """Search again at `strict` from the end that flipped: it joins the other side.
+        Every run of the new search watches until `watch` [s] (0: none)."""
         old = self.search
         step = max(2.0 * (old.hi - old.lo), 2.0 * self.tol)
         limits = self.outer
@@ -321,14 +312,18 @@ class CertifiedBisection:
             return
         search = Bisection(
             bracket,
-            dataclasses.replace(self.settings, limits=limits, strict=strict, expanding=PLAIN),
+            dataclasses.replace(
+                self.settings, limits=limits, strict=strict, expanding=PLAIN, watch=watch
+            ),
         )
         self.search = search
         self.searches.append(search)
         # the strict run at the end that flipped is this search's check of that end
         record = self._checks[near]
         search.pending()
-        search.feed(RunRequest(near, 0, strict=strict), record.result)
+        search.feed(RunRequest(near, 0, strict=strict, watch=watch), record.result)
+        if search.done:
+            self._after_search()
 
     def _finish(self, verdict: str) -> None:
         self._verdict = verdict
@@ -367,7 +362,8 @@ class CertifiedBisection:
         if self._watched_flip is not None:
             reason = (
                 f"{reason}: watched, the end mu = {self._watched_flip:.10g} flipped, so the "
-                "extrapolation that decided it did not hold"
+                "verdict that decided it did not hold; searched again from it, every run "
+                f"watched until {self.searches[-1].settings.watch:.4g} s"
             )
         return dataclasses.replace(
             final,

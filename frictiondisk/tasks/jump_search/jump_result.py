@@ -10,6 +10,13 @@ from typing import Any
 
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.certify import point_certification
+from frictiondisk.tasks.jump_search.jump_reason import (
+    converged_reason,
+    motion_note,
+    problems_of,
+    tail_notes,
+)
+from frictiondisk.tasks.jump_search.prescan import motion_boundaries
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 RUN_ROLES = ("search", "prescan", "certification")
@@ -32,7 +39,7 @@ class RunOrder:
 
     prescan: frozenset  # the requests the prescan asked for
     checks: frozenset  # the persistence and fill runs' requests
-    grid: frozenset  # the prescan's values of mu
+    grid: frozenset  # the prescan's values of mu and the mu its refinement between motions ran
     bisections: tuple  # the jump's searches (their schedule_key)
 
     def role(self, request: RunRequest) -> str:
@@ -78,6 +85,13 @@ class GridBelow:
     decided: int  # grid values below the headline with a decided verdict
     total: int  # grid values below the headline
     resolution: float  # largest gap between decided values below the headline [1]
+    # runs between neighbours that name different motions (prescan.MotionRefinement), and
+    # the intervals between them still wider than the persistence width (its budget ran
+    # out; beside an undetermined value, wider than half that)
+    motion_runs: int = 0
+    unrefined: int = 0
+    # values undetermined after every retry between such neighbours
+    unrefined_at: tuple[float, ...] = ()
 
     @property
     def share(self) -> float:
@@ -105,6 +119,7 @@ class JumpSearchState:
     prescan_runs: tuple[RunRecord, ...]  # every prescan run, retries included, in order
     roles: dict[RunRequest, str]  # the role of every run
     between: Between = NOT_STICK_STICK  # the boundary's sides ("stick" reads side B)
+    motion_runs: int = 0  # runs between neighbours naming different motions
 
 
 @dataclasses.dataclass(frozen=True)
@@ -200,12 +215,25 @@ def _grid_below(state: JumpSearchState, top: float) -> GridBelow:
     for source in (state.last_scan, state.checks):
         for mu, run in source.items():
             if state.between.side(run.outcome) is not None:
-                decided[mu] = state.between.is_high(run.outcome)
+                decided[mu] = run.outcome
     below = [mu for mu in state.mus if mu < top]
     end = top if math.isfinite(top) else state.mus[-1]
     seen = sorted(mu for mu in decided if mu < top) + [end]
     gaps = [b - a for a, b in zip([state.mus[0], *seen], seen, strict=False)]
-    return GridBelow(sum(mu in decided for mu in below), len(below), max(gaps) if gaps else 0.0)
+    width = state.persist * state.tol
+    runs = {**state.last_scan, **state.checks}
+    undetermined = [mu for mu in runs if mu not in decided]
+    pairs = motion_boundaries(decided, top, width, state.between, undetermined)
+    boundaries = motion_boundaries(decided, top, 0.0, state.between)  # every such pair
+    stuck = tuple(sorted({mu for mu in undetermined for a, b in boundaries if a < mu < b}))
+    return GridBelow(
+        sum(mu in decided for mu in below),
+        len(below),
+        max(gaps) if gaps else 0.0,
+        state.motion_runs,
+        len(pairs),
+        stuck,
+    )
 
 
 def _distinct(jumps):
@@ -245,7 +273,7 @@ def compose_result(state: JumpSearchState) -> JumpSearchResult:
     windows = _windows(jumps, state.persist * state.tol)
     grid = None if head is None else _grid_below(state, head.mu_lo)
     unresolved = [j for j in jumps if j.status != "converged" and above_headline(j, head)]
-    problems, undecided_note = _problems(state, jumps, scan, vanished, unresolved)
+    problems, undecided_note = problems_of(state, jumps, scan, vanished, unresolved)
     no_jump = not jumps and not problems and state.never_sticks
     high, low = state.between.high, state.between.low.replace("_", " ")
     if not jumps and not problems and not no_jump:
@@ -262,14 +290,14 @@ def compose_result(state: JumpSearchState) -> JumpSearchResult:
             f"no jump: no value from mu = {state.mus[0]:.6g} to {state.mus[-1]:.6g} "
             f"{sticks}; {grid.decided} of {grid.total} grid values decided {low} "
             f"(resolution {grid.resolution:.3g})"
-        )
+        ) + motion_note(state, grid)
     elif problems:
         status, reason = "failed", "; ".join(problems)
     else:
         status = "converged"
-        reason = _converged_reason(state, jumps, unresolved, windows, grid, scan, vanished)
+        reason = converged_reason(state, jumps, unresolved, windows, grid, scan, vanished)
         reason += f"; {undecided_note}" if undecided_note else ""
-        reason += _tail_notes(state, scan, vanished)
+        reason += tail_notes(state, scan, vanished)
     return JumpSearchResult(
         status,
         reason,
@@ -286,87 +314,11 @@ def compose_result(state: JumpSearchState) -> JumpSearchResult:
     )
 
 
-def _problems(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str], str]:
-    """Why the point fails (empty: it does not), and the note on prescan values left
-    undetermined."""
-    # an undetermined prescan value inside a converged jump's bracket is that jump's
-    # slow approach (straddle.Straddle.undecided), not a gap in the scan
-    undetermined = [
-        r.request.mu
-        for r in scan
-        if state.between.side(r.outcome) is None
-        and not any(j.status == "converged" and j.mu_lo < r.request.mu < j.mu_hi for j in jumps)
-    ]
-    problems = [state.failure] if state.failure else []
-    if state.never_ran:
-        problems.append(f"{len(state.never_ran)} prescan value(s) never ran")
-    # an undetermined value between decided neighbours is a gap in the grid, not a failure:
-    # the changes are bisected between decided values, and a gap below the headline leaves
-    # its grid less than wholly decided (uncertain); without any jump it is a failure
-    undecided_note = ""
-    if undetermined:
-        mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
-        what = "undetermined" if state.between.is_default else "on neither side"
-        undecided_note = f"prescan {what} at mu = {mus} after every retry"
-        if not jumps:
-            problems.append(undecided_note)
-    problems += [
-        j.reason if math.isnan(j.mu_lo) else f"jump in [{j.mu_lo:.6g}, {j.mu_hi:.6g}]: {j.reason}"
-        for j in jumps
-        if j.status != "converged" and j not in unresolved
-    ]
-    if not jumps and vanished and not problems:
-        problems.append(
-            f"no jump: the {vanished} jump(s) of the prescan vanished at stricter numerics"
-        )
-    return problems, undecided_note
-
-
-def _converged_reason(state, jumps, unresolved, windows, grid, scan, vanished: int) -> str:
-    """The reason of a converged point: its jumps, the failed changes above its headline,
-    its windows and the grid below it."""
-    resolved = [j for j in jumps if j not in unresolved]
-    kinds = ", ".join(
-        f"{'rising' if j.rising else 'falling'} at {j.mu_star:.6g}"
-        + ("" if j.certification == "off" else f" ({j.certification})")
-        for j in resolved
-    )
-    reason = f"{len(resolved)} jump(s) to tol {state.tol:.3g}: {kinds}"
-    for j in unresolved:
-        reason += f"; above mu*, a change in [{j.mu_lo:.6g}, {j.mu_hi:.6g}] failed: {j.reason}"
-    if windows:
-        sticking = "sticking" if state.between.is_default else state.between.high
-        reason += f"; {sticking} windows " + ", ".join(
-            f"[{w.lo:.6g}, {w.hi:.6g}]" + (" (narrow)" if w.narrow else "") for w in windows
-        )
-    if grid is not None:
-        reason += (
-            f"; {grid.decided} of {grid.total} prescan values below mu* decided "
-            f"(resolution {grid.resolution:.3g})"
-        )
-        if state.persists_nowhere:
-            reason += (
-                f"; no rising jump persists over {state.persist:g} tol (every sticking "
-                "set found is that narrow): the lowest one is taken, uncertain"
-            )
-        elif not state.headline_judged:
-            reason += "; the persistence run above mu* stayed undetermined"
-    return reason
-
-
-def _tail_notes(state, scan, vanished: int) -> str:
-    """What a converged reason ends with: an adaptive prescan's count, vanished jumps."""
-    notes = ""
-    if len(scan) < len(state.mus):
-        notes += f"; adaptive prescan ran {len(scan)} of {len(state.mus)} values"
-    if vanished:
-        notes += f"; {vanished} more vanished at stricter numerics"
-    return notes
-
-
 def _grid_flag(state, grid, no_jump: bool) -> str:
     """Certification of the grid below the headline (of the whole grid without a jump)."""
     if state.certified and grid is not None:
-        whole = grid.decided == grid.total and (no_jump or state.headline_judged)
+        whole = (
+            grid.decided == grid.total and not grid.unrefined and (no_jump or state.headline_judged)
+        )
         return "certified" if whole else "uncertain"
     return "uncertain" if state.persists_nowhere else "off"

@@ -49,7 +49,7 @@ from frictiondisk.tasks.jump_search.jump_result import (
     compose_result,
     run_role,
 )
-from frictiondisk.tasks.jump_search.prescan import AdaptiveGrid
+from frictiondisk.tasks.jump_search.prescan import AdaptiveGrid, MotionRefinement, motion_runs
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 
 __all__ = ["RUN_ROLES", "JumpSearch", "JumpSearchResult", "run_role"]
@@ -107,6 +107,8 @@ class JumpSearch:
             self.persistence.unjudged
         )  # rising jumps whose persistence run stayed undetermined
         self._filled = False  # every grid value below the headline asked for
+        # runs between neighbours below the headline that name different motions
+        self._motions = MotionRefinement(len(self.mus), persist * tol, between)
         self._complete = False  # nothing left to run (set by _advance)
         self._pending: list[RunRequest] | None = None  # pending() until the next change
 
@@ -139,7 +141,8 @@ class JumpSearch:
     def _check_request(self, mu: float) -> RunRequest:
         """A persistence run (off the grid: the bisections' numerics) or a grid value below
         the headline (the prescan's)."""
-        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode if mu in self._index else None)
+        prescan = mu in self._index or mu in self._motions.asked
+        return RunRequest(mu, self._level.get(mu, 0), self.scan_mode if prescan else None)
 
     # ---- what came back ---------------------------------------------------------------
     def feed(self, request: RunRequest, result: dict[str, Any]) -> None:
@@ -201,6 +204,14 @@ class JumpSearch:
         if not wanted and not self._filled:
             self._filled = True
             wanted = self._fill_wanted()
+        if not wanted:
+            scan, prescan = self._last_scan(), set(self._index) | self._motions.asked
+            outcomes, undetermined = motion_runs(scan, self._checks, prescan, self.between)
+            no_jump = not self.bisections and never_sticks(
+                scan.values(), self._checks.values(), self.between
+            )
+            top = grid_top(self._headline(), self.bisections, no_jump)
+            wanted = self._motions.wanted(outcomes, top, undetermined)
         if wanted:
             self._waiting.update(wanted)
         else:
@@ -285,14 +296,14 @@ class JumpSearch:
         prescan found no change and every value it ran does not stick (the answer "no
         jump" stands on the whole grid, as a headline on the grid below it)."""
         ran = set(self._last_scan()) | set(self._checks)
-        head = self.headline()
-        if head is None:
+        found = self._headline()
+        if found is None:
             scan, checks = self._last_scan().values(), self._checks.values()
             if not self.bisections and never_sticks(scan, checks, self.between):
                 return {mu for mu in self.mus if mu not in ran}
             return set()
-        base = self.bisections[self._headline()[0]].searches[0].result()
-        below = min(head.mu_lo, base.mu_lo)  # certification may have moved the bracket
+        base = self.bisections[found[0]].searches[0].result()
+        below = min(found[1].mu_lo, base.mu_lo)  # certification may have moved the bracket
         return {mu for mu in self.mus if mu < below and mu not in ran}
 
     # ---- the answer -------------------------------------------------------------------
@@ -307,7 +318,7 @@ class JumpSearch:
         order = RunOrder(
             frozenset(self._issued),
             frozenset(run.request for run in self._check_runs),
-            frozenset(self.mus),
+            frozenset(self.mus) | frozenset(self._motions.asked),
             tuple(self.bisections),
         )
         runs = tuple(
@@ -335,8 +346,19 @@ class JumpSearch:
             prescan_runs=tuple(sorted(self._scan_runs, key=order.key)),
             roles={run.request: order.role(run.request) for run in runs},
             between=self.between,
+            motion_runs=len(self._motions.asked),
         )
 
     def _last_scan(self) -> dict[float, RunRecord]:
         """mu -> its last prescan run (the one at the highest retry level)."""
         return {run.request.mu: run for run in self._scan_runs}
+
+
+def grid_top(found, bisections, no_jump: bool) -> float:
+    """Where the grid the headline stands on ends (`found`: (index, result) of the
+    headline, or None): below its bracket, also below the bracket at the point's own
+    numerics; the whole grid (inf) for the answer "no jump"; -inf where neither stands yet."""
+    if found is None:
+        return float("inf") if no_jump else -float("inf")
+    base = bisections[found[0]].searches[0].result()
+    return min(found[1].mu_lo, base.mu_lo)

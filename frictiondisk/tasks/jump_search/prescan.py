@@ -150,3 +150,82 @@ def _reserve_zero(*ends: tuple[float, dict[str, Any]]) -> float | None:
         mu, r = finite[0]
         return mu - r
     return None
+
+
+# runs per prescan value that the refinement at motion boundaries may spend at one point
+MOTION_REFINE_BUDGET = 1.0
+
+
+def motions_differ(a: str, b: str, between: Between = NOT_STICK_STICK) -> bool:
+    """Two outcomes on the low (not-stick) side that name different motions: a boundary
+    between them where a sticking window can sit. `slide` (a motion not yet shown) next to
+    a shown one counts as different; two runs of one name do not."""
+    return between.is_low(a) and between.is_low(b) and a != b
+
+
+def motion_boundaries(
+    decided: dict[float, str],
+    top: float,
+    width: float,
+    between: Between = NOT_STICK_STICK,
+    undetermined=(),
+) -> list[tuple[float, float]]:
+    """The intervals below `top` that still need a run inside before the grid below `top`
+    counts as decided, increasing in mu: between neighbouring decided values (mu ->
+    outcome) whose motions differ, wider than `width` (the persistence width). Where
+    values undetermined after every retry lie between them, the parts beside each such
+    value, wider than width / 2: a window wider than `width` that holds an undetermined
+    value then holds a decided one too."""
+    below = sorted(mu for mu in decided if mu < top)
+    open_parts = []
+    for a, b in zip(below, below[1:], strict=False):
+        if not motions_differ(decided[a], decided[b], between):
+            continue
+        inside = sorted(u for u in undetermined if a < u < b)
+        limit = (0.5 * width if inside else width) * (1 + 1e-9)
+        ends = [a, *inside, b]
+        open_parts += [(x, y) for x, y in zip(ends, ends[1:], strict=False) if y - x > limit]
+    return open_parts
+
+
+class MotionRefinement:
+    """Where two neighbouring decided values below the headline name different motions,
+    a run at their middle, round after round, until they lie within the persistence width
+    (a sticking window at least that wide sitting on the boundary covers more than half of
+    the interval, so a middle lands in it; around a middle left undetermined, half that
+    on either side), within a budget of runs per point. Which intervals are refined
+    depends on the verdicts only: the lowest first."""
+
+    def __init__(self, n_values: int, width: float, between: Between = NOT_STICK_STICK):
+        self.budget = math.ceil(MOTION_REFINE_BUDGET * n_values)
+        self.width = width  # [mu] the persistence width: persist x tol
+        self.between = between
+        self.asked: set[float] = set()  # every mu it asked for
+
+    def wanted(self, decided: dict[float, str], top: float, undetermined=()) -> set[float]:
+        """The middles of this round (none already asked for), lowest intervals first, at
+        most the budget left. `undetermined`: values undetermined after every retry."""
+        parts = motion_boundaries(decided, top, self.width, self.between, undetermined)
+        middles = [0.5 * (a + b) for a, b in parts]
+        fresh = [mu for mu in middles if mu not in self.asked]
+        chosen = set(fresh[: max(0, self.budget - len(self.asked))])
+        self.asked |= chosen
+        return chosen
+
+
+def motion_runs(
+    scan: dict, checks: dict, prescan: set, between: Between
+) -> tuple[dict[float, str], list[float]]:
+    """What the refinement between motions reads of a point's runs (`scan`: mu -> its last
+    prescan run; `checks`: mu -> its fill, persistence or refinement run): mu -> outcome of
+    every decided run with the prescan's numerics (`prescan`: their mu), so that motions are
+    compared as one numerics names them; and the mu of every run undetermined after every
+    retry."""
+    runs = {**scan, **checks}
+    outcomes = {
+        mu: run.outcome
+        for mu, run in runs.items()
+        if mu in prescan and between.side(run.outcome) is not None
+    }
+    undecided = [*scan.values(), *checks.values()]
+    return outcomes, [run.request.mu for run in undecided if between.side(run.outcome) is None]

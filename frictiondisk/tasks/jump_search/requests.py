@@ -28,7 +28,9 @@ def run_config(
     rtol and atol are multiplied by certify.rtol, contact.eps by certify.eps and the
     horizon budget by certify.horizon,
     once per level, and by horizon_factor once per level of `request.reach`, and a rodas4
-    point's run integrates with certify.method unless `request.own_method`."""
+    point's run integrates with certify.method unless `request.own_method`; a stricter run
+    watches until `request.watch` (numerics.observe_until; with certify.observe, where
+    evidence is always observed, its horizon reaches the watch instead)."""
     num = point_config.numerics
     mode = request.mode or num.mode
     key = f"numerics.{horizon_key(mode)}"
@@ -60,6 +62,10 @@ def run_config(
             # it decides only on what it sees (a repeating section, a stick): an
             # extrapolated verdict is then a prediction that certification checks
             overrides["numerics.evidence"] = "observe"
+            horizon_here = horizon * horizon_factor**request.level
+            if request.watch > horizon_here:
+                # a watch (a motion boundary's end, certify.py) is a longer horizon here
+                overrides[key] = min(request.watch, horizon_here * whole)
         elif request.watch > 0.0:
             # it watches before it may extrapolate (certify.py), within its budget
             horizon_here = horizon * horizon_factor**request.level

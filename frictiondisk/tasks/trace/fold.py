@@ -21,9 +21,13 @@ It starts from a point inside the region (checked first). Certification, once lo
 two jumps at key_in are certified (find_jump's ladder), and one probe a key tolerance
 beyond key_in, at the next certification level, must give the outer verdict (the
 reported key bracket is then [key_in, that key]: tol wide); the fold's certification is
-the weakest of the three. A tip that lies beyond the plane, two
-jumps that stay apart (the window ends abruptly), or a search that fails, is reported
-`not located` with the reason.
+the weakest of the three. Where that probe still gives the inner verdict, the tip lies
+further out at stricter numerics: while a stricter level is left, the search goes on from
+the probe (it lies inside) with every run at that level; where a jump at key_in vanishes
+there, the tip lies further in: it is located again at that level between the start point
+and key_in. Either is checked one level above (`recertified`); at the last level the fold
+is `uncertain`. A tip that lies beyond the plane, two jumps that stay apart (the window
+ends abruptly), or a search that fails, is reported `not located` with the reason.
 """
 
 from __future__ import annotations
@@ -180,6 +184,8 @@ class FoldLocator:
         self.result_fold: Fold | None = None
         self._probe_key = math.nan
         self._probe_mu = math.nan
+        self.strict = 0  # certification level of its searches (raised by a repair)
+        self._start = (key_in, mu_in, self.half)  # where it started: inside, far from the tip
 
     @property
     def done(self) -> bool:
@@ -197,7 +203,7 @@ class FoldLocator:
         elif self.phase == "edges":
             self.searches = [self._edge(lower=True), self._edge(lower=False)]
         elif self.phase == "check":  # the last window's jumps certified, and a probe beyond
-            strict = 1 if self.task.certify.enabled else 0
+            strict = self.strict + 1 if self.task.certify.enabled else 0
             _, lower, upper = self.windows[-1]
             self.searches = [
                 *(self._certified(edge) for edge in (lower, upper)),
@@ -207,9 +213,10 @@ class FoldLocator:
             self.searches = [self._probe(self._probe_key, self._probe_mu)]
         return self.searches
 
-    def _probe(self, key: float, mu: float, strict: int = 0) -> Probe:
+    def _probe(self, key: float, mu: float, strict: int | None = None) -> Probe:
         between = getattr(self.task, "between", NOT_STICK_STICK)
-        return Probe(key, mu, self.task.max_retries, strict, between)
+        level = self.strict if strict is None else strict
+        return Probe(key, mu, self.task.max_retries, level, between)
 
     def _certified(self, edge: LineBracket):
         """The certified bisection of a jump already bracketed to tol (its ends' runs are
@@ -222,6 +229,7 @@ class FoldLocator:
             edge.stick_high,
             self.plane.tol,
             self.task,
+            strict=self.strict,
         )
 
     def _edge(self, lower: bool):
@@ -232,7 +240,10 @@ class FoldLocator:
         m0, m1 = self.plane.mu_range
         near = self.mu_in
         far = min(m1, max(m0, near + sign * self.half))
-        widest = min(m1, max(m0, near + sign * EDGE_REACH * self.half))
+        # after a repair the window may be far wider than the last one (a tip moved by s
+        # opens a smooth fold's window by ~ sqrt(s)): its edges may widen over the plane
+        reach = EDGE_REACH * self.half if self.strict == 0 else span
+        widest = min(m1, max(m0, near + sign * reach))
         if far == near:
             far = near + sign * min(self.half, 0.5 * span)
         stick_high = self.inner_sticks if lower else not self.inner_sticks
@@ -244,6 +255,7 @@ class FoldLocator:
             stick_high,
             self.plane.tol,
             _Uncertified(self.task),
+            strict=self.strict,
         )
 
     def finish(self) -> None:
@@ -290,9 +302,15 @@ class FoldLocator:
             flags = [search.result().certification for search in self.searches[:2]]
             if None not in edges:
                 self.windows[-1] = (key, *edges)
+            if inner and None not in edges and self._repair(probe):
+                return
+            if "vanished" in flags and self._repair_inward(key):
+                return
             if not inner:
                 self.key_out = probe.key  # the bracket that was checked: key_tol wide
             certified = point_certification(flags) if None not in edges else "uncertain"
+            if certified == "certified" and self.strict > 0:
+                certified = "recertified"
             self._end("located", "", certification="uncertain" if inner else certified)
             return
         self.probes += 1
@@ -304,6 +322,32 @@ class FoldLocator:
             self.phase = "edges"
         else:
             self.key_out, self.out_known = probe.key, True
+
+    def _repair(self, probe: Probe) -> bool:
+        """The check's probe a key tolerance beyond key_in gave the inner verdict at the
+        next level: the tip lies further out there. Go on from the probe (inside) with every
+        run at that level, while a level above it is left for the check; False at the last."""
+        if self.strict + 2 > self.task.certify.levels:
+            return False
+        self.strict += 1
+        reach = max(2.0 * abs(probe.key - self.key_in), self.plane.key_tol)
+        self.key_in, self.mu_in = probe.key, probe.mu
+        self.key_out, self.out_known = probe.key + self.tip * reach, False
+        self.phase = "edges"
+        return True
+
+    def _repair_inward(self, key: float) -> bool:
+        """A jump at key_in vanished at the next level: the region ends before key_in
+        there. Locate the tip again at that level between the start point (checked first:
+        it must still lie inside) and key_in (now outside); False at the last level."""
+        if self.strict + 2 > self.task.certify.levels:
+            return False
+        self.strict += 1
+        self.key_in, self.mu_in, self.half = self._start
+        self.key_out, self.out_known = key, True
+        self.windows = []
+        self.phase = "start"
+        return True
 
     # ---- where to probe --------------------------------------------------------------------
     @staticmethod

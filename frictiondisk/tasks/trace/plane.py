@@ -182,11 +182,13 @@ def line_bisection(
     tol: float,
     settings,
     slope: float | None = 1.0,
+    strict: int = 0,
 ) -> LineSearch:
     """A certified bisection along the line where `fixed` ("key" or "mu") = `value`, over
     `bracket` of the other coordinate (widened within `limits`), with stick expected at
     the bracket's high end when `stick_high`. `settings` carries max_retries, split,
-    certify and root_finder (a campaign task)."""
+    certify and root_finder (a campaign task). Its runs are at certification level
+    `strict` (a fold repaired at stricter numerics, fold.py), its checks one above."""
     sign = 1.0 if stick_high else -1.0
     line = Line(fixed, value, sign, slope)
     lo, hi = sorted(line.coordinate(x) for x in bracket)
@@ -201,6 +203,7 @@ def line_bisection(
         certify=getattr(settings, "certify", OFF),
         root_finder=settings.root_finder,
         between=getattr(settings, "between", NOT_STICK_STICK),
+        strict=strict,
     )
     return LineSearch(search, line)
 
