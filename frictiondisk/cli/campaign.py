@@ -76,7 +76,7 @@ def _execute(
     from frictiondisk.engine.directory import CampaignChanged, FolderDamaged
     from frictiondisk.engine.preflight import preflight
     from frictiondisk.engine.runner import CampaignsClash, run_campaign, run_campaigns
-    from frictiondisk.engine.signals import CampaignInterrupted, describe_stop
+    from frictiondisk.engine.signals import CampaignInterrupted, describe_stop, stop_notice
     from frictiondisk.model.scene import ConfigError
     from frictiondisk.store.lock import CampaignLocked
     from frictiondisk.store.paths import describe_os_error
@@ -118,13 +118,7 @@ def _execute(
     except CampaignInterrupted as exc:
         fail(str(exc), [], exc.exit_code)
     except KeyboardInterrupt as stop:  # outside the campaign loop: set-up, a trajectory run
-        what, code = describe_stop(stop)
-        fail(
-            f"{what} outside the campaign loop (while setting up, or during a trajectory's "
-            "one run); no finished run is lost. Run the same command again to continue",
-            [],
-            code,
-        )
+        fail(stop_notice(stop, "outside the campaign loop"), [], describe_stop(stop)[1])
     except ConfigError as exc:
         fail(f"{out_dir}/campaign.yaml", list(exc.problems))
     except SchedulerFailed as exc:

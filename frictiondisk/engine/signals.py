@@ -43,6 +43,18 @@ def describe_stop(stop: KeyboardInterrupt) -> tuple[str, int]:
     return "interrupted", 130
 
 
+def stop_notice(stop: KeyboardInterrupt, where: str = "") -> str:
+    """What a stop outside the campaign loop says (before it started, while the command
+    set up, or while it printed its answer): the same words and advice as a stop inside it
+    (engine/runner.py), so that Ctrl-C reads alike at any moment. `where`: e.g. "while
+    setting up"."""
+    what, _ = describe_stop(stop)
+    return (
+        f"{what}{' ' + where if where else ''}; no finished run is lost. Run the same "
+        "command again to continue"
+    )
+
+
 def drop_hint(stop: KeyboardInterrupt) -> str:
     """How to drop the runs in flight while a stop drains them: the same signal again
     (any second stop does it), a SIGTERM after a SIGHUP (the terminal is gone)."""
