@@ -36,6 +36,9 @@ _TYPE_NOUNS = {
 _NOT_ALLOWED = ("finite_number", "literal_error", "string_pattern_mismatch")
 _repr = reprlib.Repr()
 _repr.maxstring = _repr.maxother = 40
+_repr.maxlevel = 2  # a nested value shows its first two levels, a few items each
+_repr.maxlist = _repr.maxtuple = _repr.maxdict = _repr.maxset = 4
+SHOW_CHARS = 80  # the most a value takes in a message
 
 
 def field(
@@ -331,7 +334,8 @@ def show(value: Any) -> str:
     """A value as the user wrote it: YAML words for true/false/null, else a short repr."""
     if value is None or isinstance(value, bool):
         return json.dumps(value)
-    return _repr.repr(value)
+    text = _repr.repr(value)
+    return text if len(text) <= SHOW_CHARS else f"{text[: SHOW_CHARS - 4]} ..."
 
 
 def kind_of(value: Any) -> str:
