@@ -318,6 +318,8 @@ def resume(
     in a folder of several campaigns (`run A.yaml B.yaml -o DIR`), every one of them."""
     from frictiondisk.engine.directory import is_campaign_folder
 
+    if not out_dir.exists():
+        fail(f"{out_dir} does not exist: nothing to resume", [])
     several = is_campaign_folder(out_dir)
     if not several and not (out_dir / "campaign.yaml").is_file():
         fail(f"{out_dir} is not a campaign directory (no campaign.yaml)", [])
