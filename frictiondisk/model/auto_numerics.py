@@ -28,8 +28,11 @@ Rules (docs/accuracy.md, "Numerics from the tol"):
   negligible (a tenth) beside the best numerics' error, else the one with the least
   error, and the numerics come within a tenth of the horizon's error;
 * the expected error is a prediction, never a proof: certification (docs/model.md section
-  7) still re-checks every bracket at stricter numerics, and a campaign whose numerics
-  cannot reach its tol says so before it runs.
+  7) still re-checks every bracket at stricter numerics;
+* a campaign whose numerics cannot reach its tol is told the smallest tol they reach (its
+  floor: the least expected error of any horizon and setting it may take, over
+  ERROR_FRACTION); `run` refuses it before any work, or with --tol-floor runs it at that
+  floor.
 
 A single run (`simulate`, scan, trajectory and basin campaigns) has no tol: there `auto`
 is today's default numerics, rtol 1e-6, atol 1e-9, t_decide 30 s.
@@ -194,6 +197,9 @@ class NumericsChoice:
     kinds: tuple[str, ...]
     reason: str = ""
     advice: str = ""  # what to do when they cannot reach the tol
+    # the smallest tol the measured numerics reach (with the keys given), rounded up to two
+    # digits; None: unknown (not rated)
+    floor: float | None = None
 
     @property
     def reaches(self) -> bool:
@@ -226,13 +232,15 @@ class NumericsChoice:
         )
 
     def warning(self) -> str | None:
-        """The preflight warning when the numerics cannot reach the tol (None: they can)."""
+        """Why the numerics cannot reach the tol, with the floor they reach and what to do
+        (None: they can). `run` refuses such a campaign unless --tol-floor."""
         if self.reaches:
             return None
+        floor = f"; the smallest tol they reach is {self.floor:.2g}" if self.floor else ""
         return (
             f"numerics cannot reach find_jump.tol {self.tol:g}: expected mu* error "
             f"{self.expected:.2g} > tol/{1 / ERROR_FRACTION:g} = {self.bound:.2g} "
-            f"({self._values()}; kind {' + '.join(self.kinds)}); {self.advice}"
+            f"({self._values()}; kind {' + '.join(self.kinds)}){floor}; {self.advice}"
         )
 
     def _values(self) -> str:
@@ -328,12 +336,41 @@ def choose(
     chosen = tuple(key for key in AUTO_KEYS if key not in given)
     values = {"rtol": rtol, "atol": atol, "t_decide": t_decide}
     reason = "" if expected is not None else "expected mu* error unknown: not measured"
+    tol_floor = _floor(model, kinds, given)
     advice = "no measured numerics and horizon reach it: loosen find_jump.tol"
+    if tol_floor is not None:
+        advice = f"loosen find_jump.tol to at least {tol_floor:.2g}"
     if given and expected is not None and expected > bound * _UP:
         if choose(tol, kinds, {}, model).reaches:
             fixed = ", ".join(sorted(names) or sorted(given))
             advice = f"leave {fixed} out to let the tol choose them"
-    return NumericsChoice(tol, *values.values(), chosen, expected, bound, kinds, reason, advice)
+    return NumericsChoice(
+        tol, *values.values(), chosen, expected, bound, kinds, reason, advice, tol_floor
+    )
+
+
+def _floor(model: ErrorModel, kinds: tuple[str, ...], given: Mapping[str, float]) -> float | None:
+    """The smallest tol whose choice reaches it: the least expected error over the
+    horizons and settings `choose` may take (the given keys fixed), over ERROR_FRACTION,
+    rounded up to two significant digits; None if no combination is rated."""
+    if "t_decide" in given:
+        horizons = [given["t_decide"]]
+    else:
+        horizons = [t for t in model.horizons() if t >= DEFAULT_T_DECIDE * _EPS]
+    errors = []
+    for t in horizons:
+        t_error = _worst(model.horizon_error(kind, t) for kind in kinds)
+        for rtol, atol, _ in _settings(model, kinds, given):
+            n_error = _worst(model.numerics_error(kind, rtol, atol) for kind in kinds)
+            if t_error is not None and n_error is not None:
+                errors.append(t_error + n_error)
+    if not errors:
+        return None
+    least = min(errors) / ERROR_FRACTION
+    if least <= 0:
+        return None
+    step = 10.0 ** (math.floor(math.log10(least)) - 1)  # two significant digits, up
+    return float(f"{math.ceil(least / step * (1 - 1e-12)) * step:.2g}")
 
 
 def _settings(model: ErrorModel, kinds, given) -> list[tuple[float, float, float]]:
