@@ -1,8 +1,5 @@
 """The click commands: a thin layer over the public API.
-`python -m frictiondisk.cli` runs them.
-
-`main` (the click group) is imported on first use, so that the console script installs its
-Ctrl-C handling (cli/entry.py) before the commands' imports (about a second)."""
+`python -m frictiondisk.cli` runs them."""
 
 import sys
 import types
@@ -10,6 +7,8 @@ import types
 __all__ = ["main"]
 
 
+# `main` (the click group) is imported on first use, so that the console script installs its
+# Ctrl-C handling (cli/entry.py) before the commands' imports (about a second).
 class _Commands(types.ModuleType):
     @property
     def main(self):
