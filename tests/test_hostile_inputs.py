@@ -780,6 +780,13 @@ def test_status_says_1_task(campaign_dir):
 # --- Ctrl-C from the first moment ----------------------------------------------------------
 
 
+def test_the_notice_before_the_imports_is_the_one_after_them():
+    from frictiondisk.cli.entry import EARLY_NOTICE
+    from frictiondisk.engine.signals import stop_notice
+
+    assert stop_notice(KeyboardInterrupt()) == EARLY_NOTICE
+
+
 def test_ctrl_c_during_the_imports_exits_130_with_the_notice(tmp_path):
     """The first second of `run` imports the commands: a Ctrl-C there said "Aborted!" and
     exited 1 (click), or left a traceback."""
