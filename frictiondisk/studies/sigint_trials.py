@@ -5,7 +5,7 @@ ends with results identical to an uninterrupted run.
     python -m frictiondisk.studies.sigint_trials -o out/sigint --trials 30 --max-delay 5
 
 Each trial starts `run CAMPAIGN -o OUT/trial_<k>`, sends one SIGINT after a delay drawn
-uniformly from [0, max-delay] s (seeded), waits for the exit, then runs the command the
+uniformly from [min-delay, max-delay] s (default 0 to 5; seeded), waits for the exit, then runs the command the
 notice names and compares its results.nc and runs.nc with those of an uninterrupted run
 (OUT/reference; frictiondisk.studies.identical). It prints one line per trial and the
 counts, writes them to OUT/summary.json, and exits 1 unless every stop exited 130 and
@@ -96,6 +96,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("-o", "--out", type=Path, required=True)
     parser.add_argument("--campaign", type=Path, default=Path("campaigns/demo_disk_line.yaml"))
     parser.add_argument("--trials", type=int, default=30)
+    parser.add_argument("--min-delay", type=float, default=0.0, help="[s]")
     parser.add_argument("--max-delay", type=float, default=5.0, help="[s]")
     parser.add_argument("--seed", type=int, default=66)
     args = parser.parse_args(argv)
@@ -109,7 +110,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"error: the uninterrupted run failed; see {args.out / 'reference.log'}")
             return 1
     rng = random.Random(args.seed)
-    delays = [rng.uniform(0.0, args.max_delay) for _ in range(args.trials)]
+    delays = [rng.uniform(args.min_delay, args.max_delay) for _ in range(args.trials)]
     rows = []
     for k, delay in enumerate(delays):
         row = trial(k, delay, args.campaign, args.out, reference, python)
@@ -125,7 +126,7 @@ def main(argv: list[str] | None = None) -> int:
     summary = {
         "campaign": str(args.campaign),
         "trials": len(rows),
-        "max_delay_s": args.max_delay,
+        "delay_s": [args.min_delay, args.max_delay],
         "seed": args.seed,
         "exit_codes": {str(code): n for code, n in sorted(exits.items(), key=str)},
         "identical": identical,
