@@ -2,9 +2,9 @@
 
 A campaign that cannot write its directory, reach its scheduler, fit its size limits or
 run its worker count fails here, in well under a second, with a message naming the path
-or the option, instead of after DIR was created or the work began. So does a find_jump whose numerics cannot reach its tol (a resumed one
-too, read from DIR), naming the smallest tol they reach; `run --tol-floor` runs it at that
-floor instead (`at_tol_floor`).
+or the option, instead of after DIR was created or the work began. So does a find_jump
+whose numerics cannot reach its tol (a resumed one too, read from DIR), naming the
+smallest tol they reach; `run --tol-floor` runs it at that floor instead (`at_tol_floor`).
 """
 
 from __future__ import annotations
@@ -68,14 +68,14 @@ def at_tol_floor(campaign):
     at the smallest tol they reach, a line saying so): its file's text with the task's
     `tol` raised and a comment that says why, so that DIR/campaign.yaml and a resume hold
     the tol that runs."""
+    import yaml
+
     from frictiondisk.model.yamlio import StrictDumper, load_yaml_text
     from frictiondisk.tasks.campaign import campaign_from_text
 
     choice = getattr(campaign, "numerics_choice", None)
     if choice is None or choice.reaches or choice.floor is None:
         return campaign, None
-    import yaml
-
     data = load_yaml_text(campaign.text)
     data[campaign.kind]["tol"] = choice.floor
     said = (
