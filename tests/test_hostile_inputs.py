@@ -805,3 +805,32 @@ def test_ctrl_c_during_the_imports_exits_130_with_the_notice(tmp_path):
     assert process.returncode == 130, err
     assert "error: interrupted; no finished run is lost" in err
     assert "Aborted!" not in err and "Traceback" not in err
+
+
+def test_a_stop_a_library_turned_into_its_own_error_still_exits_130(capsys):
+    """numba's C extensions turn a KeyboardInterrupt during their import into an
+    ImportError: the stop the signal handler noted still decides the exit."""
+    import click
+
+    from frictiondisk.cli import run_and_exit as entry_point
+    from frictiondisk.engine.signals import clear_stop_requests, request_stop
+
+    @click.command()
+    def interrupted_import():
+        request_stop(KeyboardInterrupt)
+        raise ImportError("numba._devicearray failed to import")
+
+    @click.command()
+    def plain_failure():
+        raise ImportError("a real one")
+
+    previous = signal.getsignal(signal.SIGINT)
+    try:
+        assert entry_point._run(lambda: interrupted_import, []) == 130
+        assert "error: interrupted; no finished run is lost" in capsys.readouterr().err
+        clear_stop_requests()
+        with pytest.raises(ImportError, match="a real one"):
+            entry_point._run(lambda: plain_failure, [])
+    finally:
+        clear_stop_requests()
+        signal.signal(signal.SIGINT, previous)

@@ -35,10 +35,11 @@ def run_and_exit(load_group: Callable[[], object], args: list[str]) -> NoReturn:
 def _run(load_group: Callable[[], object], args: list[str]) -> int:
     import click
 
+    from frictiondisk.engine.signals import noted_stop
+
     try:
         group = load_group()
-        if signal.getsignal(signal.SIGINT) not in (signal.SIG_IGN, signal.SIG_DFL):
-            signal.signal(signal.SIGINT, signal.default_int_handler)  # see cli/entry.py
+        _note_ctrl_c()
         value = group.main(args=args, prog_name="frictiondisk", standalone_mode=False)
         return value if isinstance(value, int) and not isinstance(value, bool) else 0
     except SystemExit as stop:  # our commands end so (fail, a stopped campaign)
@@ -49,10 +50,27 @@ def _run(load_group: Callable[[], object], args: list[str]) -> int:
     except click.ClickException as problem:
         problem.show()
         return problem.exit_code
-    except OSError as err:
-        if err.errno == errno.EPIPE:  # | head closed the pipe: as click does
+    except Exception as err:
+        stop = noted_stop()
+        if stop is not None:  # a stop that a library turned into its own error (numba's
+            return _stopped(stop())  # C extensions make an interrupted import an ImportError)
+        if isinstance(err, OSError) and err.errno == errno.EPIPE:  # | head: as click does
             return 1
         raise
+
+
+def _note_ctrl_c() -> None:
+    """From here on Ctrl-C raises KeyboardInterrupt (the handler of cli/entry.py left at
+    once) and notes the stop first, so that a library that turns it into an error of its
+    own still ends in the stop's notice and exit code."""
+    from frictiondisk.engine.signals import request_stop
+
+    def interrupt(signum, frame):
+        request_stop(KeyboardInterrupt)
+        raise KeyboardInterrupt
+
+    if signal.getsignal(signal.SIGINT) not in (signal.SIG_IGN, signal.SIG_DFL):
+        signal.signal(signal.SIGINT, interrupt)
 
 
 def _stopped(stop: KeyboardInterrupt) -> int:

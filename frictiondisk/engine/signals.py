@@ -75,6 +75,11 @@ def request_stop(stop: type[KeyboardInterrupt]) -> None:
     _stop_requested.append(stop)
 
 
+def noted_stop() -> type[KeyboardInterrupt] | None:
+    """The last stop noted by request_stop (None: none since the last clear)."""
+    return _stop_requested[-1] if _stop_requested else None
+
+
 def raise_if_stop_requested() -> None:
     """Raise the last stop noted by request_stop (the loop checks this between rounds)."""
     if _stop_requested:
