@@ -37,7 +37,8 @@ _NOT_ALLOWED = ("finite_number", "literal_error", "string_pattern_mismatch")
 _repr = reprlib.Repr()
 _repr.maxstring = _repr.maxother = 40
 _repr.maxlevel = 2  # a nested value shows its first two levels, a few items each
-_repr.maxlist = _repr.maxtuple = _repr.maxdict = _repr.maxset = 4
+_repr.maxlist = _repr.maxtuple = _repr.maxset = 6
+_repr.maxdict = 4
 SHOW_CHARS = 80  # the most a value takes in a message
 
 
