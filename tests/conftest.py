@@ -66,7 +66,6 @@ def coulomb_mu_star(
 LONG_CAMPAIGN = """\
 name: stop_line
 scene: pin
-numerics: {rtol: 1.0e-6, atol: 1.0e-9}
 find_jump:
   bracket: [0.05, 0.3]
   tol: 1.0e-8

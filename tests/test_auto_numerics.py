@@ -242,8 +242,23 @@ def test_fixed_numerics_that_cannot_reach_the_tol_are_flagged():
             "find_jump": {"bracket": [0.105, 0.14], "tol": 1e-8, "along": {"params.x_ms": [0.1]}},
         }
     )
-    assert rest.numerics_choice.warning().endswith("loosen find_jump.tol")
+    floor = rest.numerics_choice.floor
+    assert rest.numerics_choice.warning().endswith(f"loosen find_jump.tol to at least {floor:.2g}")
     assert pin_line({"rtol": 1e-6}, tol=1e-4).numerics_choice.warning() is None
+
+
+@pytest.mark.parametrize("given", [{}, {"rtol": 1e-6}, {"t_decide": 30.0}])
+@pytest.mark.parametrize("kinds", [["pin"], ["disk_from_rest"], ["pin", "disk_braked"]])
+def test_the_floor_is_the_smallest_tol_the_numerics_reach(kinds, given):
+    """The floor a refusal names (and run --tol-floor runs at) is reached, and a tol a
+    few percent below it is not (two significant digits, rounded up)."""
+    far_below = auto.choose(1e-300, kinds, given)
+    floor = far_below.floor
+    assert not far_below.reaches and floor is not None
+    assert f"the smallest tol they reach is {floor:.2g}" in far_below.warning()
+    assert auto.choose(floor, kinds, given).reaches
+    assert not auto.choose(floor * 0.9, kinds, given).reaches
+    assert auto.choose(floor * 1e-6, kinds, given).floor == floor  # whatever the tol
 
 
 def test_a_campaign_varying_a_kind_key_is_rated_at_its_worst_kind():

@@ -599,3 +599,238 @@ def test_fuzzed_campaign_is_valid_or_a_config_error(data):
 def test_fuzzed_text_is_yaml_or_a_config_error(text):
     with contextlib.suppress(ConfigError):
         load_yaml_text(text, "fuzz.yaml")
+
+
+# --- bounded errors -------------------------------------------------------------------------
+
+ALIAS_BOMB = """\
+name: bomb
+scene: pin
+a: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]
+b: &b [*a,*a,*a,*a,*a,*a,*a,*a,*a]
+c: &c [*b,*b,*b,*b,*b,*b,*b,*b,*b]
+d: &d [*c,*c,*c,*c,*c,*c,*c,*c,*c]
+e: &e [*d,*d,*d,*d,*d,*d,*d,*d,*d]
+f: &f [*e,*e,*e,*e,*e,*e,*e,*e,*e]
+params: {x0: *f}
+find_jump: {bracket: [0.04, 0.3], along: {params.x_ms: [0.05]}}
+"""
+
+
+def _bounded(output: str, max_lines: int = 14, max_line: int = 400) -> None:
+    lines = output.splitlines()
+    assert len(lines) <= max_lines, f"{len(lines)} lines"
+    assert max(map(len, lines)) <= max_line, max(map(len, lines))
+
+
+def test_an_alias_bomb_is_refused_in_one_short_line(tmp_path, no_kernel):
+    campaign = _write(tmp_path / "bomb.yaml", ALIAS_BOMB)
+    output = refused(["run", campaign, "-o", tmp_path / "out"], "bomb.yaml", "params.x0")
+    assert "aliases (*name) repeat more than 100000 values" in output
+    assert len(output.encode()) < 2048 and len(output.splitlines()) == 2, output
+    assert not (tmp_path / "out").exists()
+    # a smaller one (6 561 values) reaches the validator, which shows the value in short
+    lines = ALIAS_BOMB.splitlines()
+    small = "\n".join([*lines[:6], "params: {x0: *d}", lines[-1]]) + "\n"
+    output = refused(["run", _write(tmp_path / "w.yaml", small), "-o", tmp_path / "o"], "x0")
+    _bounded(output)
+
+
+def test_a_recursive_alias_is_refused(tmp_path, no_kernel):
+    scene = _write(tmp_path / "s.yaml", "scene: pin\nparams: &p {x0: *p}\n")
+    output = refused(["simulate", scene], "s.yaml", "recursive alias")
+    _bounded(output, max_lines=2)
+
+
+@pytest.mark.parametrize(
+    ("text", "names"),
+    [
+        ("params: {x0: '" + "v" * 3_000_000 + "'}\n", ["params.x0", "is a string"]),
+        ("params: {x0: *" + "q" * 100_000 + "}\n", ["undefined alias"]),
+        ("".join(f"junk{i}: 1\n" for i in range(5000)), ["junk0", "... and 4989 more problems"]),
+        ("params: {mu: 0.1}\n" * 3000, ["params: duplicate key", "more problems"]),
+        ("params:\n" + "".join(f"  mu{i}: 1\n" for i in range(2000)), ["params.mu0"]),
+    ],
+    ids=["huge_scalar", "huge_alias_name", "many_unknown_keys", "many_duplicates", "many_keys"],
+)
+def test_any_config_error_is_a_few_short_lines(tmp_path, no_kernel, text, names):
+    scene = _write(tmp_path / "s.yaml", "scene: pin\n" + text)
+    output = refused(["simulate", scene], "s.yaml", *names)
+    _bounded(output)
+
+
+def test_a_nested_value_is_shown_in_a_few_characters():
+    nested = [[[[list(range(50))] * 50] * 50] * 50]
+    with pytest.raises(ConfigError) as caught:
+        scene_from_dict({"scene": "pin", "params": {"x0": nested}})
+    assert len(str(caught.value)) < 300, str(caught.value)
+
+
+# --- a tol out of reach -------------------------------------------------------------------
+
+
+def _tol_campaign(tol: str) -> str:
+    return (
+        "name: t\nscene: pin\nparams: {x0: 0.0}\nnumerics: {mode: decide, t_decide: 30.0}\n"
+        f"find_jump:\n  bracket: [0.04, 0.3]\n  tol: {tol}\n  along:\n    params.x_ms: [0.05]\n"
+    )
+
+
+@pytest.mark.parametrize("tol", ["1.0e-14", "1.0e-300"])
+def test_a_tol_the_numerics_cannot_reach_is_refused_on_run_and_resume(tmp_path, no_kernel, tol):
+    from frictiondisk.engine.directory import prepare_directory
+
+    text = _tol_campaign(tol)
+    floor = campaign_from_text(text, "<test>").numerics_choice.floor
+    campaign = _write(tmp_path / "t.yaml", text)
+    words = [f"find_jump.tol {float(tol):g}", f"the smallest tol they reach is {floor:.2g}"]
+    refused(["run", campaign, "-o", tmp_path / "out"], *words, "--tol-floor")
+    assert not (tmp_path / "out").exists()
+    # a folder started before the refusal existed
+    prepare_directory(tmp_path / "old", campaign_from_text(text, "<test>"))
+    refused(["resume", tmp_path / "old"], *words, "--tol-floor -o NEW_DIR")
+    assert not (tmp_path / "old" / "journal").exists()
+
+
+# --- config messages ----------------------------------------------------------------------
+
+
+def test_a_longer_or_american_name_gets_a_did_you_mean(tmp_path, no_kernel):
+    campaign = _write(tmp_path / "c.yaml", CAMPAIGN.replace("tol:", "tolerance:"))
+    refused(
+        ["run", campaign, "-o", tmp_path / "o"],
+        "find_jump.tolerance: unknown key",
+        "(did you mean 'tol'?)",
+    )
+    between = CAMPAIGN.replace("  tol:", "  between: [self_centering, slide_cycle]\n  tol:")
+    campaign = _write(tmp_path / "b.yaml", between)
+    refused(
+        ["run", campaign, "-o", tmp_path / "o"],
+        "find_jump.between[0]: 'self_centering' is not an outcome",
+        "(did you mean 'self_centring'?)",
+    )
+    scene = _write(tmp_path / "s.yaml", "scene: pin\nnumerics: {mode: decid}\n")
+    refused(
+        ["simulate", scene], "numerics.mode: 'decid' is not allowed", "(did you mean 'decide'?)"
+    )
+
+
+def test_a_pins_unknown_key_lists_only_the_keys_a_pin_takes(tmp_path, no_kernel):
+    scene = _write(tmp_path / "s.yaml", "scene: pin\nparams: {bogus: 1}\n")
+    output = refused(["simulate", scene], "params.bogus: unknown key; allowed keys under params:")
+    allowed = next(line for line in output.splitlines() if "params.bogus" in line)
+    assert "x_ms" in allowed and not {"J_s", "beta_b", "phidot0"} & set(
+        allowed.replace(",", " ").split()
+    )
+    disk = _write(tmp_path / "d.yaml", "scene: disk\nparams: {bogus: 1}\n")
+    assert "phidot0" in refused(["simulate", disk], "params.bogus: unknown key")
+
+
+@pytest.mark.parametrize("command", ["status", "resume"])
+def test_a_path_that_does_not_exist_says_so(tmp_path, no_kernel, command):
+    output = refused([command, tmp_path / "nowhere"], f"{tmp_path / 'nowhere'} does not exist")
+    assert "not a campaign directory" not in output
+
+
+# --- status -------------------------------------------------------------------------------
+
+
+def test_status_answers_starting_while_a_run_holds_an_empty_dir(tmp_path):
+    from frictiondisk.store.lock import CampaignLock
+
+    with CampaignLock(tmp_path):
+        code, output, _ = cli("status", tmp_path)
+    assert code == 0, output
+    assert f"starting (pid {os.getpid()})" in output
+    code, output, _ = cli("status", tmp_path)  # released: nothing there
+    assert code == 2 and "not a campaign directory" in output
+
+
+def test_status_counts_only_journal_entries_and_reads_the_campaign_without_its_records(
+    campaign_dir, finished
+):
+    entries = len(_entries(finished))
+    for stray in (
+        "journal/ab/notakey.json",
+        "journal/zz.json",
+        "journal/ab/" + "cd" * 32 + ".json",
+    ):
+        (campaign_dir / stray).parent.mkdir(parents=True, exist_ok=True)
+        (campaign_dir / stray).write_text("{}")
+    (campaign_dir / "status.json").unlink()
+    (campaign_dir / "campaign.record.json").unlink()
+    code, output, _ = cli("status", campaign_dir)
+    assert code == 0, output
+    assert "campaign:  tiny in" in output and "state:     complete" in output
+    assert "points:    2 of 2 done" in output
+    assert f"runs:      {entries} done; 0 tasks in flight" in output
+
+
+def test_status_says_1_task(campaign_dir):
+    from frictiondisk.store.lock import CampaignLock
+
+    info = json.loads((campaign_dir / "status.json").read_text())
+    info.update(state="running", jobs_in_flight=1)
+    (campaign_dir / "status.json").write_text(json.dumps(info))
+    with CampaignLock(campaign_dir):
+        code, output, _ = cli("status", campaign_dir)
+    assert code == 0 and "running (pid" in output and "1 task in flight" in output, output
+
+
+# --- Ctrl-C from the first moment ----------------------------------------------------------
+
+
+def test_the_notice_before_the_imports_is_the_one_after_them():
+    from frictiondisk.cli.entry import EARLY_NOTICE
+    from frictiondisk.engine.signals import stop_notice
+
+    assert stop_notice(KeyboardInterrupt()) == EARLY_NOTICE
+
+
+def test_ctrl_c_during_the_imports_exits_130_with_the_notice(tmp_path):
+    """The first second of `run` imports the commands: a Ctrl-C there said "Aborted!" and
+    exited 1 (click), or left a traceback."""
+    campaign = _write(tmp_path / "c.yaml", CAMPAIGN)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "frictiondisk.cli", "run", str(campaign), "-o", str(tmp_path / "o")],
+        env={**os.environ, "PYTHONPATH": str(REPO)},
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    wait_for_cpu(process.pid, 0.15)  # past the interpreter's start, in our imports
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=HANG_S)
+    assert process.returncode == 130, err
+    assert "error: interrupted; no finished run is lost" in err
+    assert "Aborted!" not in err and "Traceback" not in err
+
+
+def test_a_stop_a_library_turned_into_its_own_error_still_exits_130(capsys):
+    """numba's C extensions turn a KeyboardInterrupt during their import into an
+    ImportError: the stop the signal handler noted still decides the exit."""
+    import click
+
+    from frictiondisk.cli import run_and_exit as entry_point
+    from frictiondisk.engine.signals import clear_stop_requests, request_stop
+
+    @click.command()
+    def interrupted_import():
+        request_stop(KeyboardInterrupt)
+        raise ImportError("numba._devicearray failed to import")
+
+    @click.command()
+    def plain_failure():
+        raise ImportError("a real one")
+
+    previous = signal.getsignal(signal.SIGINT)
+    try:
+        assert entry_point._run(lambda: interrupted_import, []) == 130
+        assert "error: interrupted; no finished run is lost" in capsys.readouterr().err
+        clear_stop_requests()
+        with pytest.raises(ImportError, match="a real one"):
+            entry_point._run(lambda: plain_failure, [])
+    finally:
+        clear_stop_requests()
+        signal.signal(signal.SIGINT, previous)

@@ -1,4 +1,5 @@
-"""numerics auto in a running campaign: the preflight line and its warning, `run --strict`,
+"""numerics auto in a running campaign: the preflight line, the refusal of a tol out of
+reach (on run and resume) and `run --tol-floor`,
 the choice in results.nc, and a pin line whose tol alone chose numerics that certify."""
 
 from __future__ import annotations
@@ -24,33 +25,50 @@ find_jump:
 """
 
 
-def test_fixed_numerics_that_cannot_reach_the_tol_are_refused_under_strict(tmp_path):
-    campaign_file = tmp_path / "c.yaml"
-    campaign_file.write_text(FIXED)
-    out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["run", str(campaign_file), "-o", str(out), "--strict"])
-    assert result.exit_code == 2, result.output
-    assert "cannot start (nothing was created)" in result.stderr
-    assert "--strict: numerics cannot reach find_jump.tol 1e-08: expected mu* error" in (
-        result.stderr
-    )
-    assert not out.exists()
-
-
-def test_fixed_numerics_that_cannot_reach_the_tol_warn_at_preflight_and_run(tmp_path):
+def test_numerics_that_cannot_reach_the_tol_are_refused_before_any_work(tmp_path):
     campaign_file = tmp_path / "c.yaml"
     campaign_file.write_text(FIXED)
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["run", str(campaign_file), "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    assert "cannot start (nothing was created)" in result.stderr
+    floor = campaign_from_text(FIXED, "<test>").numerics_choice.floor
+    assert (
+        "numerics cannot reach find_jump.tol 1e-08: expected mu* error" in result.stderr
+        and f"the smallest tol they reach is {floor:.2g}" in result.stderr
+        and "leave rtol out to let the tol choose them, or run --tol-floor" in result.stderr
+    ), result.stderr
+    assert not out.exists()
+
+
+def test_a_stored_campaign_out_of_reach_is_refused_on_resume(tmp_path):
+    """A DIR started before the refusal (its campaign.yaml out of reach) is not resumed:
+    the refusal says how to start it again at the floor."""
+    from frictiondisk.engine.directory import prepare_directory
+
+    prepare_directory(tmp_path, campaign_from_text(FIXED, "<test>"))
+    result = CliRunner().invoke(main, ["resume", str(tmp_path)])
+    assert result.exit_code == 2, result.output
+    assert "numerics cannot reach find_jump.tol 1e-08" in result.stderr
+    assert f"run {tmp_path / 'campaign.yaml'} --tol-floor -o NEW_DIR" in result.stderr
+    assert not (tmp_path / "journal").exists()
+
+
+def test_tol_floor_runs_at_the_smallest_tol_the_numerics_reach(tmp_path):
+    campaign_file = tmp_path / "c.yaml"
+    campaign_file.write_text(FIXED)
+    out = tmp_path / "out"
+    floor = campaign_from_text(FIXED, "<test>").numerics_choice.floor
+    result = CliRunner().invoke(main, ["run", str(campaign_file), "-o", str(out), "--tol-floor"])
     assert result.exit_code == 0, result.output
-    lines = result.stderr.splitlines()
-    numerics = next(i for i, line in enumerate(lines) if line.startswith("numerics: tol 1e-08"))
-    assert "given rtol" in lines[numerics]
-    assert lines[numerics + 1].startswith("warning: numerics cannot reach find_jump.tol 1e-08")
-    campaign = campaign_from_text(FIXED, "<test>")
+    assert f"find_jump.tol 1e-08 raised to {floor:g}" in result.stderr
+    stored = campaign_from_text((out / "campaign.yaml").read_text(), "<stored>")
+    assert stored.task.tol == floor and stored.numerics_choice.reaches
     with xr.open_dataset(out / "results.nc") as results:
-        assert results.attrs["numerics_choice"] == campaign.numerics_choice.describe()
-        assert results.attrs["numerics_expected_mu_error"] > results.attrs["numerics_error_bound"]
+        assert results.attrs["numerics_choice"] == stored.numerics_choice.describe()
+        assert results.attrs["numerics_expected_mu_error"] <= results.attrs["numerics_error_bound"]
+        width = (results["mu_hi"] - results["mu_lo"]).values
+        assert (width <= floor * (1 + 1e-9)).all()
 
 
 AUTO_LINE = """\

@@ -4,8 +4,8 @@ for one campaign in DIR or several in DIR/<name>/ (`run A.yaml B.yaml -o DIR`).
 
 Exit codes: 0 done, 2 bad campaign file, a different or hand-edited campaign in DIR, a
 path that cannot be written (named, with the cause), a symbolic link in DIR, an
-unreachable scheduler, a campaign over its size limits, (`run --strict`) numerics that
-cannot reach the tol, two campaigns of one name in one run, or one campaign into a folder of
+unreachable scheduler, a campaign over its size limits, a find_jump whose numerics cannot
+reach its tol (unless `run --tol-floor`), two campaigns of one name in one run, or one campaign into a folder of
 several (or the reverse); 3 DIR is in use by another run,
 130 interrupted (Ctrl-C), 143 terminated (SIGTERM), 129 hung up (SIGHUP: the terminal
 closed). A stop journals the runs in flight that finish within 30 s and writes results.nc
@@ -67,7 +67,6 @@ def _execute(
     force: bool = False,
     dashboard: bool = False,
     several: bool = False,
-    strict: bool = False,
 ):
     """Run (campaigns None: resume) one campaign into out_dir, or with `several`, each
     of `campaigns` into out_dir/<name>/ in this process (engine/runner.py); report the
@@ -76,7 +75,7 @@ def _execute(
     from frictiondisk.engine.directory import CampaignChanged, FolderDamaged
     from frictiondisk.engine.preflight import preflight
     from frictiondisk.engine.runner import CampaignsClash, run_campaign, run_campaigns
-    from frictiondisk.engine.signals import CampaignInterrupted, describe_stop
+    from frictiondisk.engine.signals import CampaignInterrupted, describe_stop, stop_notice
     from frictiondisk.model.scene import ConfigError
     from frictiondisk.store.lock import CampaignLocked
     from frictiondisk.store.paths import describe_os_error
@@ -85,9 +84,7 @@ def _execute(
     for k, campaign in enumerate(campaigns or [None]):
         where = out_dir / campaign.name if several and campaign is not None else out_dir
         # the scheduler is probed once: the campaigns share it
-        problems += preflight(
-            campaign, where, workers, scheduler if k == 0 else None, force, strict
-        )
+        problems += preflight(campaign, where, workers, scheduler if k == 0 else None, force)
     if problems:
         fail(f"{out_dir}: cannot start (nothing was created)", list(dict.fromkeys(problems)))
     for campaign in campaigns or []:
@@ -118,13 +115,7 @@ def _execute(
     except CampaignInterrupted as exc:
         fail(str(exc), [], exc.exit_code)
     except KeyboardInterrupt as stop:  # outside the campaign loop: set-up, a trajectory run
-        what, code = describe_stop(stop)
-        fail(
-            f"{what} outside the campaign loop (while setting up, or during a trajectory's "
-            "one run); no finished run is lost. Run the same command again to continue",
-            [],
-            code,
-        )
+        fail(stop_notice(stop, "outside the campaign loop"), [], describe_stop(stop)[1])
     except ConfigError as exc:
         fail(f"{out_dir}/campaign.yaml", list(exc.problems))
     except SchedulerFailed as exc:
@@ -172,16 +163,10 @@ def _echo_summary(summary, out_dir: Path, indent: str = "") -> None:
 
 def _echo_numerics(campaign, label: str = "") -> None:
     """The preflight line of a find_jump: its numerics and why (chosen from the tol, or
-    given), and a warning if they cannot reach the tol (stderr)."""
-    from frictiondisk.engine.preflight import numerics_warning
-
+    given; numerics that cannot reach the tol were refused at preflight) (stderr)."""
     choice = getattr(campaign, "numerics_choice", None)
-    if choice is None:
-        return
-    click.echo(f"{label}numerics: {choice.describe()}", err=True)
-    warning = numerics_warning(campaign)
-    if warning:
-        click.echo(f"{label}warning: {warning} (run --strict refuses this)", err=True)
+    if choice is not None:
+        click.echo(f"{label}numerics: {choice.describe()}", err=True)
 
 
 def _echo_closing(results_path: Path, indent: str = "") -> None:
@@ -257,11 +242,12 @@ _processes = click.option(
     help="Run a campaign over the size limits (points, runs, memory) anyway.",
 )
 @click.option(
-    "--strict",
+    "--tol-floor",
     is_flag=True,
-    help="Refuse (exit 2, nothing run) a find_jump whose numerics cannot reach its tol "
-    "instead of warning.",
+    help="Run a find_jump whose numerics cannot reach its tol at the smallest tol they "
+    "reach (written into DIR/campaign.yaml), instead of refusing it.",
 )
+@click.option("--strict", is_flag=True, hidden=True, help="The default now: no effect.")
 def run(
     campaign_files: tuple[Path, ...],
     out_dir: Path,
@@ -271,6 +257,7 @@ def run(
     processes: bool,
     dashboard: bool,
     force: bool,
+    tol_floor: bool,
     strict: bool,
 ) -> None:
     """Run CAMPAIGN_FILE into DIR; running it again on the same DIR resumes it.
@@ -284,6 +271,7 @@ def run(
     in this one process on one set of workers: their runs are scheduled together, so one
     campaign's last points overlap the next one's first. Each keeps its own journal, lock
     and files; `resume DIR` and `status DIR` take the folder."""
+    from frictiondisk.engine.preflight import at_tol_floor
     from frictiondisk.model.scene import ConfigError
     from frictiondisk.tasks.campaign import load_campaign
 
@@ -292,9 +280,14 @@ def run(
         if not campaign_file.is_file():
             fail(str(campaign_file), [f"campaign file not found: {campaign_file}"])
         try:
-            campaigns.append(load_campaign(campaign_file))
+            campaign = load_campaign(campaign_file)
         except ConfigError as exc:
             fail(str(campaign_file), list(exc.problems))
+        if tol_floor:
+            campaign, said = at_tol_floor(campaign)
+            if said:
+                click.echo(f"{campaign.name}: {said}", err=True)
+        campaigns.append(campaign)
     several = len(campaigns) > 1
     _execute(
         campaigns,
@@ -306,7 +299,6 @@ def run(
         force,
         dashboard,
         several,
-        strict,
     )
 
 
@@ -324,6 +316,8 @@ def resume(
     in a folder of several campaigns (`run A.yaml B.yaml -o DIR`), every one of them."""
     from frictiondisk.engine.directory import is_campaign_folder
 
+    if not out_dir.exists():
+        fail(f"{out_dir} does not exist: nothing to resume", [])
     several = is_campaign_folder(out_dir)
     if not several and not (out_dir / "campaign.yaml").is_file():
         fail(f"{out_dir} is not a campaign directory (no campaign.yaml)", [])

@@ -43,6 +43,18 @@ def describe_stop(stop: KeyboardInterrupt) -> tuple[str, int]:
     return "interrupted", 130
 
 
+def stop_notice(stop: KeyboardInterrupt, where: str = "") -> str:
+    """What a stop outside the campaign loop says (before it started, while the command
+    set up, or while it printed its answer): the same words and advice as a stop inside it
+    (engine/runner.py), so that Ctrl-C reads alike at any moment. `where`: e.g. "while
+    setting up"."""
+    what, _ = describe_stop(stop)
+    return (
+        f"{what}{' ' + where if where else ''}; no finished run is lost. Run the same "
+        "command again to continue"
+    )
+
+
 def drop_hint(stop: KeyboardInterrupt) -> str:
     """How to drop the runs in flight while a stop drains them: the same signal again
     (any second stop does it), a SIGTERM after a SIGHUP (the terminal is gone)."""
@@ -61,6 +73,11 @@ def request_stop(stop: type[KeyboardInterrupt]) -> None:
     raises it too, but an exception raised while the main thread runs a finalizer (Dask's
     Future.__del__) is printed and lost; the campaign loop then raises it from this note."""
     _stop_requested.append(stop)
+
+
+def noted_stop() -> type[KeyboardInterrupt] | None:
+    """The last stop noted by request_stop (None: none since the last clear)."""
+    return _stop_requested[-1] if _stop_requested else None
 
 
 def raise_if_stop_requested() -> None:

@@ -9,12 +9,14 @@ import json
 import time
 from pathlib import Path
 
+import numpy as np
+
 from frictiondisk.engine.directory import record_differences
 from frictiondisk.model.scene import ConfigError
 from frictiondisk.store.files import netcdf_is_valid
-from frictiondisk.store.journal import Journal
 from frictiondisk.store.journal_audit import audit
-from frictiondisk.store.layout import CAMPAIGN_FILE, RESULTS_FILE, STATUS_FILE
+from frictiondisk.store.journal_entry import KEY
+from frictiondisk.store.layout import CAMPAIGN_FILE, JOURNAL_DIR, RESULTS_FILE, STATUS_FILE
 from frictiondisk.store.lock import CampaignLock
 from frictiondisk.store.paths import refuse_symlink
 from frictiondisk.tasks.campaign import load_campaign
@@ -27,18 +29,28 @@ class NotACampaign(Exception):
 
 def status_lines(out_dir: Path) -> list[str]:
     """The progress of the campaign in out_dir (NotACampaign if it holds none; OSError if
-    its status cannot be read)."""
+    its status cannot be read). It answers from the moment a run holds out_dir's lock
+    (`starting`); without status.json (not yet written, or lost) the campaign's name and
+    size come from campaign.yaml and the finished points from results.nc."""
+    if not out_dir.exists():
+        raise NotACampaign(f"{out_dir} does not exist")
+    if not out_dir.is_dir():
+        raise NotACampaign(f"{out_dir} is not a directory")
+    holder = CampaignLock.holder(out_dir)
     if not (out_dir / CAMPAIGN_FILE).is_file():
-        raise NotACampaign(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})")
-    info, holder = _status_file(out_dir)
+        if holder is None:
+            raise NotACampaign(f"{out_dir} is not a campaign directory (no {CAMPAIGN_FILE})")
+        return [f"campaign:  ? in {out_dir}", f"state:     starting (pid {holder})"]
+    info = _status_file(out_dir)
+    results_ok = netcdf_is_valid(out_dir / RESULTS_FILE)
+    info = {**_from_files(out_dir, results_ok), **info}
     # a task without a journal (a trajectory) counts its run in status.json
-    runs_done = Journal.count(out_dir) or int(info.get("runs_done", 0))
+    runs_done = journal_count(out_dir) or int(info.get("runs_done", 0))
     state = info.get("state", "not started")
     if holder is not None:
-        state = f"running (pid {holder})"
-    elif state == "running":
+        state = f"{'running' if info.get('written') else 'starting'} (pid {holder})"
+    elif state == "running" or (state == "not started" and runs_done):
         state = "interrupted"
-    results_ok = netcdf_is_valid(out_dir / RESULTS_FILE)
     if state == "complete" and not results_ok:
         state = "damaged"
     total = info.get("points_total", "?")
@@ -48,7 +60,7 @@ def status_lines(out_dir: Path) -> list[str]:
         f"points:    {info.get('points_done', 0)} of {total} done, "
         f"{info.get('points_failed', 0)} failed",
         f"runs:      {runs_done} done; "
-        f"{info.get('jobs_in_flight', 0) if holder else 0} tasks in flight",
+        f"{info.get('jobs_in_flight', 0) if holder else 0} {_tasks(info, holder)} in flight",
     ]
     eta = info.get("eta_s")
     if holder is not None and eta is not None:
@@ -63,15 +75,61 @@ def status_lines(out_dir: Path) -> list[str]:
     return lines + journal_lines(out_dir) + edit_lines(out_dir)
 
 
-def _status_file(out_dir: Path) -> tuple[dict, int | None]:
-    """status.json (empty if missing or unreadable) and the pid holding the lock (None)."""
+def _tasks(info: dict, holder: int | None) -> str:
+    return "task" if holder and info.get("jobs_in_flight", 0) == 1 else "tasks"
+
+
+def journal_count(out_dir: Path) -> int:
+    """The journal's entries, by name (journal/<kk>/<key>.json, kk = key[:2]; not verified:
+    journal_lines reports those that fail); stray files are not counted. Creates nothing."""
+    journal = out_dir / JOURNAL_DIR
+    if not journal.is_dir() or journal.is_symlink():
+        return 0
+    count = 0
+    for shard in journal.iterdir():
+        if len(shard.name) != 2 or shard.is_symlink() or not shard.is_dir():
+            continue
+        count += sum(
+            1
+            for entry in shard.glob("*.json")
+            if KEY.fullmatch(entry.stem) and entry.stem[:2] == shard.name
+        )
+    return count
+
+
+def _status_file(out_dir: Path) -> dict:
+    """status.json, marked `written` (empty if missing or unreadable)."""
     status_file = out_dir / STATUS_FILE
     try:
         refuse_symlink(status_file)
-        info = json.loads(status_file.read_text()) if status_file.is_file() else {}
-        return info, CampaignLock.holder(out_dir)
+        if not status_file.is_file():
+            return {}
+        info = json.loads(status_file.read_text())
+        return {**info, "written": True} if isinstance(info, dict) else {}
     except ValueError:
-        return {}, CampaignLock.holder(out_dir)
+        return {}
+
+
+def _from_files(out_dir: Path, results_ok: bool) -> dict:
+    """What status.json would say, read from campaign.yaml (name, points) and a valid
+    results.nc (finished points; complete unless marked partial); {} where unreadable."""
+    found: dict = {}
+    try:
+        campaign = load_campaign(out_dir / CAMPAIGN_FILE)
+        found["campaign"] = campaign.name
+        found["points_total"] = int(np.prod(campaign.shape, dtype=np.int64))
+    except ConfigError:
+        return found
+    if results_ok:
+        import xarray as xr
+
+        with xr.open_dataset(out_dir / RESULTS_FILE) as results:
+            partial = bool(results.attrs.get("partial"))
+            done = results.attrs.get("points_done", found["points_total"])
+            found["points_done"] = int(done) if partial else found["points_total"]
+            if not partial:
+                found["state"] = "complete"
+    return found
 
 
 def edit_lines(out_dir: Path) -> list[str]:

@@ -28,8 +28,11 @@ Rules (docs/accuracy.md, "Numerics from the tol"):
   negligible (a tenth) beside the best numerics' error, else the one with the least
   error, and the numerics come within a tenth of the horizon's error;
 * the expected error is a prediction, never a proof: certification (docs/model.md section
-  7) still re-checks every bracket at stricter numerics, and a campaign whose numerics
-  cannot reach its tol says so before it runs.
+  7) still re-checks every bracket at stricter numerics;
+* a campaign whose numerics cannot reach its tol is told the smallest tol they reach (its
+  floor: the least expected error of any horizon and setting it may take, over
+  ERROR_FRACTION); `run` refuses it before any work, or with --tol-floor runs it at that
+  floor.
 
 A single run (`simulate`, scan, trajectory and basin campaigns) has no tol: there `auto`
 is today's default numerics, rtol 1e-6, atol 1e-9, t_decide 30 s.
@@ -194,6 +197,9 @@ class NumericsChoice:
     kinds: tuple[str, ...]
     reason: str = ""
     advice: str = ""  # what to do when they cannot reach the tol
+    # where they cannot reach the tol: the smallest tol they reach (the keys given fixed),
+    # two significant digits rounded up; else None
+    floor: float | None = None
 
     @property
     def reaches(self) -> bool:
@@ -226,13 +232,15 @@ class NumericsChoice:
         )
 
     def warning(self) -> str | None:
-        """The preflight warning when the numerics cannot reach the tol (None: they can)."""
+        """Why the numerics cannot reach the tol, with the floor they reach and what to do
+        (None: they can). `run` refuses such a campaign unless --tol-floor."""
         if self.reaches:
             return None
+        floor = f"; the smallest tol they reach is {self.floor:.2g}" if self.floor else ""
         return (
             f"numerics cannot reach find_jump.tol {self.tol:g}: expected mu* error "
             f"{self.expected:.2g} > tol/{1 / ERROR_FRACTION:g} = {self.bound:.2g} "
-            f"({self._values()}; kind {' + '.join(self.kinds)}); {self.advice}"
+            f"({self._values()}; kind {' + '.join(self.kinds)}){floor}; {self.advice}"
         )
 
     def _values(self) -> str:
@@ -282,9 +290,30 @@ def choose(
 ) -> NumericsChoice:
     """The numerics for find_jump.tol `tol` on scenes of `kinds`; `given` holds the keys
     of AUTO_KEYS the campaign fixes (with their values), the rest is chosen; `names`: the
-    keys as written (e.g. `preset`), for the advice (default: those of `given`)."""
+    keys as written (e.g. `preset`), for the advice (default: those of `given`). Where
+    they cannot reach the tol, `floor` is the smallest tol they reach."""
     model = model or error_model()
     kinds = tuple(sorted(set(kinds)))
+    choice = _choose(tol, kinds, given, model, names)
+    if choice.reaches or choice.expected is None:
+        return choice
+    floor = _floor(model, kinds, given)
+    if floor is None:
+        return choice
+    advice = choice.advice
+    if advice.startswith("no measured numerics"):
+        advice = f"loosen find_jump.tol to at least {floor:.2g}"
+    return dataclasses.replace(choice, floor=floor, advice=advice)
+
+
+def _choose(
+    tol: float,
+    kinds: tuple[str, ...],
+    given: Mapping[str, float],
+    model: ErrorModel,
+    names: Iterable[str] = (),
+) -> NumericsChoice:
+    """choose, without the floor."""
     bound = ERROR_FRACTION * tol
     missing = [kind for kind in kinds if kind not in model.kinds()]
     if missing:
@@ -330,10 +359,34 @@ def choose(
     reason = "" if expected is not None else "expected mu* error unknown: not measured"
     advice = "no measured numerics and horizon reach it: loosen find_jump.tol"
     if given and expected is not None and expected > bound * _UP:
-        if choose(tol, kinds, {}, model).reaches:
+        if _choose(tol, kinds, {}, model).reaches:
             fixed = ", ".join(sorted(names) or sorted(given))
             advice = f"leave {fixed} out to let the tol choose them"
     return NumericsChoice(tol, *values.values(), chosen, expected, bound, kinds, reason, advice)
+
+
+def _floor(model: ErrorModel, kinds: tuple[str, ...], given: Mapping[str, float]) -> float | None:
+    """The smallest tol whose choice reaches it, to two significant digits (rounded up):
+    of the expected errors of the horizons and settings `choose` may take (the given keys
+    fixed), the least whose tol (error / ERROR_FRACTION) `choose` reaches; None if none."""
+    if "t_decide" in given:
+        horizons = [given["t_decide"]]
+    else:
+        horizons = [t for t in model.horizons() if t >= DEFAULT_T_DECIDE * _EPS]
+    errors = set()
+    for t in horizons:
+        t_error = _worst(model.horizon_error(kind, t) for kind in kinds)
+        for rtol, atol, _ in _settings(model, kinds, given):
+            n_error = _worst(model.numerics_error(kind, rtol, atol) for kind in kinds)
+            if t_error is not None and n_error is not None and t_error + n_error > 0:
+                errors.add(_round_up((t_error + n_error) / ERROR_FRACTION))
+    return next((tol for tol in sorted(errors) if _choose(tol, kinds, given, model).reaches), None)
+
+
+def _round_up(value: float) -> float:
+    """`value` > 0 rounded up to two significant digits (7.31e-10 -> 7.4e-10)."""
+    step = 10.0 ** (math.floor(math.log10(value)) - 1)
+    return float(f"{math.ceil(value / step * (1 - 1e-12)) * step:.2g}")
 
 
 def _settings(model: ErrorModel, kinds, given) -> list[tuple[float, float, float]]:

@@ -21,7 +21,7 @@ from pydantic_core import PydanticCustomError
 from frictiondisk.model import layouts
 from frictiondisk.model.overrides import apply_overrides, parse_override
 from frictiondisk.model.presets import NUMERICS_PRESETS
-from frictiondisk.model.scene_keys import drop_unused, without_unused
+from frictiondisk.model.scene_keys import drop_unused, unused_keys, without_unused
 from frictiondisk.model.schema import (
     INT64_MAX,
     MODEL_CONFIG,
@@ -498,7 +498,18 @@ def _validate(data: Any, source: str, origins: Mapping[str, str]) -> SceneConfig
     try:
         return SceneConfig.model_validate(data)
     except ValidationError as err:
-        raise ConfigError(problems_of(err, SceneConfig, origins), source) from None
+        problems = problems_of(err, SceneConfig, origins, unused=_unused_keys(data))
+        raise ConfigError(problems, source) from None
+
+
+def _unused_keys(data: Any) -> tuple[str, ...]:
+    """The dotted keys the scene as given does not use (a pin's spin and layout keys),
+    left out of the allowed keys an unknown key's message lists."""
+    if not isinstance(data, Mapping):
+        return ()
+    contact = data.get("contact")
+    layout = contact.get("layout", "ring") if isinstance(contact, Mapping) else "ring"
+    return tuple(unused_keys(data.get("scene"), layout))
 
 
 def describe_key(dotted: str) -> tuple[str | None, str]:

@@ -36,6 +36,10 @@ _TYPE_NOUNS = {
 _NOT_ALLOWED = ("finite_number", "literal_error", "string_pattern_mismatch")
 _repr = reprlib.Repr()
 _repr.maxstring = _repr.maxother = 40
+_repr.maxlevel = 2  # a nested value shows its first two levels, a few items each
+_repr.maxlist = _repr.maxtuple = _repr.maxset = 6
+_repr.maxdict = 4
+SHOW_CHARS = 80  # the most a value takes in a message
 
 
 def field(
@@ -124,17 +128,42 @@ def within(handler: Any, value: Any, annotation: Any, **limits: Any) -> Any:
 # --- messages ---------------------------------------------------------------------------
 
 
+# spellings a user may write for the house ones (British -ise/-tre words, long names)
+_SPELLINGS = (("centering", "centring"), ("centered", "centred"), ("center", "centre"))
+
+
+def did_you_mean(word: Any, names: Sequence[str]) -> str:
+    """` (did you mean 'x'?)` for the name in `names` closest to `word` ("" if none is
+    close): a close spelling, an American one of a house word (self_centering), or a name
+    that starts `word` or that `word` starts (tolerance: tol)."""
+    if not isinstance(word, str) or not names:
+        return ""
+    respelled = word
+    for theirs, ours in _SPELLINGS:
+        respelled = respelled.replace(theirs, ours)
+    close = [respelled] if respelled in names else []
+    close = close or difflib.get_close_matches(word, names, n=1)
+    close = close or [
+        name
+        for name in names
+        if min(len(name), len(word)) >= 3 and (word.startswith(name) or name.startswith(word))
+    ]
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
 def problems_of(
     err: ValidationError,
     root: type[BaseModel],
     origins: Mapping[str, str] | None = None,
     brackets: bool = False,
+    unused: Sequence[str] = (),
 ) -> list[str]:
     """The house lines of a ValidationError of `root`; list items are written `path[i]`
-    with `brackets`, else `path.i`; `origins` tags problems under a dotted key."""
+    with `brackets`, else `path.i`; `origins` tags problems under a dotted key; `unused`:
+    dotted keys the scene does not take, left out of the allowed keys listed."""
     lines = []
     for error in err.errors(include_url=False):
-        lines += error_lines(error, root, origins, brackets)
+        lines += error_lines(error, root, origins, brackets, unused)
     return lines
 
 
@@ -143,8 +172,10 @@ def error_lines(
     root: Any,
     origins: Mapping[str, str] | None = None,
     brackets: bool = False,
+    unused: Sequence[str] = (),
 ) -> list[str]:
-    """The house lines of one pydantic error of `root` (a rule may hold several)."""
+    """The house lines of one pydantic error of `root` (a rule may hold several); `unused`
+    as in problems_of."""
     origins = origins or {}
     kind, loc, value = error["type"], error["loc"], error.get("input")
     ctx = error.get("ctx") or {}
@@ -171,9 +202,9 @@ def error_lines(
         under = f"under {dotted(parent, brackets)}" if parent else "at top level"
         what = "unknown key" if kind == "extra_forbidden" else f"key {show(value)} is not text"
         names = list(model.model_fields) if is_model(model) else []
+        names = [n for n in names if dotted((*parent, n), brackets) not in unused]
         text = f"{what}; allowed keys {under}: {', '.join(names)}"
-        close = difflib.get_close_matches(str(loc[-1]), names, n=1)
-        text += f" (did you mean {close[0]!r}?)" if close else ""
+        text += did_you_mean(str(loc[-1]), names)
     elif kind in ("model_type", "model_attributes_type", "dict_type") and is_model(here):
         path = dotted(parts, brackets)
         got = kind_of(value) if value is None else f"{kind_of(value)} {show(value)}"
@@ -194,7 +225,8 @@ def field_problem(kind: str, value: Any, info: FieldInfo | None, msg: str) -> st
     if kind == "missing":
         return f"missing; {must}"
     if kind in _NOT_ALLOWED:
-        return f"{show(value)} is not allowed: {must}"
+        choices = _choices(info.annotation) if kind == "literal_error" else []
+        return f"{show(value)} is not allowed: {must}{did_you_mean(value, choices)}"
     if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
         return f"{show(value)} is out of range: must be {bounds(info, value)}"
     if value is None:
@@ -209,6 +241,14 @@ def field_problem(kind: str, value: Any, info: FieldInfo | None, msg: str) -> st
         got = kind_of(value) if value is None else f"{kind_of(value)} {show(value)}"
         return f"expected {'a mapping' if kind == 'dict_type' else 'a list'}; got {got}: {must}"
     return f"{show(value)}: {msg}; {must}"
+
+
+def _choices(annotation: Any) -> list[str]:
+    """The text values of a Literal (inside Optional or Annotated), else []."""
+    base = plain_annotation(annotation)
+    if get_origin(base) is not Literal:
+        return []
+    return [choice for choice in get_args(base) if isinstance(choice, str)]
 
 
 def requirement(info: FieldInfo) -> str:
@@ -331,7 +371,8 @@ def show(value: Any) -> str:
     """A value as the user wrote it: YAML words for true/false/null, else a short repr."""
     if value is None or isinstance(value, bool):
         return json.dumps(value)
-    return _repr.repr(value)
+    text = _repr.repr(value)
+    return text if len(text) <= SHOW_CHARS else f"{text[: SHOW_CHARS - 4]} ..."
 
 
 def kind_of(value: Any) -> str:

@@ -24,13 +24,39 @@ __all__ = [
 ]
 
 
+# What an error may say, whatever the input: at most MAX_PROBLEMS lines (the rest counted)
+# of at most MAX_PROBLEM_CHARS each (a huge key or value cut in its middle).
+MAX_PROBLEMS = 12
+MAX_PROBLEM_CHARS = 300
+
+
 class ConfigError(ValueError):
-    """Invalid configuration. `problems` holds one message per problem; `str()` joins them."""
+    """Invalid configuration. `problems` holds one message per problem, at most
+    MAX_PROBLEMS (a last line counts the rest) of at most MAX_PROBLEM_CHARS each; `str()`
+    joins them."""
 
     def __init__(self, problems: str | Iterable[str], source: str | None = None) -> None:
-        self.problems: list[str] = [problems] if isinstance(problems, str) else list(problems)
+        problems = [problems] if isinstance(problems, str) else list(problems)
+        self.problems: list[str] = bounded(problems)
         self.source = source  # file name or other origin, if known
         super().__init__("\n".join(self.problems))
+
+
+def bounded(problems: list[str]) -> list[str]:
+    """`problems` cut to MAX_PROBLEMS lines (the last one says how many more there are) of
+    at most MAX_PROBLEM_CHARS each, one line each."""
+    shown = [_short(" ".join(str(problem).split("\n"))) for problem in problems]
+    if len(shown) > MAX_PROBLEMS:
+        more = len(shown) - (MAX_PROBLEMS - 1)
+        shown = [*shown[: MAX_PROBLEMS - 1], f"... and {more} more problems"]
+    return shown
+
+
+def _short(text: str) -> str:
+    if len(text) <= MAX_PROBLEM_CHARS:
+        return text
+    half = (MAX_PROBLEM_CHARS - 25) // 2
+    return f"{text[:half]} ...({len(text) - 2 * half} characters)... {text[-half:]}"
 
 
 # YAML 1.2 core schema (https://yaml.org/spec/1.2.2/#1032-tag-resolution), plus the plain
@@ -58,6 +84,9 @@ class _TooDeep(ConfigError):
 # of 4 and a few kB; these stop a hostile file long before recursion or memory run out.
 MAX_DEPTH = 32  # nested mappings/lists
 MAX_FILE_BYTES = 4 * 1024 * 1024
+# values that aliases (*name) may add to a file by repeating anchored ones: a campaign
+# needs none or a few dozen; an "alias bomb" of a few lines adds billions
+MAX_ALIAS_VALUES = 100_000
 
 
 class StrictLoader(yaml.SafeLoader):
@@ -86,7 +115,7 @@ class StrictLoader(yaml.SafeLoader):
             self._depth -= 1
 
     def construct_document(self, node: yaml.Node) -> Any:
-        problems = _duplicate_keys(node, (), set())
+        problems = _alias_problems(node) or _duplicate_keys(node, (), set())
         if problems:
             raise ConfigError(problems)
         return super().construct_document(node)
@@ -106,6 +135,53 @@ for _tag, _regexp, _first in _RESOLVERS:
     for _cls in (StrictLoader, StrictDumper):
         _cls.add_implicit_resolver(_tag, re.compile(_regexp, re.X), _first)
 StrictLoader.add_constructor("tag:yaml.org,2002:int", StrictLoader.construct_yaml_int)
+
+
+def _alias_problems(root: yaml.Node) -> list[str]:
+    """A message if aliases repeat more than MAX_ALIAS_VALUES values, or one refers to a
+    node that holds it (a recursive alias); [] otherwise. Counts without expanding."""
+    size: dict[int, int] = {}  # values in a node's expansion, itself included
+    distinct: set[int] = set()
+    stack: list[tuple[yaml.Node, bool]] = [(root, False)]
+    open_nodes: set[int] = set()
+    while stack:
+        node, children_done = stack.pop()
+        if children_done:
+            open_nodes.discard(id(node))
+            size[id(node)] = 1 + sum(size[id(child)] for child in _children(node))
+            continue
+        if id(node) in size:
+            continue
+        if id(node) in open_nodes:
+            mark = node.start_mark
+            return [
+                f"line {mark.line + 1}, column {mark.column + 1}: an alias refers to a node "
+                "that holds it (a recursive alias)"
+            ]
+        open_nodes.add(id(node))
+        distinct.add(id(node))
+        stack.append((node, True))
+        stack += [(child, False) for child in _children(node) if id(child) not in size]
+    repeated = size[id(root)] - len(distinct)
+    if repeated <= MAX_ALIAS_VALUES:
+        return []
+    path, node = [], root  # down the mappings to the key whose value holds the most
+    while isinstance(node, yaml.MappingNode) and node.value:
+        key, node = max(node.value, key=lambda pair: size[id(pair[1])])
+        path.append(str(key.value) if isinstance(key, yaml.ScalarNode) else "?")
+    mark = node.start_mark
+    return [
+        f"{'.'.join(path) or '(top level)'} (line {mark.line + 1}): aliases (*name) repeat "
+        f"more than {MAX_ALIAS_VALUES} values ({repeated:.3g}): not a configuration file"
+    ]
+
+
+def _children(node: yaml.Node) -> list[yaml.Node]:
+    if isinstance(node, yaml.MappingNode):
+        return [item for pair in node.value for item in pair]
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    return []
 
 
 def _duplicate_keys(node: yaml.Node, path: tuple[str, ...], seen: set[int]) -> list[str]:

@@ -23,7 +23,7 @@ import dataclasses
 import functools
 
 from frictiondisk.model.axes import pair
-from frictiondisk.model.schema import rule
+from frictiondisk.model.schema import did_you_mean, rule
 from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
 
 HIGH = "stick"  # the searches' kind of side B (the stick side of the default jump)
@@ -53,7 +53,11 @@ def between_problems(names) -> list[tuple[int | tuple, str]]:
     members = side_members()
     allowed = ", ".join(members)
     problems: list[tuple[int | tuple, str]] = [
-        (k, f"{name!r} is not an outcome or a class of outcomes; allowed: {allowed}")
+        (
+            k,
+            f"{name!r} is not an outcome or a class of outcomes; allowed: {allowed}"
+            + did_you_mean(name, list(members)),
+        )
         for k, name in enumerate(names)
         if name not in members
     ]
