@@ -11,9 +11,10 @@ import pytest
 import xarray as xr
 from matplotlib.figure import Figure
 
+from frictiondisk.figures.outcome_colors import outcome_colors
 from frictiondisk.model.scene import ConfigError
 from frictiondisk.tasks.basin import stats as basin_stats
-from frictiondisk.tasks.basin.figure import outcome_colors, plot_basin
+from frictiondisk.tasks.basin.figure import plot_basin
 from frictiondisk.tasks.basin.planner import BasinPlanner
 from frictiondisk.tasks.basin.spec import Basin
 from frictiondisk.tasks.basin.table import summary_lines
