@@ -1,9 +1,9 @@
-"""Checks that run before a campaign directory is created (issue 14).
+"""Checks that run before a campaign directory is created.
 
 A campaign that cannot write its directory, reach its scheduler, fit its size limits or
 run its worker count fails here, in well under a second, with a message naming the path
 or the option, instead of after DIR was created or the work began. So does, under
-`run --strict`, a find_jump whose numerics cannot reach its tol (issue 30).
+`run --strict`, a find_jump whose numerics cannot reach its tol.
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@ numba, an edited kernel, a cleaned cache; `make install` compiles it once itself
 without output, which looks like a hang. The commands print one line to stderr before
 that happens. Every command compiles the same entry points (simulation/loop.py `run` and
 the small functions the rodas4 method calls), so one estimate serves them all: on a
-fresh clone of the 2-core development machine (issue 32), a cold `simulate` took 23-24 s
+fresh clone of the 2-core development machine, a cold `simulate` took 23-24 s
 of CPU time in four runs, which is its wall time on an idle machine (one core); shared
 with other jobs at a load of 7 it took 44-59 s (docs/benchmarks.md, compile).
 """

@@ -52,7 +52,7 @@ class VerdictParams:
         "oscillation periods",
         "each window of the sliding evidence's lowest-slip comparison spans this many periods "
         "of the slip's oscillation (read from its troughs), so that each holds a trough: an "
-        "oscillating slip whose troughs fall cannot pass (issue 50)",
+        "oscillating slip whose troughs fall cannot pass",
     )
     envelope_min_revs: int = _param(
         8,
