@@ -11,10 +11,7 @@ samples count in no fraction but their own (they stay in the denominator).
 from __future__ import annotations
 
 from frictiondisk.tasks.sampling.runs import SampledRuns
-from frictiondisk.verdict.outcomes import OUTCOMES
-
-STICK = "stick"
-UNDETERMINED = "undetermined"
+from frictiondisk.verdict.outcomes import OUTCOMES, STICK, UNDETERMINED
 
 
 class BasinPointResult(SampledRuns):

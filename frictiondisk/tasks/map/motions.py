@@ -7,8 +7,7 @@ from __future__ import annotations
 from collections import Counter
 
 from frictiondisk.tasks.sampling.runs import SampledRuns, outcome_order
-
-UNDETERMINED = "undetermined"
+from frictiondisk.verdict.outcomes import UNDETERMINED
 
 
 class MapCellResult(SampledRuns):
