@@ -10,13 +10,13 @@ from click.testing import CliRunner
 
 from frictiondisk.cli import main
 from frictiondisk.model.scene import scene_from_dict
-from frictiondisk.tasks.accuracy.ladder import (
+from frictiondisk.studies.accuracy.ladder import (
     NUMERICS_REFERENCE,
     STIFFNESSES,
     build_ladder,
     default_knobs,
 )
-from frictiondisk.tasks.accuracy.study import plan_rows
+from frictiondisk.studies.accuracy.study import plan_rows
 
 CAMPAIGNS = Path(__file__).resolve().parents[1] / "campaigns"
 PIN = CAMPAIGNS / "accuracy_pin.yaml"
@@ -172,7 +172,7 @@ def test_bad_options(tmp_path, args, piece):
 
 
 def test_figure_lists_failed_rows_instead_of_drawing_them(quick_study):
-    from frictiondisk.tasks.accuracy.figure import work_precision_figure
+    from frictiondisk.studies.accuracy.figure import work_precision_figure
 
     out, _ = quick_study
     with xr.open_dataset(out / "accuracy.nc") as ds:

@@ -11,14 +11,16 @@ import pytest
 import xarray as xr
 from matplotlib.figure import Figure
 
+from frictiondisk.figures.outcome_colors import outcome_colors
 from frictiondisk.model.scene import ConfigError
 from frictiondisk.tasks.basin import stats as basin_stats
-from frictiondisk.tasks.basin.figure import outcome_colors, plot_basin
+from frictiondisk.tasks.basin.figure import plot_basin
 from frictiondisk.tasks.basin.planner import BasinPlanner
-from frictiondisk.tasks.basin.sampling import BLOCK, SampleRequest
 from frictiondisk.tasks.basin.spec import Basin
 from frictiondisk.tasks.basin.table import summary_lines
 from frictiondisk.tasks.campaign import campaign_from_dict, campaign_from_text
+from frictiondisk.tasks.sampling.draws import BLOCK
+from frictiondisk.tasks.sampling.runs import SampleRequest
 from frictiondisk.verdict.outcomes import OUTCOMES
 
 BASIN = """\

@@ -1,4 +1,4 @@
-"""Fig 11's bounds (frictiondisk/tasks/find_jump/brake_figure.py): evaluated at each point's radius."""
+"""Fig 11's bounds (frictiondisk/studies/brake/bounds_figure.py): evaluated at each point's radius."""
 
 from pathlib import Path
 
@@ -6,7 +6,7 @@ import numpy as np
 import xarray as xr
 from conftest import coulomb_mu_star
 
-from frictiondisk.tasks.find_jump.brake_figure import bounds_for, plot_brake
+from frictiondisk.studies.brake.bounds_figure import bounds_for, plot_brake
 
 CAMPAIGN = Path(__file__).resolve().parents[1] / "campaigns" / "fig11_betab_mu.yaml"
 

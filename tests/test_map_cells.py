@@ -87,9 +87,9 @@ def test_a_map_file_names_every_problem():
 
 
 def test_a_sampled_map_draws_its_starts_as_a_basin_does():
-    from frictiondisk.tasks.basin.sampling import sample_values
     from frictiondisk.tasks.campaign import campaign_from_text
     from frictiondisk.tasks.map.planner import MapPlanner
+    from frictiondisk.tasks.sampling.draws import sample_values
 
     campaign = campaign_from_text(
         "name: m\nscene: pin\nmap:\n  over: {params.omega_m: [1.0, 1.5]}\n"

@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 from frictiondisk.store.tables import distinct_spec, mu_decimals
-from frictiondisk.tasks.accuracy.table import summary_table
+from frictiondisk.studies.accuracy.table import summary_table
 from frictiondisk.tasks.basin.table import summary_lines
 from frictiondisk.tasks.find_jump.table import mu_star_table
 from frictiondisk.tasks.scan.table import scan_table

@@ -1,5 +1,5 @@
 """`frictiondisk accuracy`: the accuracy study of a find_jump campaign (thin; the study is
-frictiondisk/tasks/accuracy/, run here by frictiondisk.engine.local).
+frictiondisk/studies/accuracy/, run here by frictiondisk.engine.local).
 
 Exit codes: 0 done (failed bisections are rows with their reason), 2 bad command line or
 campaign file (the message names the field), 1 any other failure.
@@ -83,10 +83,10 @@ def accuracy(
     (and .pdf). Progress goes to stderr.
     """
     from frictiondisk.model.scene import ConfigError
+    from frictiondisk.studies.accuracy.entry import AccuracyEntry
     from frictiondisk.tasks.campaign import load_campaign
-    from frictiondisk.tasks.registry import STUDIES
 
-    study = STUDIES["accuracy"]
+    study = AccuracyEntry()
 
     source = str(campaign_file)
     if not campaign_file.is_file():

@@ -60,7 +60,7 @@ def draw_bounds(out: Path, figures: Path, formats: list[str]) -> None:
     """Fig 11 with both starts and the Melan shakedown and collapse bounds, if both ran."""
     rest, corotating = (out / name for name in FIG11)
     if (rest / "results.nc").is_file() and (corotating / "results.nc").is_file():
-        from frictiondisk.tasks.find_jump.brake_figure import main as brake_figure
+        from frictiondisk.studies.brake.bounds_figure import main as brake_figure
 
         for suffix in formats:
             target = figures / f"{BOUNDS_FIGURE}.{suffix}"

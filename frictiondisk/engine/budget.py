@@ -1,4 +1,4 @@
-"""A campaign's size before it starts: points, runs and driver memory (issue 14).
+"""A campaign's size before it starts: points, runs and driver memory.
 
 `estimate` counts without building a single point, so a campaign of 10^8 points is refused
 in milliseconds instead of growing until memory runs out. `check` returns one line per

@@ -1,7 +1,6 @@
 """Searches run in this process, on a small thread pool (the kernel releases the GIL),
 without Dask or a journal: what a study that measures cost runs on (`run_study`; the
-accuracy study, frictiondisk.tasks.accuracy.study), and one bisection of it here
-(`bisect_setting`)."""
+accuracy study, frictiondisk.studies.accuracy.study)."""
 
 from __future__ import annotations
 
@@ -56,12 +55,3 @@ def run_study(study, workers: int = 1, progress: bool = True):
     searches = study.searches()
     finished = run_searches(searches, workers, study.labels(), progress, study.name, study.unit)
     return study.to_dataset(finished, time.perf_counter() - wall0, workers)
-
-
-def bisect_setting(config, task, tol: float):
-    """One setting of the accuracy study bisected here: its Outcome (answer and cost)."""
-    from frictiondisk.tasks.accuracy.study import outcome_of, setting_search
-
-    job = setting_search(config, task, tol)
-    bisection, _ = run_search(job.search, job.scene_of, NO_JOURNAL)
-    return outcome_of(bisection)

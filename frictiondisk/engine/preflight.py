@@ -1,4 +1,4 @@
-"""Checks that run before a campaign directory is created (issue 14).
+"""Checks that run before a campaign directory is created.
 
 A campaign that cannot write its directory, reach its scheduler, fit its size limits or
 run its worker count fails here, in well under a second, with a message naming the path

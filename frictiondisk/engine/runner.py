@@ -8,7 +8,7 @@ the runs that were in flight.
 DIR layout: campaign.yaml (the campaign as first run), campaign.record.json (its sha256
 and canonical form: a hand-edited campaign.yaml is refused), journal/ (one file per run),
 status.json (progress, rewritten while running), results.nc, runs.nc, lock. None of these
-may be a symbolic link (issue 14): the driver refuses to start rather than follow one.
+may be a symbolic link: the driver refuses to start rather than follow one.
 
 Several campaigns in one process (run_campaigns): DIR/campaigns.json names them, each
 campaign has a DIR/<name>/ of the layout above, with its own lock, and DIR/lock is held

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-# Numerics presets (issue 5): each sets every key it names unless the scene gives that key
+# Numerics presets: each sets every key it names unless the scene gives that key
 # explicitly (explicit keys win). `default` is the field defaults, so a scene without a preset
 # is unchanged. Chosen from the accuracy study (`frictiondisk accuracy` on
 # campaigns/accuracy_pin.yaml and accuracy_disk.yaml, bisection tol 1e-9): |mu* - mu*_ref|

@@ -47,7 +47,7 @@ __all__ = [
 DEFAULT_DISK_POINTS = 12  # contact points of a disk when contact.points is null
 MAX_POINTS = 1000  # most contact points of a scene
 
-# Upper bounds that keep the kernel's arithmetic meaningful (issue 14). Integers go to the
+# Upper bounds that keep the kernel's arithmetic meaningful. Integers go to the
 # kernel as int64. Lengths, speeds and the master speed are bounded far beyond any friction
 # disk, so that squared terms stay finite and one revolution stays longer than a step:
 # x_ms = omega_m = vx0 = 1e300 made a revolution 6e-300 s, "decided" stick after 0 steps.

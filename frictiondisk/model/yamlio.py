@@ -80,7 +80,7 @@ class _TooDeep(ConfigError):
     """Nesting beyond MAX_DEPTH (load_yaml_text prefixes the source)."""
 
 
-# Bounds on what a configuration file may be (issue 14): a scene or campaign needs a depth
+# Bounds on what a configuration file may be: a scene or campaign needs a depth
 # of 4 and a few kB; these stop a hostile file long before recursion or memory run out.
 MAX_DEPTH = 32  # nested mappings/lists
 MAX_FILE_BYTES = 4 * 1024 * 1024

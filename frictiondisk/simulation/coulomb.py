@@ -1,6 +1,6 @@
 """The pin with exact Coulomb friction: a hard stick constraint, no regularization.
 
-The independent c -> infinity reference of the regularized model (issue 5, item 3; the
+The independent c -> infinity reference of the regularized model (the
 paper notes a single contact needs no regularization). Selected by
 `numerics.method: coulomb` (scene pin only).
 

@@ -14,7 +14,7 @@ simply never looked up again. Each entry is written to a temporary file and rena
 (`Journal.put`), so a crash leaves either no entry or a complete one; a reader still verifies
 every entry (`Journal.get`) and treats anything that fails as absent, i.e. to be recomputed.
 
-Integrity (issue 14). An entry stores its run's full canonical scene (`inputs`); on read the
+Integrity. An entry stores its run's full canonical scene (`inputs`); on read the
 key is recomputed from them, so an entry filed under another run's key (a copy, a mix-up, an
 edited input) is rejected. No symbolic link inside DIR is followed: the lock, the log and
 every entry are opened with O_NOFOLLOW, and a linked journal folder is refused. Threat model:

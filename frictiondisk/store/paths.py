@@ -1,4 +1,4 @@
-"""Output paths checked before any work, and OS errors told in plain words (issue 14).
+"""Output paths checked before any work, and OS errors told in plain words.
 
 `check_output_dir` and `check_output_file` run before a campaign directory is created or a
 simulation starts, so a path that cannot be written fails at once, not after the work.

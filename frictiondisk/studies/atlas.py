@@ -1,4 +1,4 @@
-"""The atlas of the motions (issue 49): the pin's motion map with the boundaries traced, and
+"""The atlas of the motions: the pin's motion map with the boundaries traced, and
 the braked axisymmetric disk's map.
 
     python -m frictiondisk.studies.atlas [-o out/atlas] [--figures figures] [--workers 2]

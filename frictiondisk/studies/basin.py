@@ -1,4 +1,4 @@
-"""Basin stability (issue 12): run the basin campaigns and draw their figures.
+"""Basin stability: run the basin campaigns and draw their figures.
 
     python -m frictiondisk.studies.basin [--only NAME ...] [-o out/basin] [--figures figures]
 

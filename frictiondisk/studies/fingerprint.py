@@ -1,7 +1,7 @@
 """Run-level fingerprints: every field of a `SimulationResult` over a fixed list of scenes.
 
 The proof, scene by scene and bit for bit, that a refactor of the kernel, the verdict or
-the simulation layer leaves every run as it was (issue 47). The scene list
+the simulation layer leaves every run as it was. The scene list
 (frictiondisk/studies/fingerprint_scenes.json) covers every path a run can take: pin and
 disk, stick_rule contacts and corotation, modes decide and converge, evidence extrapolate
 and observe, braked disks decided by the shakedown bound, Stribeck friction, recorded
@@ -99,7 +99,7 @@ def fingerprint(result) -> tuple[dict, float]:
             out[name] = _columns(value, REVOLUTION_COLUMNS)
         elif name == "sections":
             out[name] = _columns(value, SECTION_COLUMNS)
-        elif name == "own_section":  # the motion's own section (structured rows, issue 49)
+        elif name == "own_section":  # the motion's own section (structured rows)
             out[name] = _columns(value, ())
         elif name == "trajectory":
             out[name] = (

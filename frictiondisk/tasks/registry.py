@@ -1,11 +1,9 @@
 """The registry of tasks: name -> entry (tasks/entry.py), in the order a campaign file's
-schema, its messages and docs/reference.md list them; and of the studies made on top of a
-campaign (`frictiondisk accuracy`). The one place that names a task: adding a task is
-adding its package and one line here."""
+schema, its messages and docs/reference.md list them. The one place that names a task:
+adding a task is adding its package and one line here."""
 
 from __future__ import annotations
 
-from frictiondisk.tasks.accuracy.entry import AccuracyEntry
 from frictiondisk.tasks.basin.entry import BasinEntry
 from frictiondisk.tasks.entry import TaskEntry
 from frictiondisk.tasks.find_jump.entry import FindJumpEntry
@@ -25,9 +23,6 @@ TASKS: dict[str, TaskEntry] = {
         MapEntry(),
     )
 }
-
-# studies of a campaign (its own command each, not a campaign-file section)
-STUDIES = {entry.name: entry for entry in (AccuracyEntry(),)}
 
 
 def entry_for(name: str) -> TaskEntry:

@@ -56,7 +56,7 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
         rule = rule if (outcome, reason) == ruled else "bound"
     if outcome == "stick" and facts.steps == 0:
         # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
-        # itself (a revolution shorter than round-off); never report it (issue 14)
+        # itself (a revolution shorter than round-off); never report it
         outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
         rule = "error"
     motion = None

@@ -4,7 +4,7 @@ The EV_SLIDING evidence, read from the revolution ring; thresholds from VerdictP
 A slip per revolution can oscillate by a few per cent from one revolution to the next (the
 revolution samples the slave's own spring-mass oscillation: their beat) while its lower
 envelope falls towards sticking. A trend fitted over a few revolutions then never
-establishes the fall, and "not established" is no evidence of "not falling" (issue 50: a
+establishes the fall, and "not established" is no evidence of "not falling" (a
 Stribeck disk from rest read as sliding at 91 s sticks at 171 s). So the sliding state
 must also show its lowest slip per revolution not falling, compared over windows of at
 least two of the oscillation's periods (`lowest_slip_holds`).

@@ -1,4 +1,4 @@
-"""The braked disk (issue 4 item 5, paper Fig. 11): mu*(beta_b) against the admissibility
+"""The braked disk (paper Fig. 11): mu*(beta_b) against the admissibility
 bounds, persistent micro-slip of a co-rotating disk, and the rotation term of the contact
 rate (docs/brake.md).
 

@@ -56,7 +56,7 @@ def parser() -> argparse.ArgumentParser:
         choices=sorted(GENERATORS),
         default=1,
         help="scene generator: 1 the study's own (the rules were tuned on it), 2 an "
-        "independent one with wider ranges (issue 50; scenes.draw_scene2)",
+        "independent one with wider ranges (scenes.draw_scene2)",
     )
     p.add_argument("--workers", type=int, default=2, help="engine workers")
     p.add_argument(

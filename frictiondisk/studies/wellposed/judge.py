@@ -144,7 +144,7 @@ def end_contradicted(row: dict) -> bool:
     """A certified headline bracket whose end its watch contradicts: the watch at mu_lo
     sticks, or the one at mu_hi shows it does not (a watch that stays undetermined
     contradicts nothing). An error even where mu* lies within tol of the reference's
-    (issue 50: a certified mu_lo that sticks at 171 s, mu* 0.4 tol off)."""
+    (a Stribeck disk's certified mu_lo that sticks at 171 s had mu* 0.4 tol off)."""
     return bool(contradicted_ends(row))
 
 

@@ -1,10 +1,11 @@
 """The study's scenes: seeded random pins and disks from one of two independent generators.
 
 Generator 1 (`draw_scene`) is the one the verdict's rules were tuned on; generator 2
-(`draw_scene2`, issue 50) draws wider ranges from an independent stream: Stribeck r down to
+(`draw_scene2`) draws wider ranges from an independent stream: Stribeck r down to
 0.6 with v_s 0.002-0.02 m/s, disks from rest with small J_s, partly spun disks, annulus
 layouts, braked disks, and a slave frequency sqrt(c_s / m_s) around omega_m (the beat of
-the two made the oscillating slip of issue 50).
+the two made the oscillating slip that a Stribeck disk from rest showed before the
+sliding evidence read troughs).
 """
 
 from __future__ import annotations

@@ -10,7 +10,7 @@ Per scene and setting one find_jump campaign of one point (along its own x_ms):
   the default's numerics, no certification.
 
 The ends of every certified default bracket are watched too (a certified end that its
-watch contradicts is a silent error even where mu* agrees with the reference, issue 50);
+watch contradicts is a silent error even where mu* agrees with the reference);
 an end its regularized watch contradicts is watched again at rtol / 100 more, and that
 watch, where it decides, takes the first one's place (study.recheck_contradicted_ends).
 A watch is a scan campaign over the disputed mu of one scene: t_decide SETTLE_HORIZON,

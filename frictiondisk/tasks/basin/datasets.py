@@ -18,25 +18,14 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from frictiondisk.model.yamlio import dump_yaml
 from frictiondisk.store import cf
-from frictiondisk.store.campaign_datasets import (
-    campaign_attrs,
-    coords,
-    dim_names,
-    key_attrs,
-    run_columns,
-)
+from frictiondisk.store.campaign_datasets import campaign_attrs, coords, dim_names
 from frictiondisk.store.measures import RUN_MEASURES, num
 from frictiondisk.store.partial import PENDING, PENDING_REASON
 from frictiondisk.tasks.basin import stats as basin_stats
-from frictiondisk.tasks.basin.sampling import (
-    BasinPointResult,
-    SampleRequest,
-    not_stick_outcomes,
-    sample_values,
-)
-from frictiondisk.verdict.outcomes import OUTCOMES
+from frictiondisk.tasks.basin.sampling import BasinPointResult, not_stick_outcomes
+from frictiondisk.tasks.sampling.columns import sample_yaml, sampled_run_columns
+from frictiondisk.tasks.sampling.runs import outcome_order, reported_outcomes
 
 NOT_STICK_TEXT = "every determined outcome but stick"
 DIMENSIONLESS = ("sample", "n_samples")  # CF: this task's counters (store.cf.complete)
@@ -51,8 +40,7 @@ def _results(snapshot) -> list[BasinPointResult]:
 
 def outcome_list(snapshot) -> tuple[str, ...]:
     """OUTCOMES, then any other outcome a run reported (sorted): nothing is dropped."""
-    seen = {r["outcome"] for res in snapshot.results if res is not None for r in res.results}
-    return (*OUTCOMES, *sorted(seen - set(OUTCOMES)))
+    return outcome_order(reported_outcomes(snapshot.results))
 
 
 def _basin_attrs(campaign, outcomes: tuple[str, ...]) -> dict[str, Any]:
@@ -63,7 +51,7 @@ def _basin_attrs(campaign, outcomes: tuple[str, ...]) -> dict[str, Any]:
     large = ", ".join(not_stick_outcomes(outcomes))
     attrs |= {
         "seed": task.seed,
-        "sample_yaml": dump_yaml({k: d.canonical() for k, d in task.sample.items()}),
+        "sample_yaml": sample_yaml(task),
         "confidence": basin_stats.CONFIDENCE,
         "interval": "Wilson score interval (scipy.stats.binomtest, method wilson)",
         "large_cycle": f"not stick = {NOT_STICK_TEXT} ({large}); undetermined counts in neither",
@@ -192,29 +180,12 @@ def _runs(snapshot, key_of) -> xr.Dataset:
         for i, res in enumerate(snapshot.results)
         for j, result in enumerate(res.results)
     ]
-    data_vars: dict[str, Any] = {
-        "point": ("run", np.asarray([r[0] for r in rows], np.int64), {"long_name": "point index"}),
-        "sample": (
-            "run",
-            np.asarray([r[1] for r in rows], np.int64),
-            {"long_name": "sample index at its point (fixed by seed, point and index)"},
-        ),
-        "mu": (
-            "run",
-            np.asarray([points[r[0]].config.params.mu for r in rows], float),
-            {"units": "1", "long_name": "mu"},
-        ),
-    }
-    keys = [key_of(i, SampleRequest(j)) for i, j, _ in rows]
-    results = [r[2] for r in rows]
-    data_vars.update(run_columns(campaign, points, [r[0] for r in rows], results, keys))
-    blocks: dict[int, dict] = {}  # point -> its draw blocks
-    samples = [
-        sample_values(campaign.task, points[i].coords, j, blocks.setdefault(i, {}))
-        for i, j, _ in rows
-    ]
-    for key in campaign.task.sample:
-        values = [sample[key] for sample in samples]
-        attrs = {**key_attrs(key), "long_name": "sampled " + key_attrs(key)["long_name"]}
-        data_vars[key.split(".")[-1]] = ("run", np.asarray(values, float), attrs)
+    data_vars = sampled_run_columns(
+        campaign,
+        points,
+        rows,
+        key_of,
+        "point index",
+        "sample index at its point (fixed by seed, point and index)",
+    )
     return xr.Dataset(data_vars, attrs=_basin_attrs(campaign, outcome_list(snapshot)))

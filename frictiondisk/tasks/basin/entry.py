@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from frictiondisk.tasks.basin.spec import Basin, Distribution
+from frictiondisk.tasks.basin.spec import Basin
 from frictiondisk.tasks.entry import TaskEntry
+from frictiondisk.tasks.sampling.distribution import Distribution
 
 
 class BasinEntry(TaskEntry):

@@ -24,8 +24,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from frictiondisk.figures.outcome_colors import outcome_colors
 from frictiondisk.figures.shared import (
-    OUTCOME_STYLE,
     axis_label,
     cell_edges,
     check_vars,
@@ -36,20 +36,12 @@ from frictiondisk.figures.shared import (
 from frictiondisk.figures.style import styled
 from frictiondisk.model.scene import describe_key
 
-__all__ = ["outcome_colors", "plot_basin", "plot_basin_fractions", "plot_basin_map"]
+__all__ = ["plot_basin", "plot_basin_fractions", "plot_basin_map"]
 
 FRACTION_LABEL = "basin fraction [-]"
 BAND_ALPHA = 0.25
-EXTRA_COLORS = ("tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive")
 _MAP_VARS = ("outcome_map", "fraction")
 _FRACTION_VARS = ("fraction", "fraction_lo", "fraction_hi", "n_samples", "not_stick_fraction")
-
-
-def outcome_colors(outcomes: list[str]) -> dict[str, str]:
-    """A colour per outcome: the campaign figures' colours, then a fixed palette for any
-    outcome they do not know (an outcome added later still gets its own colour)."""
-    extra = iter(EXTRA_COLORS * (1 + len(outcomes) // len(EXTRA_COLORS)))
-    return {o: OUTCOME_STYLE[o]["color"] if o in OUTCOME_STYLE else next(extra) for o in outcomes}
 
 
 def _sample_text(results: xr.Dataset) -> str:

@@ -4,7 +4,7 @@ The planner contract of frictiondisk.tasks.protocol (`requests`/`feed` answered 
 journal, `jobs`/`complete`/`fail` on Dask), and its promise: the result does not depend on
 worker count, job order or timing.
 
-Samples: sampling.py fixes what sample j of a point is.
+Samples: frictiondisk.tasks.sampling.draws fixes what sample j of a point is.
 
 Adaptive sampling (`target_se`). Samples are taken in batches of `batch`; only when every
 sample of a batch is known is the stop rule checked (basin_stats.stopping_error of the
@@ -22,15 +22,11 @@ import numpy as np
 
 from frictiondisk.tasks.basin import stats as basin_stats
 from frictiondisk.tasks.basin.results import BasinResults
-from frictiondisk.tasks.basin.sampling import (
-    STICK,
-    UNDETERMINED,
-    BasinPointResult,
-    SampleRequest,
-    sample_values,
-)
+from frictiondisk.tasks.basin.sampling import STICK, UNDETERMINED, BasinPointResult
 from frictiondisk.tasks.jobs import RunScenes, Sizing
 from frictiondisk.tasks.protocol import Planner
+from frictiondisk.tasks.sampling.draws import sample_values
+from frictiondisk.tasks.sampling.runs import SampleRequest
 
 JOB_RUNS = 16  # runs per Dask job: a pin run takes ~5 ms, a Dask round trip 3-10 ms
 

@@ -1,9 +1,7 @@
-"""Basin sampling: which initial state sample j of a point gets, and a point's samples.
+"""A basin point's samples and the not-stick count its stop rule and fractions read.
 
-Sample j of a point is fixed by the campaign's `seed`, the point's varied values and j
-alone: the draws of each sampled key come in blocks of `BLOCK` from numpy's
-`SeedSequence(seed, spawn_key=(point words, key words, block))`, so a sample does not change
-with the batch size, `max_samples`, the other sampled keys or the other points.
+Which start sample j of a point gets is frictiondisk.tasks.sampling.draws (shared with the
+map task's sampled starts).
 
 The not-stick ("large limit cycle") fraction counts every determined outcome other than
 `stick` (stick_slip, slide, and any outcome the result adds later); `undetermined`
@@ -12,41 +10,8 @@ samples count in no fraction but their own (they stay in the denominator).
 
 from __future__ import annotations
 
-import dataclasses
-import hashlib
-import json
-from typing import Any
-
-import numpy as np
-
-from frictiondisk.verdict.outcomes import OUTCOMES
-
-BLOCK = 1024  # draws per SeedSequence block
-STICK = "stick"
-UNDETERMINED = "undetermined"
-
-
-@dataclasses.dataclass(frozen=True)
-class SampleRequest:
-    """Sample `index` of a point (for a map: 0, the cell's one run)."""
-
-    index: int
-
-
-@dataclasses.dataclass(frozen=True)
-class SampledRuns:
-    """The runs of one point (a basin point, a map cell), in sample order, and its state."""
-
-    status: str  # "converged" (every run came back) or "failed" (a job never came back)
-    reason: str
-    results: tuple[dict[str, Any], ...]
-
-    @property
-    def n(self) -> int:
-        return len(self.results)
-
-    def count(self, outcome: str) -> int:
-        return sum(1 for r in self.results if r["outcome"] == outcome)
+from frictiondisk.tasks.sampling.runs import SampledRuns
+from frictiondisk.verdict.outcomes import OUTCOMES, STICK, UNDETERMINED
 
 
 class BasinPointResult(SampledRuns):
@@ -61,40 +26,3 @@ class BasinPointResult(SampledRuns):
 def not_stick_outcomes(outcomes: tuple[str, ...] = OUTCOMES) -> tuple[str, ...]:
     """The outcomes counted as the large limit cycle: all but stick and undetermined."""
     return tuple(o for o in outcomes if o not in (STICK, UNDETERMINED))
-
-
-def _words(text: str) -> tuple[int, ...]:
-    """Four 32-bit words of the sha256 of `text` (a SeedSequence spawn key part)."""
-    digest = hashlib.sha256(text.encode()).digest()[:16]
-    return tuple(int.from_bytes(digest[i : i + 4], "little") for i in range(0, 16, 4))
-
-
-def point_words(coords: dict[str, float]) -> tuple[int, ...]:
-    """Spawn-key words of a point: a hash of its varied keys and values (not its index, so a
-    point keeps its samples when other points are added to the campaign)."""
-    return _words(json.dumps({k: repr(float(v)) for k, v in sorted(coords.items())}))
-
-
-def draw_block(task, coords: dict[str, float], key: str, block: int) -> np.ndarray:
-    """Draws BLOCK * block ... BLOCK * (block + 1) - 1 of sampled `key` at a point."""
-    dist = task.sample[key]
-    seq = np.random.SeedSequence(task.seed, spawn_key=(*point_words(coords), *_words(key), block))
-    rng = np.random.default_rng(seq)
-    if dist.kind == "uniform":
-        return rng.uniform(dist.a, dist.b, BLOCK)
-    return rng.normal(dist.a, dist.b, BLOCK)
-
-
-def sample_values(
-    task, coords: dict[str, float], j: int, blocks: dict[tuple[str, int], np.ndarray] | None = None
-) -> dict[str, float]:
-    """The sampled initial-state values of sample j at the point of `coords`; `blocks`
-    keeps the draw blocks of this point between calls ((key, block) -> draws)."""
-    blocks = {} if blocks is None else blocks
-    out = {}
-    for key in task.sample:
-        block = (key, j // BLOCK)
-        if block not in blocks:
-            blocks[block] = draw_block(task, coords, key, block[1])
-        out[key] = float(blocks[block][j % BLOCK])
-    return out

@@ -12,20 +12,18 @@ from pydantic import ValidationInfo, field_validator, model_validator
 from frictiondisk.model.axes import (
     DIST_MUST,
     Axes,
-    Normal,
-    Uniform,
     along_must,
     axes_problems,
     base_of,
     check_axes,
 )
-from frictiondisk.model.schema import Spec, canonical, field, merged, rule
-from frictiondisk.model.varied import INITIAL_STATE_KEYS, initial_state_problem, value_problems
+from frictiondisk.model.schema import canonical, field, merged, rule
+from frictiondisk.model.varied import INITIAL_STATE_KEYS, initial_state_problem
+from frictiondisk.tasks.sampling.distribution import DEFAULT_SEED, Distribution, sample_problems
 from frictiondisk.tasks.spec import TaskSpec
 
 MAX_BASIN_SAMPLES = 10_000_000
 DEFAULT_BASIN_BATCH = 100  # samples per adaptive batch (target_se): the stop rule's step
-DEFAULT_BASIN_SEED = 0
 
 BASIN_TEXT = {
     "sample": "give `sample` (fractions over sampled initial states) or `grid` (a basin map "
@@ -38,37 +36,6 @@ BASIN_TEXT = {
 }
 
 
-class Distribution(Spec):
-    """One sampled initial-state key: `uniform` on [a, b) or `normal` with mean a, sd b."""
-
-    uniform: Uniform = field(
-        None, None, "uniform on [low, high), in the key's unit", "a list [low, high], low < high"
-    )
-    normal: Normal = field(None, None, "normal, in the key's unit", "a list [mean, sd] with sd > 0")
-
-    @model_validator(mode="wrap")
-    @classmethod
-    def _one(cls, data: Any, handler: Any) -> Any:
-        """Exactly one key given (counted on the keys, also when a value is bad)."""
-        if not isinstance(data, Mapping) or not set(data) <= set(cls.model_fields):
-            return handler(data)  # unknown keys: reported as such
-        text = f"{len(data)} distributions given: must be {DIST_MUST}"
-        return merged(handler, data, [] if len(data) == 1 else [((), text)], list(cls.model_fields))
-
-    @property
-    def kind(self) -> str:
-        """ "uniform" or "normal"."""
-        return "uniform" if self.uniform is not None else "normal"
-
-    @property
-    def a(self) -> float:
-        return (self.uniform or self.normal)[0]
-
-    @property
-    def b(self) -> float:
-        return (self.uniform or self.normal)[1]
-
-
 class Basin(TaskSpec):
     """Basin stability (fractions of outcomes over sampled initial states) or a basin map.
 
@@ -76,7 +43,7 @@ class Basin(TaskSpec):
     initial states from `sample` (dotted initial-state key -> Distribution); either
     `samples` of them, or batches of `batch` until the standard error of the not-stick
     fraction is <= `target_se` or `max_samples` are drawn. Draws are fixed by `seed` and
-    the point's values (frictiondisk.tasks.basin.sampling).
+    the point's values (frictiondisk.tasks.sampling.draws).
     Map (`grid` non-empty): one run per cell of 1 or 2 initial-state keys; no sampling.
     """
 
@@ -98,7 +65,7 @@ class Basin(TaskSpec):
     batch: int = field(
         DEFAULT_BASIN_BATCH, "1", "samples per batch, with target_se", ge=1, le=MAX_BASIN_SAMPLES
     )
-    seed: int = field(DEFAULT_BASIN_SEED, "1", "seed of the draws", ge=0)
+    seed: int = field(DEFAULT_SEED, "1", "seed of the draws", ge=0)
     along: Axes = field({}, None, "0 to 2 dotted scene keys to their values", along_must("0 to 2"))
     grid: Axes = field(
         {},
@@ -138,14 +105,7 @@ class Basin(TaskSpec):
         if not sample:
             keys = ", ".join(INITIAL_STATE_KEYS)
             raise rule(f"no keys: map at least one of {keys} to a distribution")
-        problems: list[tuple[Any, str]] = []
-        for key, dist in sample.items():
-            text = initial_state_problem(key, base)
-            if text:
-                problems.append((key, text))
-            elif base is not None and dist.uniform is not None:
-                for i, value in enumerate(dist.uniform):
-                    problems += [((key, "uniform", i), p) for p in value_problems(base, key, value)]
+        problems = sample_problems(sample, base)
         if problems:
             raise rule(*problems)
         return sample

@@ -1,4 +1,4 @@
-"""How a bisection reaches past a prediction that missed (issue 48). Pure Python.
+"""How a bisection reaches past a prediction that missed. Pure Python.
 
 A bracket predicted from the points already done (a find_jump line's warm start), or an
 interpolating probe at the friction reserve's root estimate, is a guess of mu*. When it

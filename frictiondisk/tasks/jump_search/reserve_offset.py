@@ -1,4 +1,4 @@
-"""The friction reserve's offset at the jump, learned from a finished point (issue 48).
+"""The friction reserve's offset at the jump, learned from a finished point.
 Pure Python.
 
 The reserve (frictiondisk/verdict/reserve.py) is mu minus a rigid-contact demand, so near

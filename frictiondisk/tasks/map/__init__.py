@@ -1,1 +1,1 @@
-"""The `map` task: the motion of every cell of a plane of two scene keys (issue 49)."""
+"""The `map` task: the motion of every cell of a plane of two scene keys."""

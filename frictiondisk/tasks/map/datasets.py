@@ -2,7 +2,7 @@
 runs.nc, from its results snapshot (results.py).
 
 results.nc, over the map's one or two keys (coordinates with units) and `outcome` (every
-outcome name, frictiondisk.tasks.map.motions.outcome_order): per cell its `motion`, how it
+outcome name, frictiondisk.tasks.sampling.runs.outcome_order): per cell its `motion`, how it
 is known (`ran`: 1 run, 0 inferred from a uniform block of the refinement, -1 pending),
 `reason`, `n_runs`, `cycle_converged` (-1 where not run or mixed over sampled starts),
 `fraction` of its runs per outcome, and every run measure of frictiondisk.store.measures
@@ -20,19 +20,13 @@ import numpy as np
 import xarray as xr
 
 from frictiondisk.model.varied import INITIAL_STATE_KEYS
-from frictiondisk.model.yamlio import dump_yaml
 from frictiondisk.store import cf
-from frictiondisk.store.campaign_datasets import (
-    campaign_attrs,
-    coords,
-    dim_names,
-    key_attrs,
-    run_columns,
-)
+from frictiondisk.store.campaign_datasets import campaign_attrs, coords, dim_names
 from frictiondisk.store.measures import RUN_MEASURES, num
 from frictiondisk.store.partial import PENDING, PENDING_REASON
-from frictiondisk.tasks.basin.sampling import SampleRequest, sample_values
-from frictiondisk.tasks.map.motions import MapCellResult, outcome_order
+from frictiondisk.tasks.map.motions import MapCellResult
+from frictiondisk.tasks.sampling.columns import sample_yaml, sampled_run_columns
+from frictiondisk.tasks.sampling.runs import outcome_order, reported_outcomes
 
 DIMENSIONLESS = ("sample", "n_runs")
 RAN: cf.Flag = ((-1, 0, 1), "pending inferred run")
@@ -42,8 +36,7 @@ INFERRED_REASON = "not run: inside a block whose run cells all show this motion"
 
 
 def outcome_list(snapshot) -> tuple[str, ...]:
-    seen = {r["outcome"] for res in snapshot.results if res is not None for r in res.results}
-    return outcome_order(seen | set(snapshot.inferred.values()))
+    return outcome_order(reported_outcomes(snapshot.results) | set(snapshot.inferred.values()))
 
 
 def start_text(campaign) -> str:
@@ -70,7 +63,7 @@ def _map_attrs(campaign) -> dict[str, Any]:
         "differ in motion (frictiondisk/tasks/map/cells.py); ran = 0: inferred",
     }
     if task.sampled:
-        attrs["sample_yaml"] = dump_yaml({k: d.canonical() for k, d in task.sample.items()})
+        attrs["sample_yaml"] = sample_yaml(task)
     return attrs
 
 
@@ -186,36 +179,19 @@ def runs_dataset(snapshot, key_of) -> xr.Dataset:
 
 
 def _runs(snapshot, key_of) -> xr.Dataset:
-    campaign, points, task = snapshot.campaign, snapshot.points, snapshot.campaign.task
+    campaign, points = snapshot.campaign, snapshot.points
     rows = [
         (i, j, result)
         for i, res in enumerate(snapshot.results)
         if res is not None
         for j, result in enumerate(res.results)
     ]
-    data_vars: dict[str, Any] = {
-        "point": ("run", np.asarray([r[0] for r in rows], np.int64), {"long_name": "cell index"}),
-        "sample": (
-            "run",
-            np.asarray([r[1] for r in rows], np.int64),
-            {"long_name": "run index in its cell (a sampled start: fixed by seed, cell, index)"},
-        ),
-        "mu": (
-            "run",
-            np.asarray([points[r[0]].config.params.mu for r in rows], float),
-            {"units": "1", "long_name": "mu"},
-        ),
-    }
-    keys = [key_of(i, SampleRequest(j)) for i, j, _ in rows]
-    data_vars.update(
-        run_columns(campaign, points, [r[0] for r in rows], [r[2] for r in rows], keys)
+    data_vars = sampled_run_columns(
+        campaign,
+        points,
+        rows,
+        key_of,
+        "cell index",
+        "run index in its cell (a sampled start: fixed by seed, cell, index)",
     )
-    blocks: dict[int, dict] = {}
-    for key in task.sample:
-        values = [
-            sample_values(task, points[i].coords, j, blocks.setdefault(i, {}))[key]
-            for i, j, _ in rows
-        ]
-        attrs = {**key_attrs(key), "long_name": "sampled " + key_attrs(key)["long_name"]}
-        data_vars[key.split(".")[-1]] = ("run", np.asarray(values, float), attrs)
     return xr.Dataset(data_vars, attrs=_map_attrs(campaign))

@@ -1,7 +1,7 @@
 """The figure of a map campaign: its results.nc in, a matplotlib Figure out.
 
-Every cell coloured by its motion (the colours of frictiondisk.tasks.basin.figure.
-outcome_colors: the campaign figures' colours, then a fixed palette for any outcome they do
+Every cell coloured by its motion (the colours of frictiondisk.figures.outcome_colors:
+the campaign figures' colours, then a fixed palette for any outcome they do
 not know), one legend for all motions with the share of cells of each; the cells that ran
 are marked with a dot (the others are inferred from a uniform block of the refinement), a
 cross where a converge-mode run had not settled (sticking is settled by its own rule). A map over one key is one coloured strip.
@@ -21,6 +21,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from frictiondisk.figures.curves import curve_points
+from frictiondisk.figures.outcome_colors import outcome_colors
 from frictiondisk.figures.shared import (
     axis_label,
     cell_edges,
@@ -29,8 +31,6 @@ from frictiondisk.figures.shared import (
     new_figure,
 )
 from frictiondisk.figures.style import styled
-from frictiondisk.tasks.basin.figure import outcome_colors
-from frictiondisk.tasks.trace.figure import curve_points
 from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
 
 _VARS = ("motion", "ran", "cycle_converged", "cell_fraction")

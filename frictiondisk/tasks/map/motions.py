@@ -1,15 +1,13 @@
 """A map cell's runs and its motion: the outcome of its one run, or the leading outcome of
-its sampled starts. The outcome names are data (frictiondisk.verdict.outcomes.OUTCOMES,
-then any other name a run reported), so a motion the verdict adds plugs in unchanged."""
+its sampled starts. The outcome names are data (`outcome_order` of
+frictiondisk.tasks.sampling.runs), so a motion the verdict adds plugs in unchanged."""
 
 from __future__ import annotations
 
 from collections import Counter
 
-from frictiondisk.tasks.basin.sampling import SampledRuns
-from frictiondisk.verdict.outcomes import OUTCOMES
-
-UNDETERMINED = "undetermined"
+from frictiondisk.tasks.sampling.runs import SampledRuns, outcome_order
+from frictiondisk.verdict.outcomes import UNDETERMINED
 
 
 class MapCellResult(SampledRuns):
@@ -28,8 +26,3 @@ def leading_motion(results) -> str:
         return UNDETERMINED
     order = {o: k for k, o in enumerate(outcome_order(counts))}
     return max(counts, key=lambda o: (counts[o], -order[o]))
-
-
-def outcome_order(seen) -> tuple[str, ...]:
-    """OUTCOMES, then any other outcome in `seen` (sorted): nothing is dropped."""
-    return (*OUTCOMES, *sorted(set(seen) - set(OUTCOMES)))

@@ -1,6 +1,6 @@
 """Which runs a `map` campaign needs: the cells of a coarse lattice, then the cells where
 neighbours differ (cells.py), each run once from the scene's start or `samples` times from
-sampled starts (the basin task's draws, frictiondisk.tasks.basin.sampling).
+sampled starts (frictiondisk.tasks.sampling.draws, as the basin task draws them).
 
 The planner contract of frictiondisk.tasks.protocol: the cells asked for depend on the
 motions found only (a refinement round starts once every wanted cell is known), never on
@@ -11,12 +11,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from frictiondisk.tasks.basin.sampling import SampleRequest, sample_values
 from frictiondisk.tasks.jobs import RunScenes, Sizing
 from frictiondisk.tasks.map.cells import CellRefinement
 from frictiondisk.tasks.map.motions import UNDETERMINED, MapCellResult, leading_motion
 from frictiondisk.tasks.map.results import MapResults
 from frictiondisk.tasks.protocol import Planner
+from frictiondisk.tasks.sampling.draws import sample_values
+from frictiondisk.tasks.sampling.runs import SampleRequest
 
 
 class MapPlanner(Planner):

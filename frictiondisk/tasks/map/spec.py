@@ -1,7 +1,7 @@
 """The `map` task's schema: the motion of every cell of a plane of two scene keys.
 
-Conventions of frictiondisk.tasks.find_jump.spec; the sampled start is the basin task's
-(frictiondisk.tasks.basin.spec.Distribution, drawn by frictiondisk.tasks.basin.sampling)."""
+Conventions of frictiondisk.tasks.find_jump.spec; a sampled start is drawn as the basin task
+draws its samples (frictiondisk.tasks.sampling: Distribution, draws)."""
 
 from __future__ import annotations
 
@@ -12,8 +12,8 @@ from pydantic import ValidationInfo, field_validator, model_validator
 
 from frictiondisk.model.axes import DIST_MUST, Axes, along_must, base_of, check_axes
 from frictiondisk.model.schema import canonical, field, merged, rule
-from frictiondisk.model.varied import INITIAL_STATE_KEYS, initial_state_problem, value_problems
-from frictiondisk.tasks.basin.spec import DEFAULT_BASIN_SEED, Distribution
+from frictiondisk.model.varied import INITIAL_STATE_KEYS
+from frictiondisk.tasks.sampling.distribution import DEFAULT_SEED, Distribution, sample_problems
 from frictiondisk.tasks.spec import TaskSpec
 
 DEFAULT_MAP_MODE = "converge"  # the motion is named (and measured) once it has settled
@@ -56,7 +56,7 @@ class MotionMap(TaskSpec):
         f"a mapping of initial-state keys to {DIST_MUST}",
     )
     samples: int = field(None, "1", "sampled starts per cell", ge=1, le=MAX_MAP_SAMPLES)
-    seed: int = field(DEFAULT_BASIN_SEED, "1", "seed of the draws (with sample)", ge=0)
+    seed: int = field(DEFAULT_SEED, "1", "seed of the draws (with sample)", ge=0)
 
     @model_validator(mode="wrap")
     @classmethod
@@ -79,18 +79,9 @@ class MotionMap(TaskSpec):
     @field_validator("sample")
     @classmethod
     def _sample(cls, sample: dict[str, Distribution], info: ValidationInfo) -> Any:
-        base = base_of(info)
-        over = info.data.get("over") or {}
-        problems: list[tuple[Any, str]] = []
-        for key, dist in sample.items():
-            text = initial_state_problem(key, base)
-            if key in over:
-                text = f"{key} is a key of the map (map.over); it cannot also be sampled"
-            if text:
-                problems.append((key, text))
-            elif base is not None and dist.uniform is not None:
-                for i, value in enumerate(dist.uniform):
-                    problems += [((key, "uniform", i), p) for p in value_problems(base, key, value)]
+        text = "{} is a key of the map (map.over); it cannot also be sampled"
+        taken = {key: text.format(key) for key in info.data.get("over") or {}}
+        problems = sample_problems(sample, base_of(info), taken)
         if problems:
             raise rule(*problems)
         return sample

@@ -18,6 +18,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 
+from frictiondisk.figures.curves import curve_points
 from frictiondisk.figures.shared import (
     FAIL_COLOR,
     LINE_COLOR,
@@ -121,19 +122,6 @@ def _draw_first_look(ax, results: xr.Dataset, name: str) -> list[Any]:
         label = "first look (keys searched in \u03bc)"
         return [Line2D([], [], color="0.75", linestyle=":", label=label)]
     return []
-
-
-def curve_points(results: xr.Dataset, name: str) -> list[tuple[np.ndarray, np.ndarray]]:
-    """(key values, mu*) of each curve of a trace results.nc, in curve order (`name`: the
-    key's variable)."""
-    key = np.asarray(results[name].values, float)
-    mu = np.asarray(results["mu_star"].values, float)
-    curves = []
-    for c in range(results.sizes["curve"]):
-        start = int(results["curve_first_point"][c])
-        stop = start + int(results["curve_points"][c])
-        curves.append((key[start:stop], mu[start:stop]))
-    return curves
 
 
 def _draw_curves(ax, results: xr.Dataset, name: str, origin, shown) -> list[Any]:

@@ -1,6 +1,6 @@
-"""The accuracy study's plug-in (registry.py lists it among the studies): a study of a
-campaign whose task bisects mu* at each point (`mu_star_grid`), run by `frictiondisk
-accuracy` (cli/accuracy.py) on frictiondisk.engine.local."""
+"""What `frictiondisk accuracy` (cli/accuracy.py) asks of the accuracy study: a study of a
+campaign whose task bisects mu* at each point (`mu_star_grid`, read through the campaign's
+task entry, so no task is named), run on frictiondisk.engine.local."""
 
 from __future__ import annotations
 
@@ -28,7 +28,7 @@ class AccuracyEntry:
         self, campaign: Any, point: int, tol: float, knobs: Sequence[str]
     ) -> list[str]:
         """One line per bad option: the point, the tol, the knobs."""
-        from frictiondisk.tasks.accuracy.ladder import check_knobs
+        from frictiondisk.studies.accuracy.ladder import check_knobs
 
         problems = []
         n_points = math.prod(campaign.shape)
@@ -47,18 +47,18 @@ class AccuracyEntry:
 
     def study(self, campaign: Any, point: int, knobs: Sequence[str], tol: float, quick: bool):
         """The study (an AccuracyStudy: its searches and its Dataset)."""
-        from frictiondisk.tasks.accuracy.study import AccuracyStudy
+        from frictiondisk.studies.accuracy.study import AccuracyStudy
 
         return AccuracyStudy(campaign, point, knobs, tol, quick)
 
     def figure(self, ds: Any) -> Any:
         """The work-precision figure of accuracy.nc."""
-        from frictiondisk.tasks.accuracy.figure import work_precision_figure
+        from frictiondisk.studies.accuracy.figure import work_precision_figure
 
         return work_precision_figure(ds)
 
     def table(self, ds: Any) -> str:
         """One line per row of accuracy.nc."""
-        from frictiondisk.tasks.accuracy.table import summary_table
+        from frictiondisk.studies.accuracy.table import summary_table
 
         return summary_table(ds)

@@ -32,7 +32,7 @@ import xarray as xr
 from frictiondisk.model.scene import SceneConfig, describe_key
 from frictiondisk.store import cf
 from frictiondisk.store.journal_entry import kernel_version
-from frictiondisk.tasks.accuracy.ladder import (
+from frictiondisk.studies.accuracy.ladder import (
     ATOL_PER_RTOL,
     Knob,
     Setting,

@@ -26,7 +26,7 @@ from matplotlib.figure import Figure
 
 from frictiondisk.figures.footer import add_footer, data_footer
 from frictiondisk.figures.style import styled
-from frictiondisk.tasks.accuracy.ladder import INTEGRATOR_KNOBS
+from frictiondisk.studies.accuracy.ladder import INTEGRATOR_KNOBS
 
 COSTS = (
     ("n_steps", "accepted steps, summed over the bisection's runs"),

@@ -1,7 +1,7 @@
 """Fig 11 with its oracles: mu*(beta_b) from rest and from a co-rotating start, with the
 Melan shakedown and collapse bounds at each run's orbit radius.
 
-    python -m frictiondisk.tasks.find_jump.brake_figure REST_DIR [COROTATING_DIR] -o fig.png
+    python -m frictiondisk.studies.brake.bounds_figure REST_DIR [COROTATING_DIR] -o fig.png
 
 Each DIR holds a finished find_jump campaign along params.beta_b (results.nc). The bounds
 come from frictiondisk.verdict.admissibility at the radius of the sticking run at mu_hi (`size_hi`,
