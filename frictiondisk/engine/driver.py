@@ -26,6 +26,7 @@ from frictiondisk.engine.cluster import (
 )
 from frictiondisk.engine.signals import drop_hint, raise_if_stop_requested
 from frictiondisk.engine.worker import Sealed, run_job, run_sealed, warm_up
+from frictiondisk.tasks.jobs import RunScenes
 
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
 PARTIAL_EVERY = 30.0  # [s] between partial results.nc rewrites of a running campaign
@@ -227,7 +228,7 @@ class Driver:
             run.fail(job_id, f"worker failed {self.failures[failure]} times: {error!r}")
             return
         self.failures.pop(failure, None)
-        run.complete(job_id, value)
+        run.complete(job_id, value, batch=isinstance(job, RunScenes))
 
     def _finish(self, run: CampaignRun) -> None:
         run.finish(time.perf_counter() - self.t0, self.task_overhead_s)
