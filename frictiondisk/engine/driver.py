@@ -10,6 +10,7 @@ campaign makes never depends on this: its planner alone decides (tasks/protocol.
 
 from __future__ import annotations
 
+import concurrent.futures
 import sys
 import time
 import uuid
@@ -59,6 +60,10 @@ class Driver:
         self._draining = False
         self.dashboard: str | None = None
         self.serve_dashboard = False  # serve the local cluster's Dask dashboard
+        # Where a finished job is taken and journaled (_collect): a stop is raised in the
+        # main thread only, so it cannot land between the planner taking a job and the
+        # journal holding its runs (a batch's runs would be lost to a graceful stop).
+        self._journaling: concurrent.futures.ThreadPoolExecutor | None = None
 
     # ---- the loop -----------------------------------------------------------------------
     def run(self, workers: int, scheduler: str | None, processes: bool) -> list[RunSummary]:
@@ -75,6 +80,7 @@ class Driver:
     def _compute(self, workers: int, scheduler: str | None, processes: bool) -> None:
         warm_up()  # compile once here, so workers load the cache instead of racing on it
         client, cluster = start_client(workers, scheduler, processes, self.serve_dashboard)
+        self._journaling = concurrent.futures.ThreadPoolExecutor(1, "frictiondisk-journal")
         if scheduler:
             self.scheduled = True
         try:  # from here on the client (and a local cluster) is always closed
@@ -92,6 +98,7 @@ class Driver:
                 self._drain(client, stop)
                 raise
         finally:
+            self._journaling.shutdown(wait=True)  # a job being journaled is finished first
             for *_, future in self.in_flight.values():
                 future.cancel()
             client.close()
@@ -193,9 +200,13 @@ class Driver:
         """After a stop (Ctrl-C, SIGTERM, SIGHUP): journal the runs of the tasks in flight as
         they finish (at most DRAIN_TIMEOUT_S; a second stop drops them), submitting nothing
         new."""
+        self._draining = True
+        try:  # the job a stop found being journaled: the journaling thread's queue is FIFO
+            self._journaling.submit(time.monotonic).result()
+        except KeyboardInterrupt:
+            return
         if not self.in_flight:
             return
-        self._draining = True
         on_stderr(
             print,
             f"\nstopping: journaling the runs of {len(self.in_flight)} tasks in flight, for at "
@@ -214,6 +225,10 @@ class Driver:
             pass
 
     def _collect(self, client, future, value) -> None:
+        """Take a finished job (or a failed one) in the journaling thread and wait for it."""
+        self._journaling.submit(self._take, client, future, value).result()
+
+    def _take(self, client, future, value) -> None:
         run, job_id, job, _ = self.in_flight.pop(future.key)
         if future.status != "finished" and self._draining:
             return  # not journaled: a resume computes it
