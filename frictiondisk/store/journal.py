@@ -104,14 +104,22 @@ class Journal:
     # reading ------------------------------------------------------------------------------
 
     def get(self, key: str) -> dict[str, Any] | None:
-        """The stored result of run `key`, or None if there is none or it is not trustworthy.
+        """The stored result of run `key`, or None if there is none or it is not trustworthy
+        (`entry`)."""
+        entry = self.entry(key)
+        return None if entry is None else entry["result"]
+
+    def entry(self, key: str) -> dict[str, Any] | None:
+        """The stored entry of run `key` (its inputs and result), or None if there is none
+        or it is not trustworthy.
 
         An entry is trusted only if it is a regular file (not a symbolic link) of UTF-8 JSON
         with the fields version (= 1), key, inputs, result and sha256, its key equals `key`,
         its sha256 matches the canonical JSON of {"key", "inputs", "result"} and its inputs
         give `key` again (`key_of_inputs`). Otherwise it is moved to
         `corrupt/<key>.<n>.json`, counted in `n_corrupt`, explained in `corrupt_reasons` and
-        None is returned. A missing entry gives None and is not counted.
+        None is returned. A missing entry gives None and is not counted. An entry in a pack
+        is checked the same way; one that fails is reported and left in its pack.
         """
         if key in self._pack_index():
             return self._get_packed(key)
@@ -127,7 +135,7 @@ class Journal:
         entry, reason = verify(key, raw)
         if reason is not None:
             return self._corrupt(key, path, reason)
-        return entry["result"]
+        return entry
 
     def _pack_index(self) -> dict[str, tuple[str, int, int]]:
         """key -> where its line is, over every pack (a later pack wins), read once."""
@@ -145,7 +153,7 @@ class Journal:
         return self._packs
 
     def _get_packed(self, key: str) -> dict[str, Any] | None:
-        """The verified result of `key` from its pack's line; a line that fails is
+        """The verified entry of `key` from its pack's line; a line that fails is
         dropped from the index and reported (the pack stays: it holds other runs)."""
         name, start, end = self._packs[key]
         if self._pack_data is None or self._pack_data[0] != name:
@@ -158,7 +166,7 @@ class Journal:
         if reason is not None:
             del self._packs[key]
             return self._note_corrupt(key, f"{reason} (in {PACKS}/{name})")
-        return entry["result"]
+        return entry
 
     def _note_corrupt(self, what: str, reason: str) -> None:
         """Count and report a bad entry that cannot be moved aside (a line of a pack)."""
