@@ -31,6 +31,9 @@ from frictiondisk.tasks.jobs import RunScenes
 
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
 PARTIAL_EVERY = 30.0  # [s] between partial results.nc rewrites of a running campaign
+# ... and at least this many times the last rewrite's own time: a checkpoint of a large
+# campaign (seconds on a busy machine) stays a small share of the driver's time
+PARTIAL_COST_FACTOR = 20.0
 BAR_EVERY = 0.2  # [s] between progress-bar repaints
 MAX_WORKER_FAILURES = 3  # resubmissions of a run whose worker died
 POLL = 5.0  # [s] between checks for live workers while waiting on --scheduler
@@ -51,6 +54,7 @@ class Driver:
         self.t0 = time.perf_counter()
         self._last_status = 0.0
         self._last_partial = time.perf_counter()  # the first partial file after PARTIAL_EVERY
+        self._partial_every = PARTIAL_EVERY
         self._last_bar = 0.0
         self._bar = None
         self.scheduled = False  # True with --scheduler: watch for live workers
@@ -312,6 +316,8 @@ class Driver:
                 if run.summary is None:
                     self._write_status(run, "running")
             self._last_status = now
-        if now - self._last_partial >= PARTIAL_EVERY:
-            self._last_partial = now
+        if now - self._last_partial >= self._partial_every:
             self.write_partial()
+            self._last_partial = time.perf_counter()
+            cost = self._last_partial - now
+            self._partial_every = max(PARTIAL_EVERY, PARTIAL_COST_FACTOR * cost)
