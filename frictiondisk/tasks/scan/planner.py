@@ -73,9 +73,10 @@ class ScanPlanner(Planner):
         self._canonicals.pop(i, None)
 
     def jobs(self, sizing: Sizing | None = None) -> list[tuple[int, RunScenes]]:
-        """Batches of points not yet known, in index order: sizing.batch_runs to a job (but
-        no more than an equal share of what is left for each of sizing.workers), at most
-        sizing.max_jobs of them (without sizing: one point per job, all of them)."""
+        """Batches of points not yet known, in index order: sizing.batch_runs to a job, but
+        no more than an equal share for each of sizing.workers of what is left (so the last
+        batches shrink and the workers end together), at most sizing.max_jobs of them
+        (without sizing: one point per job, all of them)."""
         sizing = sizing or Sizing()
         limit = math.inf if sizing.max_jobs is None else sizing.max_jobs
         out = []
