@@ -2,7 +2,8 @@
 spends in the kernel, and what a run costs as the campaign grows.
 
 Scans of the pin's decide runs (x_ms 0.1, mu from 0.13 to 0.30) of 40, 400, 4 000 and (with
---big) 40 000 runs, and a basin of 10 000 runs (x0 ~ U[-0.05, 0.05] at 10 values of mu,
+--big) 40 000 runs (10 000 values of mu, each from 4 nearby x0: one axis holds at most
+10 000 values), and a basin of 10 000 runs (x0 ~ U[-0.05, 0.05] at 10 values of mu,
 1 000 samples each, decided within 30 s as in campaigns/basin_pin_x0.yaml), every one into a fresh folder on 2 workers (the default). For each:
 
 * efficiency = (sum of the runs' kernel times, runs.nc wall_s) / (workers x wall);
@@ -47,9 +48,20 @@ name: scan_{runs}
 scene: pin
 params: {{x_ms: 0.1}}
 scan:
-  mu: {{start: 0.13, stop: 0.30, num: {runs}}}
+  mu: {{start: 0.13, stop: 0.30, num: {num}}}
   mode: decide
-"""
+{along}"""
+AXIS_MAX = 10_000  # values of one varied key (model/axes.py): more runs take 4 values of x0
+ALONG = "  along: {params.x0: [0.0, 0.001, 0.002, 0.003]}\n"
+
+
+def scan_text(runs: int) -> str:
+    """The scan of `runs` decide runs: mu alone, or (over AXIS_MAX runs) mu times 4
+    nearby initial deflections x0 [m], runs of the same kind."""
+    if runs <= AXIS_MAX:
+        return SCAN.format(runs=runs, num=runs, along="")
+    return SCAN.format(runs=runs, num=runs // 4, along=ALONG)
+
 
 BASIN = """\
 name: basin_{runs}
@@ -137,7 +149,9 @@ def marginal(record: Record, small: tuple[int, dict], large: tuple[int, dict]) -
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--big", action="store_true", help="also the 40 000-run scan")
-    parser.add_argument("--basin-runs", type=int, default=10_000, help="runs of the basin")
+    parser.add_argument(
+        "--basin-runs", type=int, default=10_000, help="runs of the basin (0: none)"
+    )
     parser.add_argument(
         "--sizes", type=int, nargs="+", default=[40, 400, 4_000], help="runs of each scan"
     )
@@ -151,8 +165,8 @@ def main(argv: list[str] | None = None) -> int:
         flush=True,
     )
     record.number("simulate(): Python around the kernel, least", 1e3 * least, "ms", "<= 0.1")
-    timed(SCAN.format(runs=8))  # imports and first-use costs, paid once before the timings
-    same = basin(record, args.basin_runs)
+    timed(scan_text(8))  # imports and first-use costs, paid once before the timings
+    same = basin(record, args.basin_runs) if args.basin_runs else True
     record.write()  # kept so far: the 40 000-run scan takes long
     scans(record, args.sizes + ([40_000] if args.big else []))
     record.write()
@@ -178,7 +192,7 @@ def scans(record: Record, sizes: list[int]) -> None:
     """The scans of `sizes` runs, and the ratios of their marginal costs per run."""
     done = {}
     for runs in sizes:
-        done[runs] = timed(SCAN.format(runs=runs))
+        done[runs] = timed(scan_text(runs))
         report(record, f"scan of {runs}", done[runs])
         if len(done) >= 2:
             a, b = sizes[len(done) - 2], runs
