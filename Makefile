@@ -15,8 +15,10 @@
 #                start-up (bench_startup: warm simulate, the fixed cost of run), basin
 #                campaigns per run (bench_basin), the six figure campaigns one by one against
 #                one run of all six (bench_together; BENCH_TOGETHER_ARGS=--quick for a smoke
-#                check) and the strong-scaling table (BENCH_SCALING_ARGS=--full for the
-#                campaign files as is)
+#                check), the strong-scaling table (BENCH_SCALING_ARGS=--full for the
+#                campaign files as is) and the engine at the kernel's pace (bench_engine:
+#                efficiency and cost per run of scans of 40 to 4 000 short runs and a basin
+#                of 10 000; BENCH_ENGINE_ARGS=--big adds the 40 000-run scan)
 #   make study-wellposed  the well-posedness study (docs/wellposed.md) into out/wellposed/:
 #                500 scenes, about 4 hours on 2 idle cores, resumable (STUDY_ARGS= adds
 #                options, e.g. STUDY_ARGS="--seeds 1 --scenes 10"); then generator 2 (issue 50)
@@ -132,6 +134,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_basin.py
 	$(BIN)/python benchmarks/bench_together.py $(BENCH_TOGETHER_ARGS)
 	$(BIN)/python benchmarks/bench_scaling.py $(BENCH_SCALING_ARGS)
+	$(BIN)/python benchmarks/bench_engine.py $(BENCH_ENGINE_ARGS)
 
 figures: $(STAMP)
 	$(BIN)/python -m frictiondisk.cli.figure_campaigns --campaigns campaigns --out out/figures --figures out/figures

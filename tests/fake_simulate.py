@@ -58,7 +58,10 @@ class FakeSimulate:
             n_rejected=0,
             n_refused=0,
             cycle_converged=not sticks,
-            wall_s=0.001,
+            # the kernel time a run claims [s]: the driver cuts batches of a few runs
+            # (engine/cluster.py MIN_TASK_S / wall_s), so that a small campaign still
+            # spans many jobs and a stop can fall between them
+            wall_s=0.1,
             method="fake",
             trajectory=_trajectory() if record else None,
             reserve=params["mu"] - star,

@@ -279,6 +279,43 @@ def test_entry_with_missing_field_or_empty_file_is_corrupt(tmp_path):
     assert "empty file" in journal.corrupt_reasons[1]
 
 
+def test_a_batch_put_as_one_pack_reads_back_like_single_entries(tmp_path):
+    journal = Journal(tmp_path)
+    keys = [_key(n) for n in range(3)]
+    journal.put_many([(key, _inputs(key), {**RESULT, "n_events": n}) for n, key in enumerate(keys)])
+    journal.put(_key(3), _inputs(_key(3)), RESULT)
+    assert len(list((tmp_path / "journal" / "packs").iterdir())) == 1  # one file, three runs
+    fresh = Journal(tmp_path)  # a resume reads the pack again
+    assert [fresh.get(key)["n_events"] for key in keys] == [0, 1, 2]
+    assert fresh.entry(keys[1])["inputs"] == _inputs(keys[1])
+    assert fresh.keys() == sorted([*keys, _key(3)]) and len(fresh) == 4 and keys[2] in fresh
+    assert Journal.count(tmp_path) == 4
+    assert fresh.computed_counts() == {key: 1 for key in [*keys, _key(3)]}
+
+
+def test_a_damaged_line_of_a_pack_is_reported_and_computed_again(tmp_path):
+    journal = Journal(tmp_path)
+    keys = [_key(n) for n in range(3)]
+    journal.put_many([(key, _inputs(key), RESULT) for key in keys])
+    (pack,) = (tmp_path / "journal" / "packs").iterdir()
+    pack.write_bytes(pack.read_bytes().replace(b"0.0123456789", b"0.0123456780", 1))
+    fresh = Journal(tmp_path)
+    assert [fresh.get(key) is None for key in keys] == [True, False, False]
+    assert fresh.n_corrupt == 1 and "sha256 mismatch" in fresh.corrupt_reasons[0]
+    assert any("packs/" in line for line in moved_aside(tmp_path))
+    fresh.put_many([(keys[0], _inputs(keys[0]), RESULT)])  # computed again: a later pack wins
+    assert Journal(tmp_path).get(keys[0]) == RESULT
+
+
+def test_a_torn_pack_left_by_a_killed_put_is_removed(tmp_path):
+    journal = Journal(tmp_path)
+    journal.put_many([(_key(0), _inputs(_key(0)), RESULT)])
+    torn = tmp_path / "journal" / "packs" / ".00000002.pack.123.x.tmp"
+    torn.write_bytes(b"half a batch")
+    assert Journal(tmp_path).clean_temp_files() == 1 and not torn.exists()
+    assert Journal(tmp_path).keys() == [_key(0)]
+
+
 def test_computed_counts_counts_repeated_puts(tmp_path):
     journal = Journal(tmp_path)
     assert journal.computed_counts() == {}

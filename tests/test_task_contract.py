@@ -214,7 +214,7 @@ def test_a_job_that_keeps_failing_loses_no_run_and_invents_none(name, references
     # nothing of a failing run is journaled
     journal = Journal(tmp_path)
     for key in journal.keys():
-        entry = json.loads(journal.entry_path(key).read_text())
+        entry = journal.entry(key)
         assert not fails(entry["inputs"]["params"], False), entry["inputs"]["params"]
     fake()  # the fault is gone: a resume ends where an uninterrupted run does
     run_campaign(None, tmp_path, workers=1, progress=False)

@@ -63,13 +63,39 @@ class CampaignRun:
         # keys looked up and absent; the journal only grows by our own put (which clears one)
         self._checked: set[str] = set()
         self.run_s_sum = 0.0  # kernel wall time of the runs computed so far [s]
+        self.replayed_s = (0.0, 0)  # (kernel time [s], runs) of the runs the journal held
+        # requests the planner named once (new_requests) and the journal lacked, by key:
+        # a run journaled later answers them too (another point asking for the same run)
+        self._absent: dict[str, list[tuple[int, Any]]] = {}
         self.changed = True  # results came in since the last replay
         self.summary: RunSummary | None = None  # set once finished
 
     # ---- the journal ---------------------------------------------------------------------
     def replay(self) -> None:
-        """Feed every run the journal already holds (no Dask)."""
+        """Feed every run the journal already holds (no Dask). A planner that names its
+        new requests (`new_requests`) is asked only for those: O(1) per run; one that does
+        not lists all its pending requests again."""
         self.changed = False
+        fresh = self.planner.new_requests()
+        if fresh is None:
+            return self._replay_all()
+        while fresh and not self.planner.done:
+            for point, request in fresh:
+                key = self.key(point, request)
+                cached = self.journal.get(key) if key in self._present else None
+                if cached is None:
+                    self._present.discard(key)  # a bad entry was moved aside
+                    self._absent.setdefault(key, []).append((point, request))
+                else:
+                    self._feed(point, request, cached)
+            fresh = self.planner.new_requests()
+
+    def _feed(self, point: int, request, result: dict) -> None:
+        self.planner.feed(point, request, result)
+        wall_s, runs = self.replayed_s
+        self.replayed_s = (wall_s + float(result.get("wall_s") or 0.0), runs + 1)
+
+    def _replay_all(self) -> None:
         progressed = True
         while progressed and not self.planner.done:
             progressed = False
@@ -82,22 +108,34 @@ class CampaignRun:
                     self._present.discard(key)  # a bad entry was moved aside
                     self._checked.add(key)
                 else:
-                    self.planner.feed(point, request, cached)
+                    self._feed(point, request, cached)
                     progressed = True
 
-    def complete(self, job: Any, value: Any) -> None:
-        """A job came back: the planner takes it, every run it made is journaled."""
+    def complete(self, job: Any, value: Any, batch: bool = False) -> None:
+        """A job came back: the planner takes it, every run it made is journaled before
+        this returns (a batch's runs as one pack, Journal.put_many; a search chain's
+        one by one, where a later chain on a worker can peek them)."""
         self.changed = True
-        for point, request, result in self.planner.complete(job, value):
-            if self.journal is None:  # its files are its record (written by finish)
-                self.computed += 1
-                continue
+        made = self.planner.complete(job, value)
+        if self.journal is None:  # its files are its record (written by finish)
+            self.computed += len(made)
+            return
+        entries = []
+        for point, request, result in made:
             key = self.key(point, request)
-            self.journal.put(key, self.inputs[key], result)
-            self._present.add(key)
-            self._checked.discard(key)  # another point may ask for the same run
+            entries.append((key, self.inputs[key], result))
             self.computed += 1
             self.run_s_sum += float(result.get("wall_s") or 0.0)
+        if batch:
+            self.journal.put_many(entries)
+        else:
+            for entry in entries:
+                self.journal.put(*entry)
+        for key, _, result in entries:
+            self._present.add(key)
+            self._checked.discard(key)  # another point may ask for the same run
+            for point, request in self._absent.pop(key, ()):
+                self.planner.feed(point, request, result)  # ignored if no longer wanted
 
     def fail(self, job: Any, reason: str) -> None:
         """A job that never came back: nothing journaled for it (a resume tries again)."""
@@ -115,7 +153,12 @@ class CampaignRun:
         return cached
 
     def mean_run_s(self) -> float | None:
-        return self.run_s_sum / self.computed if self.computed else None
+        """The mean kernel time of a run [s]: of those computed now, else of those the
+        journal held (None before any)."""
+        if self.computed:
+            return self.run_s_sum / self.computed
+        wall_s, runs = self.replayed_s
+        return wall_s / runs if runs and wall_s > 0 else None
 
     # ---- progress and status -------------------------------------------------------------
     def runs_done(self) -> int:

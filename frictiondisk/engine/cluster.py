@@ -11,7 +11,10 @@ from frictiondisk.tasks.jobs import Sizing
 SCHEDULER_TIMEOUT = 10.0  # [s] for the client to connect to --scheduler
 WORKER_WAIT = 60.0  # [s] default wait for a live worker (--worker-wait)
 TASK_OVERHEAD_SHARE = 0.05  # a task should last long enough that its scheduling costs <= 5 %
-MAX_TASK_S = 2.0  # [s] ... but no longer: an interrupt waits for (or loses) the tasks in flight
+# [s] ... and at least this long: the driver's own work per task (submit, collect, a
+# journal pack) is ~2-5 ms more, serial in one thread, beside 2 workers' kernels
+MIN_TASK_S = 0.2
+MAX_TASK_S = 1.0  # [s] ... but no longer: an interrupt waits for (or loses) the tasks in flight
 TASKS_PER_WORKER = 2  # tasks in flight per worker thread: one running, one queued behind it
 OVERHEAD_PROBES = 5  # round trips of an empty task timed (median): 8 cost 30 ms more, same value
 
@@ -57,10 +60,12 @@ def start_client(workers: int, scheduler: str | None, processes: bool, dashboard
 def task_sizing(
     overhead_s: float, mean_run_s: float | None, worker_threads: int, in_flight: int
 ) -> Sizing:
-    """Cut work into tasks that last task_s = overhead / 5 % (at most MAX_TASK_S): a batch
-    holds task_s / mean_run_s independent runs (1 while no run time is known yet), a chain
-    runs for task_s; TASKS_PER_WORKER tasks per worker thread are in flight."""
-    task_s = min(MAX_TASK_S, overhead_s * (1 - TASK_OVERHEAD_SHARE) / TASK_OVERHEAD_SHARE)
+    """Cut work into tasks that last task_s = overhead / 5 %, within MIN_TASK_S and
+    MAX_TASK_S: a batch holds task_s / mean_run_s independent runs (1 while no run time is
+    known yet), a chain runs for task_s; TASKS_PER_WORKER tasks per worker thread are in
+    flight."""
+    scheduled_s = overhead_s * (1 - TASK_OVERHEAD_SHARE) / TASK_OVERHEAD_SHARE
+    task_s = min(MAX_TASK_S, max(MIN_TASK_S, scheduled_s))
     batch = max(1, int(task_s / mean_run_s)) if mean_run_s else 1
     return Sizing(
         batch_runs=batch,

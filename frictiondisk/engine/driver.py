@@ -10,6 +10,7 @@ campaign makes never depends on this: its planner alone decides (tasks/protocol.
 
 from __future__ import annotations
 
+import concurrent.futures
 import sys
 import time
 import uuid
@@ -26,9 +27,13 @@ from frictiondisk.engine.cluster import (
 )
 from frictiondisk.engine.signals import drop_hint, raise_if_stop_requested
 from frictiondisk.engine.worker import Sealed, run_job, run_sealed, warm_up
+from frictiondisk.tasks.jobs import RunScenes
 
 STATUS_EVERY = 0.5  # [s] between status.json rewrites
 PARTIAL_EVERY = 30.0  # [s] between partial results.nc rewrites of a running campaign
+# ... and at least this many times the last rewrite's own time: a checkpoint of a large
+# campaign (seconds on a busy machine) stays a small share of the driver's time
+PARTIAL_COST_FACTOR = 20.0
 BAR_EVERY = 0.2  # [s] between progress-bar repaints
 MAX_WORKER_FAILURES = 3  # resubmissions of a run whose worker died
 POLL = 5.0  # [s] between checks for live workers while waiting on --scheduler
@@ -49,6 +54,7 @@ class Driver:
         self.t0 = time.perf_counter()
         self._last_status = 0.0
         self._last_partial = time.perf_counter()  # the first partial file after PARTIAL_EVERY
+        self._partial_every = PARTIAL_EVERY
         self._last_bar = 0.0
         self._bar = None
         self.scheduled = False  # True with --scheduler: watch for live workers
@@ -58,6 +64,10 @@ class Driver:
         self._draining = False
         self.dashboard: str | None = None
         self.serve_dashboard = False  # serve the local cluster's Dask dashboard
+        # Where a finished job is taken and journaled (_collect): a stop is raised in the
+        # main thread only, so it cannot land between the planner taking a job and the
+        # journal holding its runs (a batch's runs would be lost to a graceful stop).
+        self._journaling: concurrent.futures.ThreadPoolExecutor | None = None
 
     # ---- the loop -----------------------------------------------------------------------
     def run(self, workers: int, scheduler: str | None, processes: bool) -> list[RunSummary]:
@@ -74,6 +84,7 @@ class Driver:
     def _compute(self, workers: int, scheduler: str | None, processes: bool) -> None:
         warm_up()  # compile once here, so workers load the cache instead of racing on it
         client, cluster = start_client(workers, scheduler, processes, self.serve_dashboard)
+        self._journaling = concurrent.futures.ThreadPoolExecutor(1, "frictiondisk-journal")
         if scheduler:
             self.scheduled = True
         try:  # from here on the client (and a local cluster) is always closed
@@ -91,6 +102,7 @@ class Driver:
                 self._drain(client, stop)
                 raise
         finally:
+            self._journaling.shutdown(wait=True)  # a job being journaled is finished first
             for *_, future in self.in_flight.values():
                 future.cancel()
             client.close()
@@ -192,9 +204,13 @@ class Driver:
         """After a stop (Ctrl-C, SIGTERM, SIGHUP): journal the runs of the tasks in flight as
         they finish (at most DRAIN_TIMEOUT_S; a second stop drops them), submitting nothing
         new."""
+        self._draining = True
+        try:  # the job a stop found being journaled: the journaling thread's queue is FIFO
+            self._journaling.submit(time.monotonic).result()
+        except KeyboardInterrupt:
+            return
         if not self.in_flight:
             return
-        self._draining = True
         on_stderr(
             print,
             f"\nstopping: journaling the runs of {len(self.in_flight)} tasks in flight, for at "
@@ -213,6 +229,10 @@ class Driver:
             pass
 
     def _collect(self, client, future, value) -> None:
+        """Take a finished job (or a failed one) in the journaling thread and wait for it."""
+        self._journaling.submit(self._take, client, future, value).result()
+
+    def _take(self, client, future, value) -> None:
         run, job_id, job, _ = self.in_flight.pop(future.key)
         if future.status != "finished" and self._draining:
             return  # not journaled: a resume computes it
@@ -227,7 +247,7 @@ class Driver:
             run.fail(job_id, f"worker failed {self.failures[failure]} times: {error!r}")
             return
         self.failures.pop(failure, None)
-        run.complete(job_id, value)
+        run.complete(job_id, value, batch=isinstance(job, RunScenes))
 
     def _finish(self, run: CampaignRun) -> None:
         run.finish(time.perf_counter() - self.t0, self.task_overhead_s)
@@ -296,6 +316,8 @@ class Driver:
                 if run.summary is None:
                     self._write_status(run, "running")
             self._last_status = now
-        if now - self._last_partial >= PARTIAL_EVERY:
-            self._last_partial = now
+        if now - self._last_partial >= self._partial_every:
             self.write_partial()
+            self._last_partial = time.perf_counter()
+            cost = self._last_partial - now
+            self._partial_every = max(PARTIAL_EVERY, PARTIAL_COST_FACTOR * cost)

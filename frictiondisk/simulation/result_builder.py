@@ -201,26 +201,28 @@ def _revolution_measures(revs: Revolutions | None) -> dict[str, float | int]:
     }
 
 
+def ring_rows(ring: np.ndarray, written: int, keep: int) -> np.ndarray:
+    """A copy of the last `keep` of the `written` rows a ring buffer took (row k went to
+    k mod len(ring)), oldest first: at most two slices, no index list."""
+    size = ring.shape[0]
+    keep = min(written, keep, size)
+    start = (written - keep) % size
+    if start + keep <= size:
+        return ring[start : start + keep].copy()
+    return np.concatenate((ring[start:], ring[: start + keep - size]))
+
+
 def revolution_log(revs: np.ndarray, motion: np.void) -> np.ndarray:
     """The kept rows of the revolution ring (kernel/records.py REVOLUTION), oldest first."""
-    n = int(motion["n_rev"])
-    keep = min(n, REV_RING)
-    order = [(n - keep + j) % REV_RING for j in range(keep)]
-    return revs[order].copy()
+    return ring_rows(revs, int(motion["n_rev"]), REV_RING)
 
 
 def own_log(steps: np.ndarray, own: np.void) -> np.ndarray:
     """The kept rows of the own section (kernel/records.py OWN_STEP), oldest first."""
-    n = int(own["n"])
-    keep = min(n, OWN_RING)
-    order = [(n - keep + j) % OWN_RING for j in range(keep)]
-    return steps[order].copy()
+    return ring_rows(steps, int(own["n"]), OWN_RING)
 
 
 def section_log(phases: np.ndarray, motion: np.void, keep: int = 256) -> np.ndarray:
     """The last `keep` completed whole-body sticking phases (kernel/records.py PHASE),
     oldest first."""
-    n = int(motion["n_phases"])
-    keep = min(n, keep, phases.shape[0])
-    order = [(n - keep + j) % phases.shape[0] for j in range(keep)]
-    return phases[order].copy()
+    return ring_rows(phases, int(motion["n_phases"]), keep)

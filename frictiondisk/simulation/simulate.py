@@ -9,6 +9,7 @@ the numba kernel never imports scipy's integrators.
 
 from __future__ import annotations
 
+import functools
 import importlib
 
 from frictiondisk.simulation.result import SimulationResult
@@ -23,8 +24,13 @@ METHODS = {
 }
 
 
+# the default thresholds, made once (a frozen record; its numba record is cached by value)
+DEFAULT_VERDICT = VerdictParams()
+
+
+@functools.cache
 def method_function(name: str):
-    """The function that runs numerics.method `name` (METHODS)."""
+    """The function that runs numerics.method `name` (METHODS), imported once."""
     module, function = METHODS[name].split(":")
     return getattr(importlib.import_module(module), function)
 
@@ -47,4 +53,5 @@ def simulate(
     result and journal key is as it was.
     """
     run = method_function(config.numerics.method)
+    verdict = DEFAULT_VERDICT if verdict is None else verdict
     return run(config, record, dt_out, dense_lu=dense_lu, verdict=verdict)

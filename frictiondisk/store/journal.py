@@ -4,6 +4,7 @@ Layout of a campaign directory DIR::
 
     DIR/lock                        flock'ed by the one process allowed to write (CampaignLock)
     DIR/journal/<kk>/<key>.json     one entry per finished run, kk = key[:2]
+    DIR/journal/packs/<n>.pack      the entries of one batch of runs, one line each (put_many)
     DIR/journal/computed.log        one line "<key>" appended per put (what was computed, when)
     DIR/journal/corrupt/<key>.<n>.json   entries that failed verification, kept for inspection
     DIR/journal/corrupt/reasons.log      one line "<key>.<n>.json<TAB><reason>" per entry moved
@@ -33,6 +34,15 @@ from typing import Any
 from frictiondisk.store.files import TEMP_SUFFIX, atomic_write_bytes, fsync_directory
 from frictiondisk.store.journal_audit import REASONS_LOG
 from frictiondisk.store.journal_entry import KEY, check_key, encode, verify
+from frictiondisk.store.journal_packs import (
+    PACKS,
+    count_lines,
+    pack_bytes,
+    pack_files,
+    pack_lines,
+    pack_name,
+    pack_number,
+)
 from frictiondisk.store.paths import SymlinkRefused, open_nofollow, read_nofollow, refuse_symlink
 
 __all__ = ["Journal"]
@@ -68,6 +78,10 @@ class Journal:
         # cost more than the rest of the put. Only the lock holder writes the journal.
         self._shards: set[str] = set()
         self._log_fd: int | None = None  # computed.log, open for appending after the first put
+        # key -> (pack file name, start, end) of its line, read at first use (journal_packs)
+        self._packs: dict[str, tuple[str, int, int]] | None = None
+        self._pack_data: tuple[str, bytes] | None = None  # the pack read last, kept
+        self._next_pack = 1
 
     def close(self) -> None:
         """Close computed.log if a put opened it (puts after this open it again)."""
@@ -90,15 +104,25 @@ class Journal:
     # reading ------------------------------------------------------------------------------
 
     def get(self, key: str) -> dict[str, Any] | None:
-        """The stored result of run `key`, or None if there is none or it is not trustworthy.
+        """The stored result of run `key`, or None if there is none or it is not trustworthy
+        (`entry`)."""
+        entry = self.entry(key)
+        return None if entry is None else entry["result"]
+
+    def entry(self, key: str) -> dict[str, Any] | None:
+        """The stored entry of run `key` (its inputs and result), or None if there is none
+        or it is not trustworthy.
 
         An entry is trusted only if it is a regular file (not a symbolic link) of UTF-8 JSON
         with the fields version (= 1), key, inputs, result and sha256, its key equals `key`,
         its sha256 matches the canonical JSON of {"key", "inputs", "result"} and its inputs
         give `key` again (`key_of_inputs`). Otherwise it is moved to
         `corrupt/<key>.<n>.json`, counted in `n_corrupt`, explained in `corrupt_reasons` and
-        None is returned. A missing entry gives None and is not counted.
+        None is returned. A missing entry gives None and is not counted. An entry in a pack
+        is checked the same way; one that fails is reported and left in its pack.
         """
+        if key in self._pack_index():
+            return self._get_packed(key)
         path = self.entry_path(key)
         try:
             raw = read_nofollow(path)
@@ -111,14 +135,54 @@ class Journal:
         entry, reason = verify(key, raw)
         if reason is not None:
             return self._corrupt(key, path, reason)
-        return entry["result"]
+        return entry
+
+    def _pack_index(self) -> dict[str, tuple[str, int, int]]:
+        """key -> where its line is, over every pack (a later pack wins), read once."""
+        if self._packs is None:
+            self._packs = {}
+            for path in pack_files(self.path):
+                self._next_pack = max(self._next_pack, (pack_number(path) or 0) + 1)
+                try:
+                    data = read_nofollow(path)
+                except OSError as err:
+                    self._note_corrupt(f"{PACKS}/{path.name}", f"unreadable ({err})")
+                    continue
+                for key, start, end in pack_lines(data):
+                    self._packs[key] = (path.name, start, end)
+        return self._packs
+
+    def _get_packed(self, key: str) -> dict[str, Any] | None:
+        """The verified entry of `key` from its pack's line; a line that fails is
+        dropped from the index and reported (the pack stays: it holds other runs)."""
+        name, start, end = self._packs[key]
+        if self._pack_data is None or self._pack_data[0] != name:
+            try:
+                self._pack_data = (name, read_nofollow(self.path / PACKS / name))
+            except OSError as err:
+                del self._packs[key]
+                return self._note_corrupt(key, f"its pack {name} is unreadable ({err})")
+        entry, reason = verify(key, self._pack_data[1][start:end])
+        if reason is not None:
+            del self._packs[key]
+            return self._note_corrupt(key, f"{reason} (in {PACKS}/{name})")
+        return entry
+
+    def _note_corrupt(self, what: str, reason: str) -> None:
+        """Count and report a bad entry that cannot be moved aside (a line of a pack)."""
+        self.n_corrupt += 1
+        self.corrupt_reasons.append(f"{what}: {reason}")
+        refuse_symlink(self.corrupt_dir).mkdir(exist_ok=True)
+        self._append(self.corrupt_dir / REASONS_LOG, f"{what}\t{reason}\n")
+        return None
 
     @classmethod
     def peek(cls, campaign_dir: str | os.PathLike[str], key: str) -> dict[str, Any] | None:
         """Read-only `get` for workers: the verified result of `key`, else None.
 
         Writes nothing (no folder is created, a bad entry stays where it is for the driver's
-        `get` to deal with), so a worker may call it while the driver holds the lock."""
+        `get` to deal with), so a worker may call it while the driver holds the lock. It
+        reads single entries only (`put`: the runs of a search chain), not packs."""
         check_key(key)
         shard = Path(campaign_dir) / "journal" / key[:2]
         if shard.is_symlink() or shard.parent.is_symlink():
@@ -162,7 +226,7 @@ class Journal:
                 key = entry.stem
                 if KEY.fullmatch(key) and key[:2] == shard.name:
                     found.append(key)
-        return sorted(found)
+        return sorted(set(found) | set(self._pack_index()))
 
     def __len__(self) -> int:
         return len(self.keys())
@@ -170,11 +234,14 @@ class Journal:
     @staticmethod
     def count(campaign_dir: str | os.PathLike[str]) -> int:
         """Entries present in a campaign's journal, without creating anything (status)."""
-        return sum(1 for _ in (Path(campaign_dir) / "journal").glob("??/*.json"))
+        journal = Path(campaign_dir) / "journal"
+        return sum(1 for _ in journal.glob("??/*.json")) + count_lines(journal)
 
     def __contains__(self, key: object) -> bool:
         """Whether an entry file for `key` exists (not verified)."""
-        return isinstance(key, str) and bool(KEY.fullmatch(key)) and self.entry_path(key).exists()
+        if not isinstance(key, str) or not KEY.fullmatch(key):
+            return False
+        return key in self._pack_index() or self.entry_path(key).exists()
 
     def computed_counts(self) -> collections.Counter[str]:
         """How many times each key was put, from `computed.log`.
@@ -223,6 +290,32 @@ class Journal:
         atomic_write_bytes(path, data, durable=False, make_parents=False)
         self._log(key)
 
+    def put_many(self, entries: list[tuple[str, dict[str, Any], dict[str, Any]]]) -> None:
+        """Commit the runs (key, inputs, result) of one batch at once, as one pack
+        (store/journal_packs.py): a temporary file renamed, so a killed process leaves
+        all of them or none; then their keys in computed.log, in one write. Same entries,
+        same checks and the same promise as `put`, at one file per batch."""
+        if not entries:
+            return
+        data = pack_bytes([(key, encode(key, inputs, result)) for key, inputs, result in entries])
+        index = self._pack_index()
+        folder = refuse_symlink(self.path / PACKS)
+        if PACKS not in self._shards:
+            folder.mkdir(exist_ok=True)
+            self._shards.add(PACKS)
+        name = pack_name(self._next_pack)
+        while os.path.lexists(folder / name):  # written by an earlier process
+            self._next_pack += 1
+            name = pack_name(self._next_pack)
+        self._next_pack += 1
+        atomic_write_bytes(folder / name, data, durable=False, make_parents=False)
+        for key, start, end in pack_lines(data):
+            index[key] = (name, start, end)
+        self._pack_data = (name, data)
+        if self._log_fd is None:
+            self._log_fd = open_nofollow(self.log_path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
+        self._write_line(self._log_fd, "".join(f"{key}\n" for key, _, _ in entries))
+
     def _log(self, key: str) -> None:
         """Append `<key>\\n` to computed.log in one write (O_APPEND: atomic per line). The
         file stays open for the next put (see `close`): on slow file systems opening it by
@@ -258,7 +351,10 @@ class Journal:
         temporary file of a live writer.
         """
         removed = 0
-        for tmp in self.path.glob(f"??/.*{TEMP_SUFFIX}"):
+        for tmp in [
+            *self.path.glob(f"??/.*{TEMP_SUFFIX}"),
+            *self.path.glob(f"{PACKS}/.*{TEMP_SUFFIX}"),
+        ]:
             if tmp.parent.is_symlink():  # never reach outside DIR through a linked shard
                 continue
             with contextlib.suppress(FileNotFoundError):

@@ -8,6 +8,7 @@ import os
 from pathlib import Path
 
 from frictiondisk.store.journal_entry import KEY, verify
+from frictiondisk.store.journal_packs import PACKS, pack_files, pack_lines
 from frictiondisk.store.paths import SymlinkRefused, read_nofollow
 
 REASONS_LOG = "reasons.log"  # in journal/corrupt/: why each entry was moved there
@@ -49,7 +50,25 @@ def audit(campaign_dir: str | os.PathLike[str]) -> tuple[list[str], list[str]]:
             _, reason = verify(key, raw)
             if reason is not None:
                 problems.append(f"{key}: {reason}")
-    return problems, moved_aside(campaign_dir)
+    return problems + _audit_packs(journal), moved_aside(campaign_dir)
+
+
+def _audit_packs(journal: Path) -> list[str]:
+    """The problems of the entries held in packs (store/journal_packs.py)."""
+    if (journal / PACKS).is_symlink():
+        return [f"{PACKS}/: a symbolic link; refusing to follow it"]
+    problems = []
+    for path in pack_files(journal):
+        try:
+            data = read_nofollow(path)
+        except OSError as err:
+            problems.append(f"{PACKS}/{path.name}: unreadable ({err})")
+            continue
+        for key, start, end in pack_lines(data):
+            _, reason = verify(key, data[start:end])
+            if reason is not None:
+                problems.append(f"{key}: {reason} (in {PACKS}/{path.name})")
+    return problems
 
 
 def moved_aside(campaign_dir: str | os.PathLike[str]) -> list[str]:

@@ -102,6 +102,13 @@ class Planner(Protocol):
         """Runs saved by warm starts (0: the task has none)."""
         return 0
 
+    def new_requests(self) -> list[tuple[int, Hashable]] | None:
+        """(point, request) of the runs needed that no earlier call named, each once
+        (None: the planner does not track them; the driver lists `requests()` again).
+        A planner that names them lets the driver's replay cost O(1) per run instead of a
+        pass over every pending request after each finished job."""
+        return None
+
     def remember_canonical(self, point: int, request: Hashable, canonical: dict) -> None:
         """A run's canonical scene the driver built for its key (a planner may keep it)."""
 

@@ -12,10 +12,14 @@ not-stick fraction <= target_se, or max_samples reached), so the number of sampl
 ends with depends on outcomes only.
 
 A basin map (`basin.grid`) is the same with one unsampled run per grid cell.
+
+Bookkeeping is linear in the runs: wanted samples wait in one queue in the order they were
+asked for, a job takes the next ones from it, and `new_requests` names each sample once.
 """
 
 from __future__ import annotations
 
+import collections
 from typing import Any
 
 import numpy as np
@@ -28,7 +32,7 @@ from frictiondisk.tasks.protocol import Planner
 from frictiondisk.tasks.sampling.draws import sample_values
 from frictiondisk.tasks.sampling.runs import SampleRequest
 
-JOB_RUNS = 16  # runs per Dask job: a pin run takes ~5 ms, a Dask round trip 3-10 ms
+JOB_RUNS = 16  # runs per job without the driver's sizing (tests, a direct use)
 
 
 class BasinPlanner(Planner):
@@ -51,6 +55,12 @@ class BasinPlanner(Planner):
         self._jobs: dict[tuple[int, int], list[tuple[int, int]]] = {}
         self._blocks: dict[int, dict[tuple[str, int], np.ndarray]] = {}  # point -> its draws
         self._configs: dict[tuple[int, int], Any] = {}
+        # (point, sample) wanted, in the order asked; entries already known are skipped
+        self._queue = collections.deque(
+            (i, j) for i in range(len(self.points)) for j in range(first)
+        )
+        self._fresh = list(self._queue)  # wanted, not yet named by new_requests
+        self._canonicals: dict[tuple[int, int], dict] = {}  # until sent to a worker
 
     # ---- samples ----------------------------------------------------------------------
     def sample_values(self, i: int, j: int) -> dict[str, float]:
@@ -84,6 +94,15 @@ class BasinPlanner(Planner):
     def requests(self) -> list[tuple[int, SampleRequest]]:
         return [(i, SampleRequest(j)) for i, todo in enumerate(self.todo) for j in sorted(todo)]
 
+    def new_requests(self) -> list[tuple[int, SampleRequest]]:
+        """The samples asked for since the last call (each once), still wanted."""
+        fresh, self._fresh = self._fresh, []
+        return [(i, SampleRequest(j)) for i, j in fresh if j in self.todo[i]]
+
+    def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
+        if request.index in self.todo[i]:
+            self._canonicals[(i, request.index)] = canonical
+
     def feed(self, i: int, request: SampleRequest, result: dict[str, Any]) -> None:
         """Take a result; one the point no longer waits for is ignored."""
         j = request.index
@@ -93,17 +112,32 @@ class BasinPlanner(Planner):
         self._advance(i)
 
     def jobs(self, sizing: Sizing | None = None) -> list[tuple[tuple[int, int], RunScenes]]:
-        """Every requested sample not yet out, JOB_RUNS to a job."""
-        wanted = [(i, req.index) for i, req in self.requests()]
+        """Requested samples not yet out, in the order asked: sizing.batch_runs to a job
+        (no more than an equal share of the queue for each of sizing.workers), at most
+        sizing.max_jobs jobs (without sizing: JOB_RUNS to a job, all of them)."""
+        per_job = JOB_RUNS if sizing is None else max(1, sizing.batch_runs)
+        workers = 1 if sizing is None else max(1, sizing.workers)
+        limit = None if sizing is None else sizing.max_jobs
         out = []
-        for start in range(0, len(wanted), JOB_RUNS):
-            items = wanted[start : start + JOB_RUNS]
+        while self._queue and (limit is None or len(out) < limit):
+            size = max(1, min(per_job, -(-len(self._queue) // workers)))
+            items = []
+            while self._queue and len(items) < size:
+                i, j = self._queue.popleft()
+                if j in self.todo[i]:  # else known meanwhile (the journal)
+                    items.append((i, j))
+            if not items:
+                break
             job = items[0]
             self._jobs[job] = items
             for i, j in items:
                 self.todo[i].discard(j)
                 self.out[i] += 1
-            scenes = [self.config_for(i, SampleRequest(j)).canonical() for i, j in items]
+            scenes = [
+                self._canonicals.pop((i, j), None)
+                or self.config_for(i, SampleRequest(j)).canonical()
+                for i, j in items
+            ]
             out.append((job, RunScenes(tuple(scenes))))
         return out
 
@@ -155,6 +189,8 @@ class BasinPlanner(Planner):
             )
         self.target[i] = min(n + self.task.batch, self.task.max_samples)
         self.todo[i] = set(range(n, self.target[i]))
+        self._queue.extend((i, j) for j in range(n, self.target[i]))
+        self._fresh.extend((i, j) for j in range(n, self.target[i]))
 
     def _finish(self, i: int, why: str) -> None:
         n = self.target[i]
@@ -165,4 +201,5 @@ class BasinPlanner(Planner):
         self.results[i] = BasinPointResult(status=status, reason=reason, results=results)
         for j in range(n):
             self._configs.pop((i, j), None)
+            self._canonicals.pop((i, j), None)
         self._blocks.pop(i, None)

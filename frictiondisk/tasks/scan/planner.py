@@ -1,5 +1,9 @@
 """Which runs a `scan` campaign needs: one run per grid point (pure Python; the planner
-contract is frictiondisk.tasks.protocol.Planner)."""
+contract is frictiondisk.tasks.protocol.Planner).
+
+Bookkeeping is linear in the points: they are handed out in index order from a cursor,
+a finished job updates its points in O(1) each, and `new_requests` names each point once,
+so the driver's replay never lists the pending points again."""
 
 from __future__ import annotations
 
@@ -20,6 +24,11 @@ class ScanPlanner(Planner):
         self.points = campaign.points()
         self.results: dict[int, dict[str, Any]] = {}
         self.busy: set[int] = set()
+        self._cursor = 0  # every point below it is known or out on a worker
+        self._jobs: dict[int, tuple[int, ...]] = {}  # job id -> its points
+        self._next_job = 0
+        self._listed = False  # new_requests has named every point
+        self._canonicals: dict[int, dict] = {}  # point -> its canonical scene, until sent
 
     def config_for(self, i: int, request: RunRequest):
         return self.points[i].config
@@ -37,38 +46,78 @@ class ScanPlanner(Planner):
         results = tuple(self.results.get(i) for i in range(len(self.points)))
         return ScanResults(self.campaign, tuple(self.points), results)
 
+    def _request(self, i: int) -> RunRequest:
+        return RunRequest(self.points[i].config.params.mu)
+
     def requests(self) -> list[tuple[int, RunRequest]]:
         return [
-            (i, RunRequest(p.config.params.mu))
-            for i, p in enumerate(self.points)
+            (i, self._request(i))
+            for i in range(self._cursor, len(self.points))
             if i not in self.results and i not in self.busy
         ]
 
+    def new_requests(self) -> list[tuple[int, RunRequest]]:
+        """Every point's run on the first call, nothing after: a scan's runs are all
+        known from the start."""
+        if self._listed:
+            return []
+        self._listed = True
+        return self.requests()
+
+    def remember_canonical(self, i: int, request: RunRequest, canonical: dict) -> None:
+        if i not in self.results:
+            self._canonicals[i] = canonical
+
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
         self.results.setdefault(i, result)
+        self._canonicals.pop(i, None)
 
     def jobs(self, sizing: Sizing | None = None) -> list[tuple[int, RunScenes]]:
-        """One job per point not yet known: a single (long, converge-mode) run; at most
-        sizing.max_jobs of them."""
-        limit = math.inf if sizing is None or sizing.max_jobs is None else sizing.max_jobs
+        """Batches of points not yet known, in index order: sizing.batch_runs to a job, but
+        no more than an equal share for each of sizing.workers of what is left (so the last
+        batches shrink and the workers end together), at most sizing.max_jobs of them
+        (without sizing: one point per job, all of them)."""
+        sizing = sizing or Sizing()
+        limit = math.inf if sizing.max_jobs is None else sizing.max_jobs
         out = []
-        for i, point in enumerate(self.points):
-            if len(out) >= limit:
+        while len(out) < limit:
+            self._skip_known()
+            left = len(self.points) - self._cursor  # an upper bound: fine for a share
+            if left <= 0:
                 break
-            if i in self.results or i in self.busy:
-                continue
-            self.busy.add(i)
-            out.append((i, RunScenes((point.config.canonical(),))))
+            size = max(1, min(sizing.batch_runs, -(-left // max(1, sizing.workers))))
+            batch = []
+            while len(batch) < size and self._cursor < len(self.points):
+                i = self._cursor
+                self._cursor += 1
+                if i not in self.results:
+                    batch.append(i)
+            if not batch:
+                break
+            job, self._next_job = self._next_job, self._next_job + 1
+            self._jobs[job] = tuple(batch)
+            self.busy.update(batch)
+            scenes = tuple(
+                self._canonicals.pop(i, None) or self.points[i].config.canonical() for i in batch
+            )
+            out.append((job, RunScenes(scenes)))
         return out
 
-    def complete(self, i: int, value) -> list[tuple[int, RunRequest, dict[str, Any]]]:
-        (result,) = value
-        self.busy.discard(i)
-        self.results[i] = result
-        return [(i, RunRequest(self.points[i].config.params.mu), result)]
+    def _skip_known(self) -> None:
+        while self._cursor < len(self.points) and self._cursor in self.results:
+            self._cursor += 1
 
-    def fail(self, i: int, reason: str) -> None:
-        """A run whose worker kept dying: reported `undetermined` with that reason (it is
+    def complete(self, job: int, value) -> list[tuple[int, RunRequest, dict[str, Any]]]:
+        made = []
+        for i, result in zip(self._jobs.pop(job), value, strict=True):
+            self.busy.discard(i)
+            self.results[i] = result
+            made.append((i, self._request(i), result))
+        return made
+
+    def fail(self, job: int, reason: str) -> None:
+        """Runs whose worker kept dying: reported `undetermined` with that reason (they are
         not journaled, so a resume tries again)."""
-        self.busy.discard(i)
-        self.results[i] = {"outcome": "undetermined", "reason": reason}
+        for i in self._jobs.pop(job):
+            self.busy.discard(i)
+            self.results[i] = {"outcome": "undetermined", "reason": reason}
