@@ -22,14 +22,13 @@ from matplotlib.ticker import FuncFormatter
 from frictiondisk.figures.footer import FOOTER_GID, FOOTER_SEP, chars_per_line, wrap_parts
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 from frictiondisk.verdict.horizon import horizon_key
-from frictiondisk.verdict.outcomes import OUTCOMES, is_not_stick
+from frictiondisk.verdict.outcomes import FAIL_COLOR, OUTCOMES, RECORDS, UNDETERMINED
 
 MU_LABEL = "friction coefficient \u03bc [-]"
 MU_STAR_LABEL = "\u03bc* [-]"
 SIZE_LABEL = "size (sticking radius) [m]"
 A_LABEL = "deviation from circle a [m]"
 
-FAIL_COLOR = "tab:red"
 SLIDE_GREY = "0.55"
 NON_MONOTONE_COLOR = "tab:orange"
 LINE_COLOR = "0.15"
@@ -38,27 +37,16 @@ MAX_LISTED = 8  # failed points listed by name; the rest are counted
 LIST_WIDTH = 112  # characters per line of the failure list (fits 7.2 in at NOTE_FONT_PT)
 REGION_FONT_PT = 12.0
 
-# marker style of each outcome (face colour, edge colour, marker)
+# marker style and legend text of each outcome, from its record (verdict/outcomes.py)
 OUTCOME_STYLE: dict[str, dict[str, Any]] = {
-    "stick": {"color": STICK_COLOR, "edge": STICK_COLOR, "marker": "o"},
-    "creep": {"color": "#e0a040", "edge": "#9a6a1c", "marker": "D"},
-    "stick_slip": {"color": SLIDE_COLOR, "edge": "#3f6e8c", "marker": "o"},
-    "self_centring": {"color": "#7fbf7f", "edge": "#3f7f3f", "marker": "v"},
-    "slide_cycle": {"color": "#b58fd6", "edge": "#6f4a94", "marker": "^"},
-    "modulated": {"color": "#e07fb0", "edge": "#9a3f6e", "marker": "P"},
-    "slide": {"color": SLIDE_GREY, "edge": "0.35", "marker": "s"},
-    "undetermined": {"color": FAIL_COLOR, "edge": FAIL_COLOR, "marker": "x"},
+    r.name: {"color": r.color, "edge": r.edge, "marker": r.marker} for r in RECORDS
 }
-OUTCOME_LABEL = {
-    "stick": "stick",
-    "creep": "creep (ratchets on the small orbit)",
-    "stick_slip": "stick_slip (limit cycle)",
-    "self_centring": "self_centring (slides to rest)",
-    "slide_cycle": "slide_cycle (pure-sliding cycle)",
-    "modulated": "modulated (cycle with a slow envelope)",
-    "slide": "slide (not stick, not settled)",
-    "undetermined": "undetermined",
-}
+OUTCOME_LABEL = {r.name: r.legend for r in RECORDS}
+
+
+def outcome_style(outcome: str) -> dict[str, Any]:
+    """The marker style of `outcome` (that of `undetermined` for a name no record has)."""
+    return OUTCOME_STYLE.get(outcome, OUTCOME_STYLE[UNDETERMINED])
 
 
 # ---- labels and caption -----------------------------------------------------------------
@@ -320,45 +308,24 @@ def check_vars(ds: xr.Dataset, names: tuple[str, ...], what: str) -> None:
 
 # ---- runs -------------------------------------------------------------------------------
 def run_dots(ax: Axes, x: np.ndarray, mu: np.ndarray, outcome: np.ndarray) -> list[Line2D]:
-    """Every run as a small dot at (x, mu): stick dark, not stick light, undetermined red;
-    returns the legend entries."""
+    """Every run as a small dot at (x, mu) in its outcome's colour and marker (one style
+    table: OUTCOME_STYLE), outcomes no record names as undetermined; returns the legend
+    entries, "run: <outcome>", in the listing order."""
+    outcome = np.asarray(outcome).astype(str)
+    known = np.isin(outcome, OUTCOMES)
     handles = []
-    groups = (
-        (outcome == "stick", "o", STICK_COLOR, "run: stick"),
-        (
-            np.isin(outcome, [o for o in OUTCOMES if is_not_stick(o)]),
-            "o",
-            SLIDE_COLOR,
-            "run: not stick",
-        ),
-        (outcome == "undetermined", "x", FAIL_COLOR, "run: undetermined"),
-    )
-    for mask, marker, color, label in groups:
+    for name in OUTCOMES:
+        mask = (outcome == name) | (~known if name == UNDETERMINED else False)
         if not mask.any():
             continue
-        ax.plot(
-            x[mask],
-            mu[mask],
-            linestyle="none",
-            marker=marker,
-            markersize=3.0,
-            color=color,
-            markeredgecolor=STICK_COLOR if marker == "o" else color,
-            markeredgewidth=0.4,
-            alpha=0.9,
-            zorder=2,
-        )
-        handles.append(
-            Line2D(
-                [],
-                [],
-                linestyle="none",
-                marker=marker,
-                markersize=4,
-                color=color,
-                markeredgecolor=STICK_COLOR if marker == "o" else color,
-                markeredgewidth=0.4,
-                label=label,
-            )
-        )
+        style = outcome_style(name)
+        look = {
+            "linestyle": "none",
+            "marker": style["marker"],
+            "color": style["color"],
+            "markeredgecolor": style["edge"],
+            "markeredgewidth": 0.4 if style["marker"] != "x" else 1.0,
+        }
+        ax.plot(x[mask], mu[mask], markersize=3.0, alpha=0.9, zorder=2, **look)
+        handles.append(Line2D([], [], markersize=4, label=f"run: {name}", **look))
     return handles
