@@ -129,3 +129,38 @@ def test_the_stick_jump_keeps_its_paper_labels(between):
         assert [r[0] for r in region_labels(ds)] == ["pure sticking", "outer limit cycle"]
     else:
         assert [r[0] for r in region_labels(ds)] == ["slide_cycle", "self_centring"]
+
+
+MAP = """\
+name: xms_map
+scene: pin
+map:
+  over: {params.x_ms: [0.08, 0.1, 0.12], params.mu: {start: 0.05, stop: 0.2, num: 7}}
+  mode: converge
+  stride: 1
+"""
+
+
+def test_a_map_takes_a_between_find_jump_as_its_boundary_and_marks_cells_as_its_log(
+    tmp_path, monkeypatch
+):
+    """`plot MAP --boundary DIR` draws any results with a mu_star: here a find_jump between
+    two motions along the map's x_ms; the cells crossed as not settled are those the log
+    calls "not settled" (the fake's slide_cycle side reports no converged cycle)."""
+    from frictiondisk.tasks.map.table import summary_lines
+
+    _run(BETWEEN, tmp_path / "jump", monkeypatch)
+    run_campaign(campaign_from_text(MAP), tmp_path / "map", workers=1, progress=False)
+    fig = figure_for_dir(tmp_path / "map", boundary=[tmp_path / "jump"])
+    ax = fig.get_axes()[0]
+    legend = _legend_texts(fig)
+    assert any(t.startswith("find_jump self_centring | slide_cycle") for t in legend), legend
+    jump = xr.load_dataset(tmp_path / "jump" / "results.nc")
+    drawn = [line for line in ax.get_lines() if line.get_linestyle() == "-"]
+    np.testing.assert_allclose(drawn[0].get_ydata(), jump["mu_star"].values)
+    results = xr.load_dataset(tmp_path / "map" / "results.nc")
+    lines = summary_lines(results)[1:]
+    unsettled_log = sum(", not settled" in line for line in lines)
+    crosses = [line for line in ax.get_lines() if line.get_gid() == "cells_unsettled"]
+    drawn_crosses = crosses[0].get_xdata().size if crosses else 0
+    assert unsettled_log == drawn_crosses > 0
