@@ -14,10 +14,18 @@ from __future__ import annotations
 
 import dataclasses
 
+# the sides of the jump; `stick` and `undetermined` are also the names of outcomes
 STICK = "stick"
 NOT_STICK = "not_stick"
 UNDETERMINED = "undetermined"
 CLASSES = (STICK, NOT_STICK, UNDETERMINED)
+# the outcome names, for code that must name one (everything else reads RECORDS)
+CREEP = "creep"
+STICK_SLIP = "stick_slip"
+SELF_CENTRING = "self_centring"
+SLIDE_CYCLE = "slide_cycle"
+MODULATED = "modulated"
+SLIDE = "slide"
 
 STICK_COLOR = "#08306b"  # dark blue: sticking
 SLIDE_COLOR = "#9ecae1"  # light blue: sliding
@@ -50,7 +58,7 @@ class Outcome:
 # the listing order of tables, figures and help texts
 RECORDS: tuple[Outcome, ...] = (
     Outcome(
-        "stick",
+        STICK,
         STICK,
         "the slave co-rotates with the master for good (corotation), or every contact "
         "stuck for a whole master revolution (contacts)",
@@ -60,7 +68,7 @@ RECORDS: tuple[Outcome, ...] = (
         "stick",
     ),
     Outcome(
-        "creep",
+        CREEP,
         NOT_STICK,
         "it ratchets on its small orbit, slipping a little every revolution for ever",
         "#e0a040",
@@ -69,7 +77,7 @@ RECORDS: tuple[Outcome, ...] = (
         "creep (ratchets on the small orbit)",
     ),
     Outcome(
-        "stick_slip",
+        STICK_SLIP,
         NOT_STICK,
         "sticking and sliding alternate (a cycle reached, or approached)",
         SLIDE_COLOR,
@@ -78,7 +86,7 @@ RECORDS: tuple[Outcome, ...] = (
         "stick_slip (limit cycle)",
     ),
     Outcome(
-        "self_centring",
+        SELF_CENTRING,
         NOT_STICK,
         "it slides to rest at a sliding equilibrium near the master's axis",
         "#7fbf7f",
@@ -87,7 +95,7 @@ RECORDS: tuple[Outcome, ...] = (
         "self_centring (slides to rest)",
     ),
     Outcome(
-        "slide_cycle",
+        SLIDE_CYCLE,
         NOT_STICK,
         "a pure-sliding limit cycle (the pin's large cycle, the axisymmetric disk's "
         "circular whirl), its own section repeating or contracting",
@@ -97,7 +105,7 @@ RECORDS: tuple[Outcome, ...] = (
         "slide_cycle (pure-sliding cycle)",
     ),
     Outcome(
-        "modulated",
+        MODULATED,
         NOT_STICK,
         "a pure-sliding cycle whose amplitude and spin oscillate on a slow envelope",
         "#e07fb0",
@@ -106,7 +114,7 @@ RECORDS: tuple[Outcome, ...] = (
         "modulated (cycle with a slow envelope)",
     ),
     Outcome(
-        "slide",
+        SLIDE,
         NOT_STICK,
         "it never sticks as a whole, and its motion is not (yet) shown to be one of the "
         "pure-sliding motions",
@@ -116,7 +124,7 @@ RECORDS: tuple[Outcome, ...] = (
         "slide (not stick, not settled)",
     ),
     Outcome(
-        "undetermined",
+        UNDETERMINED,
         UNDETERMINED,
         "the run could not tell (a budget, a failure, or no evidence in time)",
         FAIL_COLOR,
@@ -131,7 +139,7 @@ BY_NAME: dict[str, Outcome] = {record.name: record for record in RECORDS}
 OUTCOME_CLASS = {record.name: record.side for record in RECORDS}
 OUTCOMES = tuple(OUTCOME_CLASS)
 # the motions a run can be shown to settle on without sticking (refinements of `slide`)
-SLIDING_MOTIONS = ("self_centring", "slide_cycle", "modulated")
+SLIDING_MOTIONS = (SELF_CENTRING, SLIDE_CYCLE, MODULATED)
 
 
 def record(outcome: str) -> Outcome:

@@ -21,14 +21,15 @@ from matplotlib.transforms import blended_transform_factory
 
 from frictiondisk.figures.shared import (
     MU_LABEL,
-    OUTCOME_STYLE,
     SIZE_LABEL,
     fitted_legend,
     new_figure,
+    outcome_style,
     scene_title,
     value_text,
 )
 from frictiondisk.figures.style import styled
+from frictiondisk.verdict.outcomes import STICK
 
 JUMP_MARK_Y = 1.0  # axes fraction of the triangle marking a located jump
 
@@ -55,14 +56,14 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
         ax.plot(scan_mu, sizes, "-", color=colors[i], lw=1.0, zorder=2)
         for outcome in np.unique(outcomes):
             sel = outcomes == outcome
-            style = OUTCOME_STYLE.get(outcome, OUTCOME_STYLE["undetermined"])
+            style = outcome_style(outcome)
             ax.plot(
                 scan_mu[sel],
                 sizes[sel],
                 linestyle="none",
                 marker=style["marker"],
                 markersize=5,
-                markerfacecolor=colors[i] if outcome == "stick" else "white",
+                markerfacecolor=colors[i] if outcome == STICK else "white",
                 markeredgecolor=colors[i],
                 zorder=3,
             )
@@ -130,7 +131,7 @@ def _zoom(ax, results: xr.Dataset, runs: xr.Dataset, dim: str, i: int, color) ->
     sel = (np.asarray(runs[dim].values) == x_value) & (np.asarray(runs["mode"].values) == "decide")
     sel &= (np.asarray(runs["mu"].values) >= left) & (np.asarray(runs["mu"].values) <= right)
     mu = np.asarray(runs["mu"].values, dtype=float)[sel]  # in run order (runs.nc order)
-    stick = np.asarray(runs["outcome"].values).astype(str)[sel] == "stick"
+    stick = np.asarray(runs["outcome"].values).astype(str)[sel] == STICK
     number = np.arange(1, mu.size + 1)
     ax.plot(mu, number, "-", color="0.75", lw=0.8, zorder=1)
     ax.plot(mu[stick], number[stick], "o", color=color, ms=6, label="bisection run: stick")
