@@ -22,6 +22,7 @@ from matplotlib.transforms import blended_transform_factory
 from frictiondisk.figures.shared import (
     MU_LABEL,
     SIZE_LABEL,
+    boundary_sides,
     fitted_legend,
     new_figure,
     outcome_style,
@@ -29,7 +30,8 @@ from frictiondisk.figures.shared import (
     value_text,
 )
 from frictiondisk.figures.style import styled
-from frictiondisk.verdict.outcomes import STICK
+from frictiondisk.tasks.find_jump.figure_line import line_title
+from frictiondisk.verdict.outcomes import OUTCOMES, STICK
 
 JUMP_MARK_Y = 1.0  # axes fraction of the triangle marking a located jump
 
@@ -83,10 +85,16 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
             )
         text = ", ".join(f"\u03bc* = {0.5 * (lo + hi):.5f}" for lo, hi in _jumps(results, dim, i))
         handles.append(Line2D([], [], color=colors[i], marker="o", label=f"{label}: {text}"))
-    handles += [
-        Line2D([], [], ls="none", marker="o", mfc="0.3", mec="0.3", label="stick (filled)"),
-        Line2D([], [], ls="none", marker="o", mfc="white", mec="0.3", label="stick_slip (open)"),
-    ]
+    present = set(np.asarray(results["scan_outcome"].values).astype(str).ravel())
+    for outcome in [o for o in OUTCOMES if o in present] + sorted(present - set(OUTCOMES)):
+        face = "0.3" if outcome == STICK else "white"
+        marker = outcome_style(outcome)["marker"]
+        fill = "filled" if outcome == STICK else "open"
+        handles.append(
+            Line2D(
+                [], [], ls="none", marker=marker, mfc=face, mec="0.3", label=f"{outcome} ({fill})"
+            )
+        )
     ax.set_xlabel(MU_LABEL)
     ax.set_ylabel(SIZE_LABEL)
     ax.grid(True, lw=0.4, alpha=0.5)
@@ -102,7 +110,10 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
     ax.set_title("size against \u03bc; dashed line and \u25bc: located jump \u03bc*", fontsize=10)
     if zoom:
         _zoom(axes[1], results, runs, dim, middle, colors[middle])
-    main.suptitle(f"{scene_title(results)}: from the limit cycle to permanent sticking")
+    title = "from the limit cycle to permanent sticking"
+    if boundary_sides(results) is not None:
+        title = line_title(results)
+    main.suptitle(f"{scene_title(results)}: {title}", wrap=True)
     return fig
 
 
