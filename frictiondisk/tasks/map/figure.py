@@ -153,7 +153,7 @@ def _draw_traced(
         curves = [(np.asarray(star[key].values, float)[order][ok], star.values[order][ok])]
     if len(dims) != 2 or set(dims) != {key, "mu"}:
         raise ValueError(
-            f"boundary {name}: its mu* runs over ({key}, mu), the map over ({', '.join(dims)})"
+            f"boundary {name}: the {task} runs over ({key}, mu), the map over ({', '.join(dims)})"
         )
     line, marker = style
     for along, mu in curves:
