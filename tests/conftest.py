@@ -3,6 +3,7 @@ campaign subprocess that a test stops with a real signal."""
 
 from __future__ import annotations
 
+import gc
 import math
 import os
 import signal
@@ -39,6 +40,15 @@ def _stop_signals_at_their_defaults() -> None:
 
 
 _stop_signals_at_their_defaults()
+
+
+def pytest_sessionfinish(session) -> None:
+    """Collect the session's garbage before a pytest-xdist worker reports that it finished.
+    Once it has, execnet gives the worker's remaining teardown 5 s and then sends it a
+    SIGINT; pytest's own last gc pass (its unraisable-exception check, after this) took
+    longer on a busy machine, and the KeyboardInterrupt landed in a weakref callback and
+    ended the suite's output with its traceback."""
+    gc.collect()
 
 
 def g_factor(

@@ -50,7 +50,8 @@ def test_a_map_names_each_cell_as_a_single_run_does(tmp_path):
     fig = plot_map(ds)
     assert len([a for a in fig.get_axes() if a.get_legend() is not None]) == 1
     # a traced boundary over the same two keys is drawn on top (`plot --boundary`), one
-    # line per curve through its points; a trace over another plane, or a find_jump, is not
+    # line per curve through its points; a trace over another plane, or results without mu_star,
+    # are not
     trace = _trace_results("omega_m", [0.8, 1.1, 1.4], [0.2, 0.19, 0.18])
     fig = plot_map(ds, (trace,))
     lines = [line for line in fig.get_axes()[0].get_lines() if line.get_linestyle() == "-"]
@@ -60,8 +61,8 @@ def test_a_map_names_each_cell_as_a_single_run_does(tmp_path):
     assert "traced slide_cycle | stick, tol 0.0001" in legend
     with pytest.raises(ValueError, match="the trace runs over \\(x_ms, mu\\)"):
         plot_map(ds, (_trace_results("x_ms", [0.1, 0.2], [0.2, 0.2]),))
-    with pytest.raises(ValueError, match="a motion map draws trace campaigns"):
-        plot_map(ds, (trace.assign_attrs(task="find_jump"),))
+    with pytest.raises(ValueError, match="without mu_star"):
+        plot_map(ds, (trace.drop_vars("mu_star"),))
 
 
 def _trace_results(key: str, along: list[float], mu_star: list[float]) -> xr.Dataset:

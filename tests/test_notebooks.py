@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -128,6 +129,10 @@ def test_paper_figures_runs(tmp_path):
 def test_motion_atlas_runs(tmp_path):
     nb = run_notebook("03_motion_atlas.ipynb", tmp_path)
     _check_ran_cleanly(nb)
+    text = "".join(_text(cell) for cell in _code_cells(nb))
+    # numbers are printed rounded: no float repr such as 0.13999999999999999
+    assert not re.search(r"\d\.\d{12,}", text), text
+    assert "two motions coexist" in text and "undetermined or slide from at least one start" in text
     summary = [cell for cell in _code_cells(nb) if "summary" in cell.metadata.get("tags", [])]
     assert len(summary) == 1, "exactly one cell is tagged 'summary'"
     text = _text(summary[0])

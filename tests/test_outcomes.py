@@ -37,3 +37,29 @@ def test_every_outcome_has_a_figure_style_and_a_label():
 
     assert set(OUTCOME_STYLE) == set(OUTCOMES)
     assert set(OUTCOME_LABEL) == set(OUTCOMES)
+
+
+def test_every_name_comes_from_one_record_that_figures_cf_and_help_read():
+    """One row of RECORDS names, describes and draws a motion: the figure styles, the CF
+    comment of `outcome` and the CLI help are built from it, not spelled again."""
+    from click.testing import CliRunner
+
+    from frictiondisk.cli.main import main
+    from frictiondisk.figures.shared import OUTCOME_LABEL, OUTCOME_STYLE
+
+    assert [r.name for r in oc.RECORDS] == list(oc.OUTCOMES)
+    for r in oc.RECORDS:
+        assert oc.record(r.name) is r
+        assert OUTCOME_STYLE[r.name] == {"color": r.color, "edge": r.edge, "marker": r.marker}
+        assert OUTCOME_LABEL[r.name] == r.legend
+        assert f"{r.name}: {r.description}" in cf.TEXT["outcome"][1]
+    help_text = " ".join(CliRunner().invoke(main, ["--help"]).output.split())
+    assert oc.names_text() in help_text
+    # distinct looks: no two outcomes share both colour and marker
+    looks = {(r.color, r.marker) for r in oc.RECORDS}
+    assert len(looks) == len(oc.RECORDS)
+
+
+def test_a_record_with_a_side_that_is_no_side_is_refused():
+    with pytest.raises(ValueError, match="side 'sticky'"):
+        oc.Outcome("glue", "sticky", "d", "k", "k", "o", "glue")

@@ -18,6 +18,7 @@ from typing import Any
 import click
 
 from frictiondisk.cli.options import TaskName, check_figure_suffix, fail
+from frictiondisk.verdict import outcomes
 from frictiondisk.version import __version__
 
 
@@ -35,15 +36,17 @@ class _Main(click.Group):
             fail(describe_os_error(exc), [])
 
 
-@click.group(cls=_Main, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, "--version", prog_name="frictiondisk")
-def main() -> None:
-    """frictiondisk: stick-slip and permanent sticking of rigid friction disks.
+MAIN_HELP = f"""frictiondisk: stick-slip and permanent sticking of rigid friction disks.
 
     Simulates a pin or a slave disk on a driven master disk with elasto-visco-plastic
-    friction contacts, and classifies each run as stick, creep, stick_slip, self_centring,
-    slide_cycle, modulated, slide or undetermined.
+    friction contacts, and classifies each run as {outcomes.names_text()}.
     """
+
+
+@click.group(cls=_Main, context_settings={"help_option_names": ["-h", "--help"]}, help=MAIN_HELP)
+@click.version_option(__version__, "--version", prog_name="frictiondisk")
+def main() -> None:
+    """The `frictiondisk` command group (its help: MAIN_HELP, which lists the outcomes)."""
 
 
 def _check_dt_out(ctx: click.Context, param: click.Parameter, value: float) -> float:
@@ -69,7 +72,15 @@ def _fmt(value: float | None, unit: str = "", spec: str = ".6g") -> str:
     return f"{value:{spec}}{' ' + unit if unit else ''}"
 
 
-@main.command()
+SIMULATE_HELP = f"""Simulate one SCENE (a YAML file) and report its outcome.
+
+    The outcome is one of {outcomes.names_text()} (always with a reason),
+    reported with the first sticking radius R1, the cycle size and a, the number of
+    stick/slide transitions and the stick fraction of the final window.
+    """
+
+
+@main.command(help=SIMULATE_HELP)
 @click.argument("scene", type=click.Path(dir_okay=False, path_type=Path))
 @click.option(
     "--set",
@@ -116,13 +127,7 @@ def simulate(
     plot_path: Path | None,
     dt_out: float,
 ) -> None:
-    """Simulate one SCENE (a YAML file) and report its outcome.
-
-    The outcome is one of stick, creep, stick_slip, self_centring, slide_cycle, modulated,
-    slide or undetermined (always with a reason),
-    reported with the first sticking radius R1, the cycle size and a, the number of
-    stick/slide transitions and the stick fraction of the final window.
-    """
+    """`frictiondisk simulate` (its help: SIMULATE_HELP, which lists the outcomes)."""
     record = output is not None or plot_path is not None
     config = _checked_scene(scene, overrides, (output, plot_path), dt_out if record else None)
 

@@ -33,8 +33,8 @@ DEFAULT_FIGURE = "figure.png"
     "show_runs",
     is_flag=True,
     help="find_jump and trace: overlay every run of runs.nc as a dot at (coordinate, mu), "
-    "stick dark, not stick light (how the jump was iterated, or the curves followed); a "
-    "grid shows each cell's run count.",
+    "in its outcome's colour and marker (how the jump was iterated, or the curves "
+    "followed); a grid shows each cell's run count.",
 )
 @click.option(
     "--boundary",
@@ -42,14 +42,17 @@ DEFAULT_FIGURE = "figure.png"
     metavar="CAMPAIGN_DIR",
     multiple=True,
     help="basin map: draw the contour mu* = the map's mu of the find_jump campaign in "
-    "CAMPAIGN_DIR (a grid over the same two keys) on top. Motion map: draw the curves of "
-    "the trace campaign in CAMPAIGN_DIR (over the map's two keys) on top; repeatable.",
+    "CAMPAIGN_DIR (a grid over the same two keys) on top. Motion map: draw the boundary of "
+    "any campaign in CAMPAIGN_DIR with a mu_star on top: a trace's curves or a find_jump's "
+    "line over the map's two keys (a stick jump or a `between` boundary), or the contour "
+    "mu* = the map's mu of a find_jump grid over them; repeatable.",
 )
 def plot(out_dir: Path, output: Path | None, show_runs: bool, boundary: tuple[Path, ...]) -> None:
     """Draw the figure of the campaign in DIR from DIR/results.nc (never simulates).
 
-    find_jump along one key: mu* against the key with its brackets, the regions "pure
-    sticking" and "outer limit cycle", failed points listed. find_jump over two keys: a map
+    find_jump along one key: mu* (or the bisected key) against the key with its brackets,
+    the two sides labelled ("pure sticking" and "outer limit cycle", or the two motions of
+    `between`), failed points listed. find_jump over two keys: a map
     of mu*. scan of mu: size against mu by outcome, and a against mu with its
     least-squares line. scan of mu and one more key: one size curve per value of that key.
     trajectory: the orbit, sticking dark and sliding light (whole, or the last cycle with

@@ -20,16 +20,21 @@ from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter
 
 from frictiondisk.figures.footer import FOOTER_GID, FOOTER_SEP, chars_per_line, wrap_parts
+from frictiondisk.figures.searched import (  # noqa: F401 (re-exported for the task figures)
+    MU_LABEL,
+    SYMBOLS,
+    SearchedKey,
+    boundary_sides,
+    searched_key,
+)
 from frictiondisk.figures.style import CAPTION_FONT_PT, NOTE_FONT_PT, SLIDE_COLOR, STICK_COLOR  # noqa: F401
 from frictiondisk.verdict.horizon import horizon_key
-from frictiondisk.verdict.outcomes import OUTCOMES, is_not_stick
+from frictiondisk.verdict.outcomes import FAIL_COLOR, OUTCOMES, RECORDS, UNDETERMINED
 
-MU_LABEL = "friction coefficient \u03bc [-]"
 MU_STAR_LABEL = "\u03bc* [-]"
 SIZE_LABEL = "size (sticking radius) [m]"
 A_LABEL = "deviation from circle a [m]"
 
-FAIL_COLOR = "tab:red"
 SLIDE_GREY = "0.55"
 NON_MONOTONE_COLOR = "tab:orange"
 LINE_COLOR = "0.15"
@@ -38,27 +43,16 @@ MAX_LISTED = 8  # failed points listed by name; the rest are counted
 LIST_WIDTH = 112  # characters per line of the failure list (fits 7.2 in at NOTE_FONT_PT)
 REGION_FONT_PT = 12.0
 
-# marker style of each outcome (face colour, edge colour, marker)
+# marker style and legend text of each outcome, from its record (verdict/outcomes.py)
 OUTCOME_STYLE: dict[str, dict[str, Any]] = {
-    "stick": {"color": STICK_COLOR, "edge": STICK_COLOR, "marker": "o"},
-    "creep": {"color": "#e0a040", "edge": "#9a6a1c", "marker": "D"},
-    "stick_slip": {"color": SLIDE_COLOR, "edge": "#3f6e8c", "marker": "o"},
-    "self_centring": {"color": "#7fbf7f", "edge": "#3f7f3f", "marker": "v"},
-    "slide_cycle": {"color": "#b58fd6", "edge": "#6f4a94", "marker": "^"},
-    "modulated": {"color": "#e07fb0", "edge": "#9a3f6e", "marker": "P"},
-    "slide": {"color": SLIDE_GREY, "edge": "0.35", "marker": "s"},
-    "undetermined": {"color": FAIL_COLOR, "edge": FAIL_COLOR, "marker": "x"},
+    r.name: {"color": r.color, "edge": r.edge, "marker": r.marker} for r in RECORDS
 }
-OUTCOME_LABEL = {
-    "stick": "stick",
-    "creep": "creep (ratchets on the small orbit)",
-    "stick_slip": "stick_slip (limit cycle)",
-    "self_centring": "self_centring (slides to rest)",
-    "slide_cycle": "slide_cycle (pure-sliding cycle)",
-    "modulated": "modulated (cycle with a slow envelope)",
-    "slide": "slide (not stick, not settled)",
-    "undetermined": "undetermined",
-}
+OUTCOME_LABEL = {r.name: r.legend for r in RECORDS}
+
+
+def outcome_style(outcome: str) -> dict[str, Any]:
+    """The marker style of `outcome` (that of `undetermined` for a name no record has)."""
+    return OUTCOME_STYLE.get(outcome, OUTCOME_STYLE[UNDETERMINED])
 
 
 # ---- labels and caption -----------------------------------------------------------------
@@ -134,13 +128,16 @@ def _caption_parts(ds: xr.Dataset, mode: str | None = None) -> list[str]:
     return parts
 
 
-# physical parameters named in captions: (param attribute, symbol, unit, disk only)
+# physical parameters a caption always names where they are fixed: (param attribute,
+# symbol, unit, disk only); any other scene key is named where it differs from its default
 CAPTION_PARAMS = (
     ("x_ms", "x_ms", "m", False),
     ("x0", "x0", "m", False),
     ("beta_b", "$\\beta_b$", "N m s/rad", True),
     ("phidot0", "$\\dot{\\varphi}_0$", "rad/s", True),
 )
+# the scene sections whose keys a caption names (numerics have their own part)
+CAPTION_SECTIONS = ("params", "contact")
 
 
 def _scene(ds: xr.Dataset) -> dict[str, Any]:
@@ -160,14 +157,77 @@ def scene_title(ds: xr.Dataset) -> str:
     return name.capitalize() or str(ds.attrs.get("campaign_name", ""))
 
 
-def physics_text(ds: xr.Dataset) -> str:
-    """The physical parameters that are not varied, e.g. "pin, x_ms 0.1 m, x0 0 m" (disk:
-    also beta_b and phidot0); empty for results without the resolved scene."""
-    if "scene_yaml" not in ds.attrs:
-        return ""
+def _flat(section: dict[str, Any], prefix: str) -> dict[str, Any]:
+    """{dotted key: value} of a nested scene section."""
+    flat: dict[str, Any] = {}
+    for key, value in section.items():
+        if isinstance(value, dict):
+            flat |= _flat(value, f"{prefix}.{key}")
+        else:
+            flat[f"{prefix}.{key}"] = value
+    return flat
+
+
+def _default_scene(scene: dict[str, Any]) -> dict[str, Any]:
+    """The canonical default scene of the same kind and contact layout ({} if unknown)."""
+    from frictiondisk.model.scene import ConfigError, scene_from_dict
+
+    layout = (scene.get("contact") or {}).get("layout")
+    data: dict[str, Any] = {"scene": scene.get("scene")}
+    if layout and scene.get("scene") == "disk":
+        data["contact"] = {"layout": layout}
+    try:
+        return scene_from_dict(data).canonical()
+    except (ConfigError, ValueError):
+        return {}
+
+
+def changed_keys(ds: xr.Dataset) -> dict[str, Any]:
+    """{dotted key: value} of every params and contact key of the results' resolved scene
+    (scene_yaml) that differs from the default scene of its kind, in key order."""
+    scene = _scene(ds)
+    default = _default_scene(scene)
+    changed = {}
+    for section in CAPTION_SECTIONS:
+        mine = _flat(scene.get(section) or {}, section)
+        base = _flat(default.get(section) or {}, section)
+        changed |= {k: v for k, v in mine.items() if k not in base or base[k] != v}
+    return changed
+
+
+def varied_keys(ds: xr.Dataset) -> set[str]:
+    """The dotted keys without one value in the results: varied, sampled, traced or
+    bisected (a find_jump's `parameter`, else mu for a boundary's results)."""
     varied = {str(ds[c].attrs.get("scene_key", "")) for c in ds.coords}
     varied |= {str(ds.attrs["trace_key"])} if "trace_key" in ds.attrs else set()  # a plane's key
     varied |= {str(key) for key in sample_spec(ds)}  # sampled: no single value either
+    if "mu_star" in ds.variables:
+        varied.add(str(ds.attrs.get("parameter") or "params.mu"))
+    return varied
+
+
+def _key_text(key: str, value: Any) -> str:
+    """ "c_s 1.5 N/m": a scene key's name (its symbol where known), value and unit."""
+    from frictiondisk.model.scene import describe_key
+
+    name = key.split(".")[-1]
+    symbol = SYMBOLS.get(name, name) if key.startswith("params.") else key.split(".", 1)[1]
+    try:
+        unit = describe_key(key)[0]
+    except KeyError:
+        unit = None
+    unit_text = f" {unit}" if unit and unit != "1" else ""
+    return f"{symbol} {_fmt(value)}{unit_text}"
+
+
+def physics_text(ds: xr.Dataset) -> str:
+    """The scene and its physical parameters that are not varied, e.g. "pin, x_ms 0.1 m,
+    x0 0 m, c_s 1.5 N/m": x_ms and x0 always (a disk: also beta_b and phidot0), then every
+    other params or contact key that differs from its default; empty for results without
+    the resolved scene."""
+    if "scene_yaml" not in ds.attrs:
+        return ""
+    varied = varied_keys(ds)
     scene = _scene(ds).get("scene", "")
     shown = [
         f"{symbol} {_fmt(float(ds.attrs[f'param_{key}']))} {unit}"
@@ -176,7 +236,20 @@ def physics_text(ds: xr.Dataset) -> str:
         and f"params.{key}" not in varied
         and (scene == "disk" or not disk_only)
     ]
+    always = {f"params.{key}" for key, *_ in CAPTION_PARAMS}
+    shown += [
+        _key_text(key, value)
+        for key, value in changed_keys(ds).items()
+        if key not in varied and key not in always and _fixed(ds, key)
+    ]
     return ", ".join([str(scene or "scene"), *shown])
+
+
+def _fixed(ds: xr.Dataset, key: str) -> bool:
+    """False for a params key the results hold no single value of (no param_ attribute:
+    varied, sampled or searched; scene_attrs leaves those out)."""
+    section, name = key.split(".", 1)
+    return section != "params" or f"param_{name}" in ds.attrs
 
 
 def sample_spec(ds: xr.Dataset) -> dict[str, Any]:
@@ -320,45 +393,24 @@ def check_vars(ds: xr.Dataset, names: tuple[str, ...], what: str) -> None:
 
 # ---- runs -------------------------------------------------------------------------------
 def run_dots(ax: Axes, x: np.ndarray, mu: np.ndarray, outcome: np.ndarray) -> list[Line2D]:
-    """Every run as a small dot at (x, mu): stick dark, not stick light, undetermined red;
-    returns the legend entries."""
+    """Every run as a small dot at (x, mu) in its outcome's colour and marker (one style
+    table: OUTCOME_STYLE), outcomes no record names as undetermined; returns the legend
+    entries, "run: <outcome>", in the listing order."""
+    outcome = np.asarray(outcome).astype(str)
+    known = np.isin(outcome, OUTCOMES)
     handles = []
-    groups = (
-        (outcome == "stick", "o", STICK_COLOR, "run: stick"),
-        (
-            np.isin(outcome, [o for o in OUTCOMES if is_not_stick(o)]),
-            "o",
-            SLIDE_COLOR,
-            "run: not stick",
-        ),
-        (outcome == "undetermined", "x", FAIL_COLOR, "run: undetermined"),
-    )
-    for mask, marker, color, label in groups:
+    for name in OUTCOMES:
+        mask = (outcome == name) | (~known if name == UNDETERMINED else False)
         if not mask.any():
             continue
-        ax.plot(
-            x[mask],
-            mu[mask],
-            linestyle="none",
-            marker=marker,
-            markersize=3.0,
-            color=color,
-            markeredgecolor=STICK_COLOR if marker == "o" else color,
-            markeredgewidth=0.4,
-            alpha=0.9,
-            zorder=2,
-        )
-        handles.append(
-            Line2D(
-                [],
-                [],
-                linestyle="none",
-                marker=marker,
-                markersize=4,
-                color=color,
-                markeredgecolor=STICK_COLOR if marker == "o" else color,
-                markeredgewidth=0.4,
-                label=label,
-            )
-        )
+        style = outcome_style(name)
+        look = {
+            "linestyle": "none",
+            "marker": style["marker"],
+            "color": style["color"],
+            "markeredgecolor": style["edge"],
+            "markeredgewidth": 0.4 if style["marker"] != "x" else 1.0,
+        }
+        ax.plot(x[mask], mu[mask], markersize=3.0, alpha=0.9, zorder=2, **look)
+        handles.append(Line2D([], [], markersize=4, label=f"run: {name}", **look))
     return handles

@@ -13,8 +13,7 @@ import functools
 from collections.abc import Callable
 from typing import TypeVar
 
-STICK_COLOR = "#08306b"  # dark blue: sticking
-SLIDE_COLOR = "#9ecae1"  # light blue: sliding
+from frictiondisk.verdict.outcomes import SLIDE_COLOR, STICK_COLOR  # noqa: F401 (the outcome records')
 
 TITLE_FONT_PT = 11.0
 LABEL_FONT_PT = 10.0

@@ -200,6 +200,7 @@ class NumericsChoice:
     # where they cannot reach the tol: the smallest tol they reach (the keys given fixed),
     # two significant digits rounded up; else None
     floor: float | None = None
+    horizon: str = ""  # the horizon named instead of t_decide ("t_max 4000 s": converge mode)
 
     @property
     def reaches(self) -> bool:
@@ -244,7 +245,8 @@ class NumericsChoice:
         )
 
     def _values(self) -> str:
-        return f"rtol {self.rtol:g}, atol {self.atol:g}, t_decide {self.t_decide:g} s"
+        horizon = self.horizon or f"t_decide {self.t_decide:g} s"
+        return f"rtol {self.rtol:g}, atol {self.atol:g}, {horizon}"
 
     def attrs(self) -> dict[str, Any]:
         """results.nc attributes."""
@@ -270,8 +272,10 @@ def for_campaign(base, along: Mapping[str, Any], tol: float, numerics: Any) -> N
     varied = sorted(key for key in along if key.startswith("numerics."))
     if base.numerics.method != "rodas4":
         return unrated(tol, values, f"no error model for method {base.numerics.method!r}")
-    if base.numerics.mode != "decide":
-        return unrated(tol, values, f"no error model for numerics.mode {base.numerics.mode!r}")
+    if base.numerics.mode != "decide":  # its runs end at t_max, not t_decide
+        reason = f"no error model for numerics.mode {base.numerics.mode!r}"
+        horizon = f"t_max {base.numerics.t_max:g} s"
+        return dataclasses.replace(unrated(tol, values, reason), horizon=horizon)
     if varied:
         return unrated(tol, values, f"{varied[0]} varied along the campaign: not rated")
     kinds = set()

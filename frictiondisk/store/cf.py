@@ -33,6 +33,8 @@ REFERENCES = (
     "sticking and sliding; model: docs/model.md in the frictiondisk repository"
 )
 OUTCOMES = " ".join(outcomes.OUTCOMES)
+# each outcome with what it means, from its record
+OUTCOME_MEANINGS = "; ".join(f"{r.name}: {r.description}" for r in outcomes.RECORDS)
 
 Flag = tuple[tuple[int, ...], str]  # (flag_values, flag_meanings)
 
@@ -49,7 +51,10 @@ FLAGS: dict[str, Flag] = {
 
 # text variable -> (long_name if the builder gave none, comment)
 TEXT: dict[str, tuple[str, str]] = {
-    "outcome": ("outcome of the run", f"one of: {OUTCOMES} (docs/model.md section 6)"),
+    "outcome": (
+        "outcome of the run",
+        f"one of: {OUTCOMES} (docs/model.md section 6). {OUTCOME_MEANINGS}",
+    ),
     "reason": ("why this outcome", "free text; for undetermined: what went wrong"),
     "decided_by": (
         "the rule that decided the outcome",

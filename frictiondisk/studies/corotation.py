@@ -23,6 +23,7 @@ import numpy as np
 
 from frictiondisk.studies import campaigns
 from frictiondisk.verdict import admissibility as ad
+from frictiondisk.verdict import outcomes
 
 STARTS = {"rest": 0.0, "corotating": 1.1}  # phidot0 [rad/s]
 RING = (12, 0.05)  # contact points, ring radius [m] (the default layout)
@@ -65,11 +66,15 @@ def sweep_rows(folder: Path, beta_b: float) -> list[dict]:
 
 def boundary(rows: list[dict]) -> tuple[float, float]:
     """(largest not-stick mu below the first stick, first stick mu) of a sweep."""
-    sticks = [r["mu"] for r in rows if r["outcome"] == "stick"]
+    sticks = [r["mu"] for r in rows if outcomes.is_stick(r["outcome"])]
     if not sticks:
         return math.nan, math.nan
     first = min(sticks)
-    below = [r["mu"] for r in rows if r["mu"] < first and r["outcome"] != "undetermined"]
+    below = [
+        r["mu"]
+        for r in rows
+        if r["mu"] < first and outcomes.outcome_class(r["outcome"]) != outcomes.UNDETERMINED
+    ]
     return (max(below) if below else math.nan), first
 
 
@@ -94,11 +99,17 @@ def plot(results: dict[str, list[dict]], beta_b: float, out: Path) -> Path:
     return save_figure(fig, out)
 
 
-MARKERS = {"stick": "o", "creep": "D", "stick_slip": "s", "slide": "v", "undetermined": "x"}
+def _outcome_look(outcome: outcomes.Outcome, rate_color: str) -> dict:
+    """A run's marker: its outcome's marker and face colour (the outcome records), edged in
+    the colour of the rate it marks (an unfilled marker such as x: in the outcome's)."""
+    if outcome.marker in ("x", "+", "|", "_"):
+        return {"marker": outcome.marker, "color": outcome.color}
+    return {"marker": outcome.marker, "facecolors": outcome.color, "edgecolors": rate_color}
 
 
 def draw_sweep(ax, rows: list[dict]) -> None:
-    """The three rates against mu, markers by outcome, the bounds and the jump."""
+    """The three rates against mu, markers by outcome (every outcome of the records), the
+    bounds and the jump."""
     mu = np.array([r["mu"] for r in rows])
     for key, color, label in (
         ("slip", "#1f4e79", "net slip per revolution [m]"),
@@ -107,12 +118,14 @@ def draw_sweep(ax, rows: list[dict]) -> None:
     ):
         values = np.array([r[key] for r in rows])
         ax.plot(mu, np.where(values > 0, values, np.nan), color=color, lw=0.8, label=label)
-        for outcome, marker in MARKERS.items():
-            sel = np.array([r["outcome"] == outcome for r in rows]) & (values > 0)
-            ax.scatter(mu[sel], values[sel], marker=marker, s=14, color=color)
-    for outcome, marker in MARKERS.items():
-        if any(r["outcome"] == outcome for r in rows):
-            ax.scatter([], [], marker=marker, color="0.3", label=outcome)
+        for outcome in outcomes.RECORDS:
+            sel = np.array([r["outcome"] == outcome.name for r in rows]) & (values > 0)
+            look = _outcome_look(outcome, color)
+            ax.scatter(mu[sel], values[sel], s=16, linewidths=0.8, **look)
+    for outcome in outcomes.RECORDS:
+        if any(r["outcome"] == outcome.name for r in rows):
+            look = _outcome_look(outcome, "0.3")
+            ax.scatter([], [], linewidths=0.8, label=outcome.legend, **look)
     shake = np.nanmedian([r["shakedown"] for r in rows])
     coll = np.nanmedian([r["collapse"] for r in rows])
     ax.axvline(shake, color="0.2", ls="--", lw=1, label=f"Melan shakedown bound {shake:.4f}")

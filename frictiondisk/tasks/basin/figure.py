@@ -35,6 +35,7 @@ from frictiondisk.figures.shared import (
 )
 from frictiondisk.figures.style import styled
 from frictiondisk.model.scene import describe_key
+from frictiondisk.verdict.outcomes import OUTCOMES, STICK, is_not_stick
 
 __all__ = ["plot_basin", "plot_basin_fractions", "plot_basin_map"]
 
@@ -193,7 +194,7 @@ def _curves(ax, results: xr.Dataset, dim: str, present: list[str], colors) -> No
             x, row["fraction_lo"], row["fraction_hi"], color=colors[o], alpha=BAND_ALPHA, lw=0
         )
         ax.plot(x, row["fraction"], marker="o", color=colors[o], label=o, gid=f"fraction_{o}")
-    large = [o for o in present if o not in ("stick", "undetermined")]
+    large = [o for o in present if o in OUTCOMES and is_not_stick(o)]
     if len(large) > 1:
         ax.fill_between(
             x, sorted_["not_stick_lo"], sorted_["not_stick_hi"], color="0.5", alpha=BAND_ALPHA
@@ -219,7 +220,7 @@ def _stick_map(main, ax, results: xr.Dataset, dims: list[str]) -> None:
     cx, cy = results[dims[0]], results[dims[1]]
     ix, iy = np.argsort(cx.values), np.argsort(cy.values)
     xs, ys = np.asarray(cx.values, float)[ix], np.asarray(cy.values, float)[iy]
-    stick = np.asarray(results["fraction"].sel(outcome="stick").values, float)[np.ix_(ix, iy)]
+    stick = np.asarray(results["fraction"].sel(outcome=STICK).values, float)[np.ix_(ix, iy)]
     mesh = ax.pcolormesh(cell_edges(xs), cell_edges(ys), stick.T, vmin=0, vmax=1, cmap="Blues")
     mesh.set_gid("stick_fraction")
     main.colorbar(mesh, ax=ax).set_label("stick fraction [-]")

@@ -21,10 +21,12 @@ from frictiondisk.figures.shared import (
     NON_MONOTONE_COLOR,
     add_note,
     axis_label,
+    boundary_sides,
     cell_edges,
     legend_above,
     new_figure,
     scene_title,
+    searched_key,
 )
 from frictiondisk.figures.style import styled
 from frictiondisk.tasks.find_jump.figure_kind import figure_kind
@@ -70,7 +72,8 @@ def plot_jump_grid(
     mesh = ax.pcolormesh(ex, ey, shown.T, cmap="viridis", shading="flat", zorder=1)
     mesh.set_gid("mu_star")
     cbar = main.colorbar(mesh, ax=ax)
-    cbar.set_label("jump friction coefficient \u03bc* [-]")
+    key = searched_key(results)
+    cbar.set_label(f"{key.star} [{key.unit}]: {grid_title(results)}")
     tol = results.attrs.get("tol")
     digits = max(2, math.ceil(-math.log10(float(tol))) + 1) if tol else 4
 
@@ -99,11 +102,22 @@ def plot_jump_grid(
     ax.set_ylim(ey[0], ey[-1])
     ax.set_xlabel(axis_label(cx))
     ax.set_ylabel(axis_label(cy))
-    tol_text = f" (bracket width <= {float(tol):g})" if tol else ""
-    main.suptitle(f"{scene_title(results)}: jump coefficient \u03bc*{tol_text}")
+    tol_text = f" (bracket width <= {float(tol):g}{key.unit_suffix})" if tol else ""
+    main.suptitle(f"{scene_title(results)}: {grid_title(results)}{tol_text}", wrap=True)
     if note is not None:
         add_note(note, fail_lines, f"failed points ({int(failed.sum())}):")
     return fig
+
+
+def grid_title(results: xr.Dataset) -> str:
+    """ "jump friction coefficient \u03bc*" (the stick jump), or "boundary \u03c9_m* from A
+    below to B above" (`between`, the bisected key's symbol)."""
+    key = searched_key(results)
+    sides = boundary_sides(results)
+    if sides is None:
+        what = "friction coefficient " if key.key == "params.mu" else ""
+        return f"jump {what}{key.star}"
+    return f"boundary {key.star} from {sides[0]} below to {sides[1]} above"
 
 
 def _ring(ax, box, edge: str, width: float, gid: str, zorder: int, **style: Any) -> None:

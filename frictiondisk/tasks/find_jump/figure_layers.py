@@ -13,7 +13,13 @@ from matplotlib.axes import Axes
 from matplotlib.lines import Line2D
 from matplotlib.transforms import blended_transform_factory
 
-from frictiondisk.figures.shared import LIST_WIDTH, MAX_LISTED, value_text
+from frictiondisk.figures.shared import (
+    LIST_WIDTH,
+    MAX_LISTED,
+    boundary_sides,
+    searched_key,
+    value_text,
+)
 from frictiondisk.figures.style import STICK_COLOR
 from frictiondisk.tasks.jump_search.jump_result import NO_JUMP
 
@@ -49,9 +55,12 @@ def failed_and_without(results: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
 
 def no_jump_label(results: xr.Dataset) -> str:
     """Legend text for points on whose whole prescan grid nothing sticks."""
+    key = searched_key(results)
+    sides = boundary_sides(results)
     top = float(results["scan_mu"].max()) if "scan_mu" in results.coords else math.nan
-    grid = f"up to \u03bc = {top:.3g}" if math.isfinite(top) else "of the grid"
-    return f"no jump: no value {grid} sticks (\u03bc* above)"
+    grid = f"up to {key.symbol} = {top:.3g}" if math.isfinite(top) else "of the grid"
+    verb = "sticks" if sides is None else f"gives {sides[1]}"
+    return f"no jump: no value {grid} {verb} ({key.star} above)"
 
 
 def mark_no_jump(ax: Axes, x: np.ndarray, label: str) -> Line2D:

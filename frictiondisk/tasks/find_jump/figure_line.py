@@ -1,7 +1,9 @@
 """The figure of a find_jump campaign along one key (paper Figs 9-11): `plot_jump_line`.
 
-mu* against the key, every point with its bracket [mu_lo, mu_hi] as an error bar, the
-regions "pure sticking" (above the line) and "outer limit cycle" (below) labelled, failed
+mu* (or the bisected key's value) against the key, every point with its bracket
+[mu_lo, mu_hi] as an error bar, the two sides labelled: "pure sticking" (above the line)
+and "outer limit cycle" (below) for the stick jump, the two motions of `between` in their
+outcome colours for any other boundary; failed
 points marked at the bottom of the axes and listed with their reasons, non-monotone points
 ringed; further jumps of a prescan as triangles, and optionally every run of runs.nc.
 """
@@ -23,12 +25,13 @@ from frictiondisk.figures.shared import (
     FAIL_COLOR,
     LINE_COLOR,
     MAX_LISTED,
-    MU_LABEL,
     NON_MONOTONE_COLOR,
     REGION_FONT_PT,
     RUG_Y,
+    SearchedKey,
     add_note,
     axis_label,
+    boundary_sides,
     check_vars,
     legend_above,
     make_rug_room,
@@ -36,6 +39,7 @@ from frictiondisk.figures.shared import (
     padded,
     run_dots,
     scene_title,
+    searched_key,
 )
 from frictiondisk.figures.style import STICK_COLOR, styled
 from frictiondisk.store.cf import flag_meanings
@@ -47,6 +51,7 @@ from frictiondisk.tasks.find_jump.figure_layers import (
     no_jump_label,
     point_labels,
 )
+from frictiondisk.verdict.outcomes import record
 
 RUNS_VIEW = 2.0  # runs above this many times the largest bracket end are drawn at the top
 _RUN_VARS = ("point", "mu", "outcome")
@@ -220,8 +225,11 @@ def plot_jump_line(
     failed points are numbered and listed below the plot with their reasons. Points whose
     runs contradict a single jump (monotone == 0) are ringed; `uncertain` ones (certification
     flag) are drawn hollow and named in the legend. The region above the line is
-    labelled "pure sticking", below "outer limit cycle". `show_runs` overlays every run of
-    `runs` (runs.nc) as a dot at (coordinate, mu), coloured by stick / not stick.
+    labelled "pure sticking", below "outer limit cycle" (a `between` boundary: its upper
+    and lower motion, in their outcome colours; the title names both). A find_jump that
+    bisects another key (`parameter`) names that key and its unit on the y axis and in the
+    legend. `show_runs` overlays every run of `runs` (runs.nc) as a dot at (coordinate,
+    value), in its outcome's style.
     """
     if figure_kind(results) != "jump_line":
         raise ValueError("plot_jump_line needs a find_jump result along one key")
@@ -233,20 +241,19 @@ def plot_jump_line(
     ax = main.add_subplot()
 
     extra = _further_jumps(results, line.dim)
+    key = searched_key(results)
     shown = _shown_runs(line, extra, runs if show_runs else None)
-    run_handles = _draw_runs(ax, shown)
-    handles = _draw_line(ax, results, line)
+    run_handles = _draw_runs(ax, shown, key)
+    handles = _draw_line(ax, results, line, key)
     handles += _draw_further_jumps(ax, extra)
     handles += _draw_failed(ax, results, line, shown.y_range)
     handles += _draw_non_monotone(ax, line)
-    _label_regions(fig, ax, line, shown)
+    _label_regions(fig, ax, line, shown, region_labels(results))
 
     ax.set_xlabel(axis_label(results[line.dim]))
-    ax.set_ylabel(MU_LABEL)
+    ax.set_ylabel(key.label)
     ax.grid(True, linewidth=0.4, alpha=0.5)
-    main.suptitle(
-        f"{scene_title(results)}: jump \u03bc* from the outer limit cycle to pure sticking"
-    )
+    main.suptitle(f"{scene_title(results)}: {line_title(results)}", wrap=True)
     handles += run_handles
     if handles:
         legend_above(ax, handles, 2)
@@ -263,8 +270,10 @@ def _shown_runs(line: _Line, extra: dict[str, np.ndarray], runs: xr.Dataset | No
     ends = np.concatenate([line.mu_lo[b], line.mu_hi[b], extra["lo"], extra["hi"]])
     run_x = run_mu = run_outcome = np.empty(0)
     if runs is not None:
-        check_vars(runs, (*_RUN_VARS, line.dim), "runs")
-        run_x = np.asarray(runs[line.dim].values, dtype=float)
+        check_vars(runs, _RUN_VARS, "runs")
+        # each run at its point's coordinate: a find_jump bisecting another key along mu
+        # keeps the bisected values in runs.nc's `mu`, which then is not the coordinate
+        run_x = line.x[np.asarray(runs["point"].values, dtype=int)]
         run_mu = np.asarray(runs["mu"].values, dtype=float)
         run_outcome = np.asarray(runs["outcome"].values).astype(str)
     cap = RUNS_VIEW * float(ends.max()) if ends.size else math.inf
@@ -280,7 +289,43 @@ def _shown_runs(line: _Line, extra: dict[str, np.ndarray], runs: xr.Dataset | No
     return _Runs(run_x, run_mu, run_outcome, in_view, (y_lo, y_hi))
 
 
-def _draw_runs(ax: Axes, runs: _Runs) -> list[Any]:
+def line_title(results: xr.Dataset) -> str:
+    """What the line is: the stick jump "jump \u03bc* from the outer limit cycle to pure
+    sticking", or a `between` boundary "boundary \u03bc* from self_centring (slides to rest)
+    below to slide_cycle (pure-sliding cycle) above" (the bisected key's symbol)."""
+    star = searched_key(results).star
+    sides = boundary_sides(results)
+    if sides is None:
+        return f"jump {star} from the outer limit cycle to pure sticking"
+    below, above = (_legend_of(name) for name in sides)
+    return f"boundary {star} from {below} below to {above} above"
+
+
+def _legend_of(name: str) -> str:
+    try:
+        return record(name).legend
+    except ValueError:
+        return name
+
+
+def region_labels(results: xr.Dataset) -> tuple[tuple[str, bool, str], ...]:
+    """(text, above the line, colour) of the two sides: "pure sticking" and "outer limit
+    cycle" for the stick jump, the two motions of `between` (their edge colours) else."""
+    sides = boundary_sides(results)
+    if sides is None:
+        return (("pure sticking", True, STICK_COLOR), ("outer limit cycle", False, "#3f6e8c"))
+    below, above = sides
+    return ((above, True, _edge_of(above)), (below, False, _edge_of(below)))
+
+
+def _edge_of(name: str) -> str:
+    try:
+        return record(name).edge
+    except ValueError:
+        return LINE_COLOR
+
+
+def _draw_runs(ax: Axes, runs: _Runs, key: SearchedKey) -> list[Any]:
     """Every run in view as a dot, those above it as triangles at the top; legend entries."""
     handles: list[Any] = []
     if runs.mu.size:
@@ -309,13 +354,13 @@ def _draw_runs(ax: Axes, runs: _Runs) -> list[Any]:
                 marker="^",
                 markersize=5,
                 color="0.4",
-                label=f"run above the view (\u03bc up to {runs.mu[above].max():.3g})",
+                label=f"run above the view ({key.symbol} up to {runs.mu[above].max():.3g})",
             )
         )
     return handles
 
 
-def _draw_line(ax: Axes, results: xr.Dataset, line: _Line) -> list[Any]:
+def _draw_line(ax: Axes, results: xr.Dataset, line: _Line, key: SearchedKey) -> list[Any]:
     """The converged points with their brackets, joined; the uncertain ones hollow."""
     handles: list[Any] = []
     tol = results.attrs.get("tol")
@@ -335,7 +380,7 @@ def _draw_line(ax: Axes, results: xr.Dataset, line: _Line) -> list[Any]:
             elinewidth=1.2,
             capsize=4,
             zorder=4,
-            label=f"\u03bc* with its bracket [\u03bc_lo, \u03bc_hi]{tol_text}",
+            label=f"{key.star} with its bracket [{key.symbol}_lo, {key.symbol}_hi]{tol_text}",
         )
         handles.append(container)
     uncertain = line.ok & _flagged(results, "uncertain")
@@ -350,7 +395,7 @@ def _draw_line(ax: Axes, results: xr.Dataset, line: _Line) -> list[Any]:
             markeredgecolor=LINE_COLOR,
             zorder=5,
             gid="uncertain",
-            label="uncertain: μ* not confirmed by stricter numerics (hollow)",
+            label=f"uncertain: {key.star} not confirmed by stricter numerics (hollow)",
         )
     return handles
 
@@ -448,9 +493,12 @@ def _draw_non_monotone(ax: Axes, line: _Line) -> list[Any]:
     return [Line2D([], [], markersize=10, label=label, **ring)]
 
 
-def _label_regions(fig: Figure, ax: Axes, line: _Line, runs: _Runs) -> None:
-    """The two regions of the (coordinate, mu) plane (paper Fig. 9), each labelled where
-    it is farthest from the line, the points and the runs; or "no point converged"."""
+def _label_regions(
+    fig: Figure, ax: Axes, line: _Line, runs: _Runs, labels: tuple[tuple[str, bool, str], ...]
+) -> None:
+    """The two regions of the (coordinate, mu) plane (paper Fig. 9), each labelled with its
+    (text, above, colour) of `labels` where it is farthest from the line, the points and
+    the runs; or "no point converged"."""
     if not line.ok.any():
         ax.text(
             0.5,
@@ -468,10 +516,7 @@ def _label_regions(fig: Figure, ax: Axes, line: _Line, runs: _Runs) -> None:
     fig.draw_without_rendering()  # lay out once to learn the axes size
     extent = ax.get_window_extent()
     axes_in = (extent.width / fig.dpi, extent.height / fig.dpi)
-    for text, above, color in (
-        ("pure sticking", True, STICK_COLOR),
-        ("outer limit cycle", False, "#3f6e8c"),
-    ):
+    for text, above, color in labels:
         box = (0.55 * REGION_FONT_PT * len(text) / 72, 1.4 * REGION_FONT_PT / 72)
         spot = _free_spot(ax, line.x[sel], line.mu_star[sel], others, above, box, axes_in)
         if spot is not None:

@@ -21,14 +21,17 @@ from matplotlib.transforms import blended_transform_factory
 
 from frictiondisk.figures.shared import (
     MU_LABEL,
-    OUTCOME_STYLE,
     SIZE_LABEL,
+    boundary_sides,
     fitted_legend,
     new_figure,
+    outcome_style,
     scene_title,
     value_text,
 )
 from frictiondisk.figures.style import styled
+from frictiondisk.tasks.find_jump.figure_line import line_title
+from frictiondisk.verdict.outcomes import OUTCOMES, STICK
 
 JUMP_MARK_Y = 1.0  # axes fraction of the triangle marking a located jump
 
@@ -55,14 +58,14 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
         ax.plot(scan_mu, sizes, "-", color=colors[i], lw=1.0, zorder=2)
         for outcome in np.unique(outcomes):
             sel = outcomes == outcome
-            style = OUTCOME_STYLE.get(outcome, OUTCOME_STYLE["undetermined"])
+            style = outcome_style(outcome)
             ax.plot(
                 scan_mu[sel],
                 sizes[sel],
                 linestyle="none",
                 marker=style["marker"],
                 markersize=5,
-                markerfacecolor=colors[i] if outcome == "stick" else "white",
+                markerfacecolor=colors[i] if outcome == STICK else "white",
                 markeredgecolor=colors[i],
                 zorder=3,
             )
@@ -82,10 +85,16 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
             )
         text = ", ".join(f"\u03bc* = {0.5 * (lo + hi):.5f}" for lo, hi in _jumps(results, dim, i))
         handles.append(Line2D([], [], color=colors[i], marker="o", label=f"{label}: {text}"))
-    handles += [
-        Line2D([], [], ls="none", marker="o", mfc="0.3", mec="0.3", label="stick (filled)"),
-        Line2D([], [], ls="none", marker="o", mfc="white", mec="0.3", label="stick_slip (open)"),
-    ]
+    present = set(np.asarray(results["scan_outcome"].values).astype(str).ravel())
+    for outcome in [o for o in OUTCOMES if o in present] + sorted(present - set(OUTCOMES)):
+        face = "0.3" if outcome == STICK else "white"
+        marker = outcome_style(outcome)["marker"]
+        fill = "filled" if outcome == STICK else "open"
+        handles.append(
+            Line2D(
+                [], [], ls="none", marker=marker, mfc=face, mec="0.3", label=f"{outcome} ({fill})"
+            )
+        )
     ax.set_xlabel(MU_LABEL)
     ax.set_ylabel(SIZE_LABEL)
     ax.grid(True, lw=0.4, alpha=0.5)
@@ -101,7 +110,10 @@ def plot_jump_sizes(results: xr.Dataset, runs: xr.Dataset | None = None) -> Figu
     ax.set_title("size against \u03bc; dashed line and \u25bc: located jump \u03bc*", fontsize=10)
     if zoom:
         _zoom(axes[1], results, runs, dim, middle, colors[middle])
-    main.suptitle(f"{scene_title(results)}: from the limit cycle to permanent sticking")
+    title = "from the limit cycle to permanent sticking"
+    if boundary_sides(results) is not None:
+        title = line_title(results)
+    main.suptitle(f"{scene_title(results)}: {title}", wrap=True)
     return fig
 
 
@@ -130,7 +142,7 @@ def _zoom(ax, results: xr.Dataset, runs: xr.Dataset, dim: str, i: int, color) ->
     sel = (np.asarray(runs[dim].values) == x_value) & (np.asarray(runs["mode"].values) == "decide")
     sel &= (np.asarray(runs["mu"].values) >= left) & (np.asarray(runs["mu"].values) <= right)
     mu = np.asarray(runs["mu"].values, dtype=float)[sel]  # in run order (runs.nc order)
-    stick = np.asarray(runs["outcome"].values).astype(str)[sel] == "stick"
+    stick = np.asarray(runs["outcome"].values).astype(str)[sel] == STICK
     number = np.arange(1, mu.size + 1)
     ax.plot(mu, number, "-", color="0.75", lw=0.8, zorder=1)
     ax.plot(mu[stick], number[stick], "o", color=color, ms=6, label="bisection run: stick")

@@ -10,6 +10,7 @@ import math
 import numpy as np
 import xarray as xr
 
+from frictiondisk.figures.searched import boundary_sides, searched_key
 from frictiondisk.store.tables import (
     columns,
     coordinate_specs,
@@ -25,13 +26,19 @@ from frictiondisk.tasks.jump_search.jump_result import NO_JUMP, RUN_ROLES
 
 
 def table_lines(results: xr.Dataset) -> list[str]:
-    """The mu* table and the closing lines."""
+    """The mu* table (named after the bisected key) and the closing lines."""
     lines = [runs_summary(results), uncertain_summary(results)]
-    between = [f"boundary between {results.attrs['between']}"] if "between" in results.attrs else []
+    key = searched_key(results)
+    head = []
     if "parameter" in results.attrs:
-        between.append(f"bisected parameter: {results.attrs['parameter']} (mu* below is its value)")
+        head.append(f"bisected parameter: {key.key} [{key.unit}]")
+    sides = boundary_sides(results)
+    if sides is not None:
+        head.append(
+            f"boundary between {sides[0]} (below {key.name}*) and {sides[1]} (above {key.name}*)"
+        )
     tail = [line for line in lines if line] + coexistence_lines(results)
-    return between + mu_star_table(results) + tail
+    return head + mu_star_table(results) + tail
 
 
 def mu_star_table(results: xr.Dataset) -> list[str]:
@@ -66,11 +73,14 @@ def mu_star_table(results: xr.Dataset) -> list[str]:
         if status in ("failed", NO_JUMP) and "reason" in row:
             which = failed if status == "failed" else without
             which.append((coords, str(row["reason"].values.item())))
+    key = searched_key(results)
+    unit = f" [{key.unit}]" if key.key != "params.mu" else ""
     heads = [head_of(results, d) for d in dims]
-    heads += ["mu*", "bracket [mu_lo, mu_hi]", "runs", "status"]
+    heads += [f"{key.name}*{unit}", f"bracket [{key.name}_lo, {key.name}_hi]", "runs", "status"]
     heads += ["certification"] if certified else []
     heads += ["grid below mu* decided"] if below else []
-    title = f"mu* per point (bracket width <= tol {float(tol):g}):" if tol else "mu* per point:"
+    width = f" (bracket width <= tol {float(tol):g}{key.unit_suffix})" if tol else ""
+    title = f"{key.name}* per point{width}:"
     return [
         title,
         *columns(heads, rows),

@@ -11,7 +11,7 @@ from frictiondisk.tasks.map.spec import MotionMap
 class MapEntry(TaskEntry):
     spec = MotionMap
     summary = "the motion of every cell of a plane of one or two scene keys"
-    boundary_tasks = ("trace",)
+    boundary_tasks = ("trace", "find_jump")  # any results with a mu_star
 
     def size(self, task: MotionMap) -> tuple[int, str]:
         """Every cell is a point (at most; the refinement runs fewer) of runs_per_cell runs."""

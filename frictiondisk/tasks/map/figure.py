@@ -31,7 +31,7 @@ from frictiondisk.figures.shared import (
     new_figure,
 )
 from frictiondisk.figures.style import styled
-from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
+from frictiondisk.tasks.map.table import settled_flags
 
 _VARS = ("motion", "ran", "cycle_converged", "cell_fraction")
 _TRACE_VARS = ("mu_star", "curve_first_point", "curve_points")  # what curve_points reads
@@ -75,7 +75,13 @@ def plot_map(results: xr.Dataset, boundaries: tuple[xr.Dataset, ...] = ()) -> Fi
     handles = _legend_handles(results, outcomes, colors)
     handles += _mark_runs(ax, results, dims, xs, ys)
     for k, trace in enumerate(boundaries):
-        handles += _draw_traced(ax, trace, dims, BOUNDARY_STYLES[k % len(BOUNDARY_STYLES)])
+        handles += _draw_traced(
+            ax,
+            trace,
+            dims,
+            BOUNDARY_STYLES[k % len(BOUNDARY_STYLES)],
+            results.attrs.get("param_mu"),
+        )
     legend_above(ax, handles, min(3, len(handles)))
     ran = int((results["ran"] == 1).sum())
     main.suptitle(
@@ -97,19 +103,14 @@ def _legend_handles(results: xr.Dataset, outcomes: list[str], colors) -> list[An
 
 
 def _mark_runs(ax, results: xr.Dataset, dims: list[str], xs, ys) -> list[Any]:
-    """A dot on each cell that ran (a cross where its motion had not settled); their
-    legend handles. xs, ys: the cells' values in file order."""
+    """A dot on each cell that ran, a cross where its log says "not settled" (map/table.py
+    settled_flags, in either mode); their legend handles. xs, ys: the cells' values in file
+    order."""
     ran = np.asarray(results["ran"].values)
-    settled = np.asarray(results["cycle_converged"].values)
+    settled = settled_flags(results)
     if len(dims) == 1:
         ran, settled = ran[:, None], settled[:, None]
     handles = []
-    if results.attrs.get("mode") != "converge":  # a decide run does not say whether it settled
-        settled = np.ones_like(settled)
-    # sticking is settled by its own rule (co-rotation for good), whatever cycle_converged says
-    motion = np.asarray(results["motion"].values, dtype=str)
-    sticks = np.vectorize(lambda o: o in OUTCOMES and outcome_class(o) == "stick")(motion)
-    settled = np.where(sticks.reshape(settled.shape), 1, settled)
     for flag, marker, label in ((1, ".", "cell run"), (0, "x", "run, not settled")):
         mask = (ran == 1) & ((settled != 0) if flag else (settled == 0))
         i, j = np.nonzero(mask)
@@ -122,31 +123,72 @@ def _mark_runs(ax, results: xr.Dataset, dims: list[str], xs, ys) -> list[Any]:
     return handles
 
 
-def _draw_traced(ax, trace: xr.Dataset, dims: list[str], style: tuple[str, str]) -> list[Any]:
-    """The curves of a trace results.nc, as lines through their certified points, where the
-    map's two keys are the trace's key and mu (either way round); their legend entry.
-    ValueError ("boundary ...") for any other results.nc."""
+def _draw_traced(
+    ax, trace: xr.Dataset, dims: list[str], style: tuple[str, str], map_mu: float | None
+) -> list[Any]:
+    """A boundary drawn on the map, from any results.nc with a mu_star: a trace's curves,
+    or a find_jump's line mu*(key), where the map's two keys are that key and mu (either
+    way round); a find_jump grid over the map's two keys as the contour mu* = the map's
+    mu. Its legend entry; ValueError ("boundary ...") for results it cannot place."""
     name = trace.attrs.get("campaign_name", "?")
-    if trace.attrs.get("task") != "trace":
+    task = trace.attrs.get("task")
+    if "mu_star" not in trace.variables or task not in ("trace", "find_jump"):
+        raise ValueError(f"boundary {name}: a {task!r} results.nc without mu_star")
+    if "parameter" in trace.attrs:
         raise ValueError(
-            f"boundary {name}: a motion map draws trace campaigns; this is a "
-            f"{trace.attrs.get('task')!r}"
+            f"boundary {name}: it bisects {trace.attrs['parameter']}, not mu; its values "
+            "are no mu to draw on the map"
         )
-    check_vars(trace, _TRACE_VARS, f"boundary {name} (trace)")
-    key = str(trace.attrs["trace_key_var"])
+    if task == "trace":
+        check_vars(trace, _TRACE_VARS, f"boundary {name} (trace)")
+        key = str(trace.attrs["trace_key_var"])
+        curves = curve_points(trace, key)
+    else:
+        star = trace["mu_star"].where(trace["status"] == "converged")
+        if star.ndim == 2 and set(star.dims) == set(dims):
+            return _draw_contour(ax, trace, star, dims, style, map_mu)
+        key = str(star.dims[0]) if star.ndim == 1 else "?"
+        order = np.argsort(np.asarray(star[key].values, float)) if star.ndim == 1 else []
+        ok = np.isfinite(np.asarray(star.values, float)[order]) if star.ndim == 1 else []
+        curves = [(np.asarray(star[key].values, float)[order][ok], star.values[order][ok])]
     if len(dims) != 2 or set(dims) != {key, "mu"}:
         raise ValueError(
-            f"boundary {name}: the trace runs over ({key}, mu), the map over ({', '.join(dims)})"
+            f"boundary {name}: the {task} runs over ({key}, mu), the map over ({', '.join(dims)})"
         )
     line, marker = style
-    for along, mu in curve_points(trace, key):
+    for along, mu in curves:
         x, y = (along, mu) if dims[0] == key else (mu, along)
         ax.plot(x, y, line, color="black", linewidth=1.3, zorder=5)
         ax.plot(x, y, marker, color="black", markersize=2.6, zorder=6)
-    label = f"traced {_sides(trace)}, tol {float(trace.attrs['tol']):g}"
+    what = "traced" if task == "trace" else "find_jump"
+    label = f"{what} {_sides(trace)}, tol {float(trace.attrs['tol']):g}"
     return [
         Line2D([], [], linestyle=line, marker=marker, color="black", markersize=2.6, label=label)
     ]
+
+
+def _draw_contour(ax, found: xr.Dataset, star, dims: list[str], style, mu) -> list[Any]:
+    """The contour mu*(x, y) = `mu` (the map's) of a find_jump grid over the map's keys."""
+    name = found.attrs.get("campaign_name", "?")
+    if mu is None:
+        raise ValueError(f"boundary {name}: a grid of mu* needs a map at one mu")
+    z = np.asarray(star.transpose(*dims).values, float)
+    xs, ys = (np.asarray(star[d].values, float) for d in dims)
+    ix, iy = np.argsort(xs), np.argsort(ys)
+    if not np.isfinite(z).any() or not (np.nanmin(z) <= float(mu) <= np.nanmax(z)):
+        return []
+    line, _ = style
+    ax.contour(
+        xs[ix],
+        ys[iy],
+        z[np.ix_(ix, iy)].T,
+        levels=[float(mu)],
+        colors="black",
+        linestyles=line,
+        linewidths=1.3,
+    )
+    label = f"find_jump {_sides(found)}: \u03bc* = {float(mu):g}"
+    return [Line2D([], [], linestyle=line, color="black", label=label)]
 
 
 def _sides(trace: xr.Dataset) -> str:

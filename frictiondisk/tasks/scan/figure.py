@@ -36,6 +36,7 @@ from frictiondisk.figures.shared import (
 )
 from frictiondisk.figures.style import SLIDE_COLOR, STICK_COLOR, styled
 from frictiondisk.tasks.scan.spec import DEFAULT_SCAN_MODE, Scan
+from frictiondisk.verdict.outcomes import STICK_SLIP, UNDETERMINED
 
 FIGURE_KINDS = ("scan_mu", "scan_family")
 SCAN_VARS = ("outcome", "reason", "size", "a")
@@ -125,14 +126,14 @@ def _outcome_markers(
         mask = outcome == name
         if not mask.any():
             continue
-        finite = mask & np.isfinite(value) & (name != "undetermined")
+        finite = mask & np.isfinite(value) & (name != UNDETERMINED)
         missing = mask & ~finite
         kwargs = {
             "linestyle": "none",
             "marker": style["marker"],
             "markersize": size,
             "markerfacecolor": style["color"],
-            "markeredgecolor": style["edge"] if edge is None or name == "undetermined" else edge,
+            "markeredgecolor": style["edge"] if edge is None or name == UNDETERMINED else edge,
             "markeredgewidth": 1.5 if style["marker"] == "x" or edge else 0.8,
             "zorder": 4,
         }
@@ -146,7 +147,7 @@ def _outcome_markers(
                 transform=rug,
                 clip_on=False,
                 gid=f"{gid}{name}_rug",
-                **{**kwargs, "markerfacecolor": "none" if name != "undetermined" else None},
+                **{**kwargs, "markerfacecolor": "none" if name != UNDETERMINED else None},
             )
     return on_rug
 
@@ -185,12 +186,12 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
     if not finite.any():
         ax_size.set_ylim(0.0, 1.0)
     ax_size.margins(x=0.04, y=0.1)
-    missing = ~finite | (outcome == "undetermined")
+    missing = ~finite | (outcome == UNDETERMINED)
     if missing.any():
         make_rug_room(ax_size, 0.08)
     _outcome_markers(ax_size, mu, size, outcome)
     handles = _outcome_handles(outcome)
-    if (missing & (outcome != "undetermined")).any():
+    if (missing & (outcome != UNDETERMINED)).any():
         handles.append(_NO_SIZE_HANDLE)
     ax_size.legend(handles=handles, loc="best", fontsize="small")
     ax_size.set_ylabel(SIZE_LABEL)
@@ -198,7 +199,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
     ax_size.tick_params(labelbottom=False)
     main.suptitle(f"{scene_title(results)}: limit cycle size against \u03bc")
 
-    cycle = (outcome == "stick_slip") & np.isfinite(a)
+    cycle = (outcome == STICK_SLIP) & np.isfinite(a)
     if cycle.any():
         ax_a.plot(
             mu[cycle],
@@ -207,7 +208,7 @@ def plot_scan_mu(results: xr.Dataset) -> Figure:
             marker="o",
             markersize=6,
             markerfacecolor=SLIDE_COLOR,
-            markeredgecolor=OUTCOME_STYLE["stick_slip"]["edge"],
+            markeredgecolor=OUTCOME_STYLE[STICK_SLIP]["edge"],
             label="stick_slip (converged cycle)",
             gid="a_points",
         )
@@ -274,7 +275,7 @@ def plot_scan_family(results: xr.Dataset) -> Figure:
         ax.set_ylim(*padded(finite_all.min(), finite_all.max(), 0.08))
     else:
         ax.set_ylim(0.0, 1.0)
-    missing = ~np.isfinite(size_all) | (outcome_all == "undetermined")
+    missing = ~np.isfinite(size_all) | (outcome_all == UNDETERMINED)
     rows_needed = [k for k in range(n) if missing[k].any()]
     rug_rows = {k: RUG_Y + 0.035 * j for j, k in enumerate(rows_needed)}
     if rows_needed:
@@ -325,7 +326,7 @@ def plot_scan_family(results: xr.Dataset) -> Figure:
     )
     ax.add_artist(first)
     outcome_handles = _outcome_handles(outcome_all)
-    if (missing & (outcome_all != "undetermined")).any():
+    if (missing & (outcome_all != UNDETERMINED)).any():
         outcome_handles.append(_NO_SIZE_HANDLE)
     ax.legend(
         handles=outcome_handles,

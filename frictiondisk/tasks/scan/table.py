@@ -14,6 +14,7 @@ from frictiondisk.store.tables import (
     point_rows,
     reasons,
 )
+from frictiondisk.verdict.outcomes import UNDETERMINED
 
 
 def scan_table(results: xr.Dataset) -> list[str]:
@@ -30,7 +31,7 @@ def scan_table(results: xr.Dataset) -> list[str]:
         # one column per measure the file has (as the heads below)
         measures = [number(float(row[m]), ".4g") for m in ("size", "a") if m in results]
         rows.append([f"{c:{f}}" for c, f in zip(coords, specs, strict=True)] + [outcome, *measures])
-        if outcome == "undetermined" and "reason" in row:
+        if outcome == UNDETERMINED and "reason" in row:
             undetermined.append((coords, str(row["reason"].values.item())))
     heads = [head_of(results, d) for d in dims]
     heads += ["outcome", *(head_of(results, m) for m in ("size", "a") if m in results)]

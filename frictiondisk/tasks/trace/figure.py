@@ -4,8 +4,9 @@ Each curve is drawn through its certified points, with a shaded band on its stic
 (a curve's points are stored with the sticking side on the left of their order); folds,
 where two jumps meet and a sticking window or gap closes, are marked with their bracket;
 uncertain points are hollow; the first look's keys are thin vertical lines; optionally
-every run of runs.nc as a dot (stick dark, not stick light), which shows how the curves
-were followed.
+every run of runs.nc as a dot in its outcome's style, which shows how the curves were
+followed. A trace `between` two motions names them in the title and shades the side of
+its upper motion in that motion's colour.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from frictiondisk.figures.shared import (
     MU_LABEL,
     NON_MONOTONE_COLOR,
     axis_label,
+    boundary_sides,
     check_vars,
     new_figure,
     run_dots,
@@ -32,6 +34,7 @@ from frictiondisk.figures.shared import (
 )
 from frictiondisk.figures.style import STICK_COLOR, styled
 from frictiondisk.store.cf import flag_meanings
+from frictiondisk.verdict.outcomes import record
 
 BAND = 0.025  # width of the sticking side's band, as a fraction of the plane
 CURVE_COLORS = ("0.15", "#6a3d9a", "#b15928", "#1f78b4", "#33a02c", "#e31a1c")
@@ -101,7 +104,7 @@ def plot_trace(
             va="center",
             color=FAIL_COLOR,
         )
-    main.suptitle(f"{scene_title(results)}: jump curves in the ({name}, \u03bc) plane")
+    main.suptitle(f"{scene_title(results)}: {_title(results, name)}", wrap=True)
     if handles:
         ax.legend(
             handles=handles,
@@ -124,10 +127,34 @@ def _draw_first_look(ax, results: xr.Dataset, name: str) -> list[Any]:
     return []
 
 
+def _title(results: xr.Dataset, name: str) -> str:
+    """ "jump curves in the (x_ms, \u03bc) plane", or for a boundary between two motions
+    "boundary curves between A and B in the ... plane"."""
+    sides = boundary_sides(results)
+    plane = f"in the ({name}, \u03bc) plane"
+    if sides is None:
+        return f"jump curves {plane}"
+    return f"boundary curves between {sides[0]} and {sides[1]} {plane}"
+
+
+def _shaded_side(results: xr.Dataset) -> tuple[str, str]:
+    """(legend text, colour) of the side left of a curve's order: sticking for the stick
+    jump, the upper motion of `between` (its outcome colour) else."""
+    sides = boundary_sides(results)
+    if sides is None:
+        return "its sticking side", STICK_COLOR
+    try:
+        color = record(sides[1]).color
+    except ValueError:
+        color = STICK_COLOR
+    return f"its {sides[1]} side", color
+
+
 def _draw_curves(ax, results: xr.Dataset, name: str, origin, shown) -> list[Any]:
     """Each curve through its points, its sticking side shaded (a band `shown` wide in
     units of the view, from `origin`: the plane's low corner); their legend entries."""
     key_lo, mu_lo = origin
+    side_label, side_color = _shaded_side(results)
     for c, (points_key, points_mu) in enumerate(curve_points(results, name)):
         color = CURVE_COLORS[c % len(CURVE_COLORS)]
         ck, cm = points_key, points_mu  # a closed curve's line returns to its first point
@@ -136,7 +163,7 @@ def _draw_curves(ax, results: xr.Dataset, name: str, origin, shown) -> list[Any]
         if len(ck) > 1:
             ax.fill(
                 *_band(ck - key_lo, cm - mu_lo, shown).T + np.array([[key_lo], [mu_lo]]),
-                color=STICK_COLOR,
+                color=side_color,
                 alpha=0.18,
                 linewidth=0,
                 zorder=1,
@@ -153,9 +180,10 @@ def _draw_curves(ax, results: xr.Dataset, name: str, origin, shown) -> list[Any]
             color=LINE_COLOR,
             marker="o",
             markersize=3.2,
-            label=f"jump curve: certified points, tol {tol:g} in \u03bc",
+            label=f"{'jump' if boundary_sides(results) is None else 'boundary'} curve: "
+            f"certified points, tol {tol:g} in \u03bc",
         ),
-        Patch(color=STICK_COLOR, alpha=0.18, label="its sticking side"),
+        Patch(color=side_color, alpha=0.18, label=side_label),
     ]
 
 
