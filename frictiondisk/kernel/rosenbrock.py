@@ -2,7 +2,8 @@
 
 The one stepper of the kernel (diffrax's `AbstractRosenbrock` with a `RosenbrockTableau`,
 scipy's `rk_step` over tableau arrays): RODAS4 and RODAS5 are tableaux
-(kernel/tableaux.py), not code. The stepper knows nothing of contacts or events: it
+(kernel/tableaux.py), not code: `make_rosenbrock_step(tableau)` compiles the one stage loop
+for a tableau. The stepper knows nothing of contacts or events: it
 advances y' = rhs(y) in fixed modes. Step-size control is kernel/controller.py; events and
 switching are kernel/switching.py; the step loop (frictiondisk/simulation/loop.py) calls
 them.
@@ -45,65 +46,66 @@ def factor_stage_matrix(p, pts, modes, y0, gamma_h, jac, lu, piv, wk):
     return stage_factor(jac, 1.0 / gamma_h, lu, piv)
 
 
-@kernel_jit
-def rosenbrock_step(tableau, p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
-    """Advance from y0 (with f0 = rhs(y0)) by h with the method `tableau`
-    (kernel/tableaux.py). Writes y1 and the dense output rows.
+def make_rosenbrock_step(tableau):
+    """The step of the method `tableau` (kernel/tableaux.py), compiled with its
+    coefficients and stage counts as constants (numba freezes a closure's values), so
+    that the stage loops unroll as a hand-written step would; numba's cache tells the
+    methods apart by those values.
 
-    jac, lu, piv come from linalg.stage_workspace: dense, or the O(N) arrow form.
-    Returns False if the stage matrix is singular or a value is not finite. The error
-    estimate is left in the last stage's row (error_row).
+    The step: rosenbrock_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1) advances
+    from y0 (with f0 = rhs(y0)) by h, writes y1 and the dense output rows, and leaves the
+    error estimate in the last stage's row. jac, lu, piv come from linalg.stage_workspace:
+    dense, or the O(N) arrow form. It returns False if the stage matrix is singular or a
+    value is not finite.
     """
-    n = y0.shape[0]
-    a, c = tableau.a, tableau.c
-    if not factor_stage_matrix(p, pts, modes, y0, tableau.gamma * h, jac, lu, piv, wk):
-        return False
-    ytmp = wk[W_Y]
-    ftmp = wk[W_F]
-    b = wk[W_B]
-    stage_solve(lu, piv, f0, wk[W_K1])
-    for s in range(1, tableau.stages):
-        if s < tableau.explicit_stages:
-            for i in range(n):
-                point = y0[i]
-                for j in range(s):
-                    point += a[s, j] * wk[W_K1 + j, i]
-                ytmp[i] = point
-        else:  # stiffly accurate: the previous stage's point plus the previous stage
-            for i in range(n):
-                ytmp[i] += wk[W_K1 + s - 1, i]
-        rhs(p, pts, modes, ytmp, ftmp)
-        for i in range(n):
-            coupling = c[s, 0] * wk[W_K1, i]
-            for j in range(1, s):
-                coupling += c[s, j] * wk[W_K1 + j, i]
-            b[i] = ftmp[i] + coupling / h
-        stage_solve(lu, piv, b, wk[W_K1 + s])
-    last = wk[W_K1 + tableau.stages - 1]
-    for i in range(n):
-        y1[i] = ytmp[i] + last[i]
-        if not math.isfinite(y1[i]):
+    gamma, a, c, d = tableau.gamma, tableau.a, tableau.c, tableau.dense
+    stages, explicit_stages = tableau.stages, tableau.explicit_stages
+    dense_rows, dense_stages = tableau.dense_rows, tableau.dense_stages
+
+    @kernel_jit
+    def rosenbrock_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
+        n = y0.shape[0]
+        if not factor_stage_matrix(p, pts, modes, y0, gamma * h, jac, lu, piv, wk):
             return False
-    dense_rows(tableau, wk, n)
-    return True
-
-
-@kernel_jit
-def dense_rows(tableau, wk, n):
-    """The dense-output rows W_Q1 .. W_Q3 of the last step: q_m = sum_j d_mj k_j in stage
-    order (a method with fewer rows leaves the rest 0)."""
-    d = tableau.dense
-    for m in range(3):
-        q = wk[W_Q1 + m]
-        if m >= tableau.dense_rows:
+        ytmp = wk[W_Y]
+        ftmp = wk[W_F]
+        b = wk[W_B]
+        stage_solve(lu, piv, f0, wk[W_K1])
+        for s in range(1, stages):
+            if s < explicit_stages:
+                for i in range(n):
+                    point = y0[i]
+                    for j in range(s):
+                        point += a[s, j] * wk[W_K1 + j, i]
+                    ytmp[i] = point
+            else:  # stiffly accurate: the previous stage's point plus the previous stage
+                for i in range(n):
+                    ytmp[i] += wk[W_K1 + s - 1, i]
+            rhs(p, pts, modes, ytmp, ftmp)
             for i in range(n):
-                q[i] = 0.0
-            continue
+                coupling = c[s, 0] * wk[W_K1, i]
+                for j in range(1, s):
+                    coupling += c[s, j] * wk[W_K1 + j, i]
+                b[i] = ftmp[i] + coupling / h
+            stage_solve(lu, piv, b, wk[W_K1 + s])
+        last = wk[W_K1 + stages - 1]
         for i in range(n):
-            value = d[m, 0] * wk[W_K1, i]
-            for j in range(1, tableau.dense_stages):
-                value += d[m, j] * wk[W_K1 + j, i]
-            q[i] = value
+            y1[i] = ytmp[i] + last[i]
+            if not math.isfinite(y1[i]):
+                return False
+        # the dense-output rows q_m = sum_j d_mj k_j in stage order (unused rows are 0)
+        for m in range(3):
+            q = wk[W_Q1 + m]
+            for i in range(n):
+                value = 0.0
+                if m < dense_rows:
+                    value = d[m, 0] * wk[W_K1, i]
+                    for j in range(1, dense_stages):
+                        value += d[m, j] * wk[W_K1 + j, i]
+                q[i] = value
+        return True
+
+    return rosenbrock_step
 
 
 @kernel_jit

@@ -3,20 +3,23 @@
 (kernel/tableaux.py) of the one stepper (kernel/rosenbrock.py)."""
 
 from .jit import kernel_jit
-from .rosenbrock import W_K1, rosenbrock_step
+from .rosenbrock import W_K1, make_rosenbrock_step
 from .tableaux import RODAS4 as RODAS4_TABLEAU
 from .tableaux import RODAS5 as RODAS5_TABLEAU
 
 RODAS4 = 0
 RODAS5 = 1
 
+rodas4_step = make_rosenbrock_step(RODAS4_TABLEAU)
+rodas5_step = make_rosenbrock_step(RODAS5_TABLEAU)
+
 
 @kernel_jit
 def step(options, p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
     """One step of the chosen method (rosenbrock_step's arguments and result)."""
     if options.stepper == RODAS5:
-        return rosenbrock_step(RODAS5_TABLEAU, p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1)
-    return rosenbrock_step(RODAS4_TABLEAU, p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1)
+        return rodas5_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1)
+    return rodas4_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1)
 
 
 @kernel_jit
