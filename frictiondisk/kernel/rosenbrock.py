@@ -19,7 +19,7 @@ replaced.
 
 import math
 
-from .jit import kernel_jit
+from .jit import kernel_jit, kernel_jit_inline
 from .linalg import is_dense, stage_factor, stage_solve
 from .model import jacobian, jacobian_arrow, rhs
 
@@ -48,9 +48,9 @@ def factor_stage_matrix(p, pts, modes, y0, gamma_h, jac, lu, piv, wk):
 
 def make_rosenbrock_step(tableau):
     """The step of the method `tableau` (kernel/tableaux.py), compiled with its
-    coefficients and stage counts as constants (numba freezes a closure's values), so
-    that the stage loops unroll as a hand-written step would; numba's cache tells the
-    methods apart by those values.
+    coefficients and stage counts as constants (numba freezes a closure's values; its
+    cache tells the methods apart by them). Each stage is one call of the stage function
+    with a constant stage index, inlined, so that its sums unroll as in a hand-written step.
 
     The step: rosenbrock_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1) advances
     from y0 (with f0 = rhs(y0)) by h, writes y1 and the dense output rows, and leaves the
@@ -62,32 +62,47 @@ def make_rosenbrock_step(tableau):
     stages, explicit_stages = tableau.stages, tableau.explicit_stages
     dense_rows, dense_stages = tableau.dense_rows, tableau.dense_stages
 
+    @kernel_jit_inline
+    def stage(s, p, pts, modes, y0, h, lu, piv, wk):
+        """Stage s (0 < s < stages) from the stages before it."""
+        if s >= stages:
+            return
+        n = y0.shape[0]
+        ytmp = wk[W_Y]
+        ftmp = wk[W_F]
+        b = wk[W_B]
+        if s < explicit_stages:
+            for i in range(n):
+                point = y0[i]
+                for j in range(s):
+                    point += a[s, j] * wk[W_K1 + j, i]
+                ytmp[i] = point
+        else:  # stiffly accurate: the previous stage's point plus the previous stage
+            for i in range(n):
+                ytmp[i] += wk[W_K1 + s - 1, i]
+        rhs(p, pts, modes, ytmp, ftmp)
+        for i in range(n):
+            coupling = c[s, 0] * wk[W_K1, i]
+            for j in range(1, s):
+                coupling += c[s, j] * wk[W_K1 + j, i]
+            b[i] = ftmp[i] + coupling / h
+        stage_solve(lu, piv, b, wk[W_K1 + s])
+
     @kernel_jit
     def rosenbrock_step(p, pts, modes, y0, f0, h, jac, lu, piv, wk, y1):
         n = y0.shape[0]
         if not factor_stage_matrix(p, pts, modes, y0, gamma * h, jac, lu, piv, wk):
             return False
-        ytmp = wk[W_Y]
-        ftmp = wk[W_F]
-        b = wk[W_B]
         stage_solve(lu, piv, f0, wk[W_K1])
-        for s in range(1, stages):
-            if s < explicit_stages:
-                for i in range(n):
-                    point = y0[i]
-                    for j in range(s):
-                        point += a[s, j] * wk[W_K1 + j, i]
-                    ytmp[i] = point
-            else:  # stiffly accurate: the previous stage's point plus the previous stage
-                for i in range(n):
-                    ytmp[i] += wk[W_K1 + s - 1, i]
-            rhs(p, pts, modes, ytmp, ftmp)
-            for i in range(n):
-                coupling = c[s, 0] * wk[W_K1, i]
-                for j in range(1, s):
-                    coupling += c[s, j] * wk[W_K1 + j, i]
-                b[i] = ftmp[i] + coupling / h
-            stage_solve(lu, piv, b, wk[W_K1 + s])
+        # one call a stage (MAX_STAGES in all), each with its index as a constant
+        stage(1, p, pts, modes, y0, h, lu, piv, wk)
+        stage(2, p, pts, modes, y0, h, lu, piv, wk)
+        stage(3, p, pts, modes, y0, h, lu, piv, wk)
+        stage(4, p, pts, modes, y0, h, lu, piv, wk)
+        stage(5, p, pts, modes, y0, h, lu, piv, wk)
+        stage(6, p, pts, modes, y0, h, lu, piv, wk)
+        stage(7, p, pts, modes, y0, h, lu, piv, wk)
+        ytmp = wk[W_Y]
         last = wk[W_K1 + stages - 1]
         for i in range(n):
             y1[i] = ytmp[i] + last[i]
