@@ -38,6 +38,11 @@ CASES = {  # bench_kernel's two pin runs, and two disks
         "params": {"mu": 0.2, "x_ms": 0.1},
         "numerics": {"mode": "decide"},
     },
+    "pin decision run, rodas5 at rtol 1e-8 (certification's runs)": {
+        "scene": "pin",
+        "params": {"mu": 0.13},
+        "numerics": {"method": "rodas5", "rtol": 1e-8},
+    },
     "braked co-rotating disk (mu 0.3, beta_b 0.005)": {
         "scene": "disk",
         "params": {"mu": 0.3, "x_ms": 0.1, "beta_b": 0.005, "phidot0": 1.1},

@@ -129,8 +129,8 @@ def test_the_graph_is_read():
     graph = import_graph()
     assert "frictiondisk.verdict.machine" in graph["frictiondisk.simulation.loop"]
     assert "frictiondisk.engine.runner" in MODULES
-    rodas = MODULES["frictiondisk.kernel.rodas"]  # `from .linalg import`: relative
-    assert "frictiondisk.kernel.linalg" in imported_names("frictiondisk.kernel.rodas", rodas)
+    stepper = MODULES["frictiondisk.kernel.rosenbrock"]  # `from .linalg import`: relative
+    assert "frictiondisk.kernel.linalg" in imported_names("frictiondisk.kernel.rosenbrock", stepper)
 
 
 def test_every_module_lies_in_a_layer():

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from frictiondisk.kernel import linalg, model, rodas
+from frictiondisk.kernel import linalg, model, rosenbrock
 from frictiondisk.kernel.model import SLIDE, STICK
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.pack import initial_state, pack_parameters
@@ -129,12 +129,12 @@ def test_o1_stick_rate_and_contact_dense_output_match_the_full_ones(name):
             fast = model.stick_rate_given(p, pts, modes, y, f, i, buf)
             slow = model.stick_rate(p, pts, modes, y, i, full)
             assert fast == pytest.approx(slow, rel=1e-12, abs=1e-12 * np.abs(f).max())
-        wk = rng.standard_normal((rodas.N_WORK_ROWS, n))
+        wk = rng.standard_normal((rosenbrock.N_WORK_ROWS, n))
         y1 = y + 0.01 * rng.standard_normal(n)
-        rodas.dense_eval(y, y1, wk, 0.3, full)
+        rosenbrock.dense_eval(y, y1, wk, 0.3, full)
         for i in range(pts.shape[0]):
             part = np.full(n, np.nan)
-            rodas.dense_eval_contact(y, y1, wk, 0.3, part, nq, i)
+            rosenbrock.dense_eval_contact(y, y1, wk, 0.3, part, nq, i)
             used = np.r_[0 : 2 * nq, 2 * nq + 2 * i, 2 * nq + 2 * i + 1]
             assert np.array_equal(part[used], full[used])
             for mode in (STICK, SLIDE):

@@ -8,7 +8,7 @@ import pytest
 from scipy.linalg import expm
 
 from frictiondisk.kernel import coefficients_rodas5 as co5
-from frictiondisk.kernel import events, model, rodas, rodas5
+from frictiondisk.kernel import events, model, rosenbrock, tableaux
 from frictiondisk.kernel.model import SLIDE, STICK
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.pack import initial_state, pack_parameters
@@ -88,7 +88,7 @@ def _fixed_steps(step, p, pts, modes, y0, t_end, steps, error_row):
     y, y1, f = y0.copy(), np.empty(n), np.empty(n)
     jac, lu = np.empty((n, n)), np.empty((n, n))
     piv = np.empty(n, dtype=np.int64)
-    wk = np.empty((rodas.N_WORK_ROWS, n))
+    wk = np.empty((rosenbrock.N_WORK_ROWS, n))
     estimate = 0.0
     for _ in range(steps):
         model.rhs(p, pts, modes, y, f)
@@ -99,11 +99,13 @@ def _fixed_steps(step, p, pts, modes, y0, t_end, steps, error_row):
 
 
 @pytest.mark.parametrize(
-    "step, error_row, order",
-    [(rodas.rodas_step, rodas.W_K6, 4), (rodas5.rodas5_step, rodas.W_K8, 5)],
+    "tableau, order",
+    [(tableaux.RODAS4, 4), (tableaux.RODAS5, 5)],
     ids=["rodas4", "rodas5"],
 )
-def test_rosenbrock_steppers_converge_at_their_order_on_a_smooth_problem(step, error_row, order):
+def test_rosenbrock_steppers_converge_at_their_order_on_a_smooth_problem(tableau, order):
+    step = rosenbrock.make_rosenbrock_step(tableau)
+    error_row = rosenbrock.W_K1 + tableau.stages - 1
     p, pts, y0, modes = _linear_stuck_pin()
     t_end = 2.0
     exact = _exact_flow(p, pts, modes, y0, t_end)
@@ -157,9 +159,10 @@ def test_rodas5_tableau_is_the_transformed_alpha_gamma_form_of_di_marzo():
 
 
 @pytest.mark.parametrize(
-    "step, order", [(rodas.rodas_step, 3), (rodas5.rodas5_step, 4)], ids=["rodas4", "rodas5"]
+    "tableau, order", [(tableaux.RODAS4, 3), (tableaux.RODAS5, 4)], ids=["rodas4", "rodas5"]
 )
-def test_dense_output_has_its_order_inside_the_step(step, order):
+def test_dense_output_has_its_order_inside_the_step(tableau, order):
+    step = rosenbrock.make_rosenbrock_step(tableau)
     p, pts, y0, modes = _linear_stuck_pin()
     n = y0.size
 
@@ -167,15 +170,15 @@ def test_dense_output_has_its_order_inside_the_step(step, order):
         f, y1 = np.empty(n), np.empty(n)
         jac, lu = np.empty((n, n)), np.empty((n, n))
         piv = np.empty(n, dtype=np.int64)
-        wk = np.empty((rodas.N_WORK_ROWS, n))
+        wk = np.empty((rosenbrock.N_WORK_ROWS, n))
         model.rhs(p, pts, modes, y0, f)
         step(p, pts, modes, y0, f, h, jac, lu, piv, wk, y1)
         out = np.empty(n)
         error = 0.0
         for s in (0.0, 0.37, 0.81, 1.0):
-            rodas.dense_eval(y0, y1, wk, s, out)
+            rosenbrock.dense_eval(y0, y1, wk, s, out)
             error = max(error, np.abs(out - _exact_flow(p, pts, modes, y0, s * h)).max())
-        rodas.dense_eval(y0, y1, wk, 1.0, out)
+        rosenbrock.dense_eval(y0, y1, wk, 1.0, out)
         assert np.array_equal(out, y1)  # it ends where the step does
         return error
 
@@ -243,9 +246,9 @@ def test_graze_inside_a_step_is_found():
     y0[0], y0[1] = 0.1, 0.0
     y0[2], y0[3] = 0.0, 0.11  # moving with the master point
     y1 = y0.copy()
-    wk = np.zeros((rodas.N_WORK_ROWS, n))
+    wk = np.zeros((rosenbrock.N_WORK_ROWS, n))
     # y(s) = y0 + s (1 - s) (q1 + s q2) when y1 = y0: add a bump to Z_x of height 4 * 0.14
-    wk[rodas.W_Q1, 4] = 4 * 0.14
+    wk[rosenbrock.W_Q1, 4] = 4 * 0.14
     sigma = 1.0  # stick: event when s crosses 0 upwards
     w0 = sigma * model.switch_value(p, pts, y0, 0, STICK)
     w1 = sigma * model.switch_value(p, pts, y1, 0, STICK)

@@ -11,7 +11,7 @@ import math
 
 from . import coefficients as co
 from .jit import kernel_jit
-from .rodas import error_norm
+from .rosenbrock import error_norm
 from .steppers import error_exponent
 
 FIRST_STEP = 1e-4  # [s] the adaptive controller's first step (at most h_max)

@@ -34,7 +34,7 @@ import numpy as np
 
 from .jit import kernel_entry, kernel_jit
 from .model import STICK, contact_constants, friction_limit, n_coords
-from .rodas import dense_eval
+from .rosenbrock import dense_eval
 
 # The energy record of a run (kernel/records.py RUN_STATE.energy)
 ENERGY = np.dtype(

@@ -24,7 +24,7 @@ import math
 
 from .jit import kernel_jit
 from .model import n_coords, stick_rate, switch_value
-from .rodas import dense_eval, dense_eval_contact
+from .rosenbrock import dense_eval, dense_eval_contact
 
 GOLDEN = 0.3819660112501051  # (3 - sqrt(5)) / 2
 GRAZE_SCAN = 24  # golden-section iterations when a graze is suspected

@@ -113,12 +113,14 @@ class KernelDispatcher(CPUDispatcher):
         return _compile(twin, counted, internal=False)
 
 
-def _compile(function, counted: bool, internal: bool):
+def _compile(function, counted: bool, internal: bool, inline: bool = False):
     """`function` compiled by numba with the kernel's options, cached (`_nrt` explicitly:
     numba lets a callee inherit its caller's unset flag)."""
     if nb.config.DISABLE_JIT:  # NUMBA_DISABLE_JIT: the plain function
         return function
     options = {**_OPTIONS, "_nrt": counted, **(_INTERNAL if internal else {})}
+    if inline:
+        options["inline"] = "always"
     dispatcher_class = KernelDispatcher if internal else CPUDispatcher
     dispatcher = dispatcher_class(py_func=function, locals={}, targetoptions=options)
     dispatcher.enable_caching()
@@ -130,6 +132,13 @@ def kernel_jit(function):
     `KernelDispatcher`), and the arguments of calls from other kernel functions typed
     without literals."""
     return _compile(function, counted=False, internal=True)
+
+
+def kernel_jit_inline(function):
+    """`kernel_jit` for a function numba inlines where it is called (its IR, before
+    typing): a constant argument of the call (a Rosenbrock stage's index) is then a
+    constant in its body, and the loops it bounds unroll."""
+    return _compile(function, counted=False, internal=True, inline=True)
 
 
 def kernel_jit_allocating(function):

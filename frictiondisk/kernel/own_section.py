@@ -24,7 +24,7 @@ from .events import hermite_max
 from .jit import kernel_jit
 from .monitor import window_fractions
 from .records import OWN_RING
-from .rodas import dense_eval_contact
+from .rosenbrock import dense_eval_contact
 
 TWO_PI = 2.0 * math.pi
 BISECTIONS = 60  # halvings of the step fraction: below round-off of any step

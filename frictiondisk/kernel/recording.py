@@ -7,7 +7,7 @@ import math
 
 from .jit import kernel_jit
 from .linalg import copy_vector
-from .rodas import dense_eval
+from .rosenbrock import dense_eval
 
 
 @kernel_jit

@@ -22,7 +22,7 @@ import numpy as np
 from .events import KIND_REENTRY, KIND_RISE, KIND_SWITCH, SIMULTANEOUS, brent_root, find_graze
 from .jit import kernel_jit
 from .model import SLIDE, STICK, rhs, stick_rate_given, switch_rate, switch_value
-from .rodas import dense_eval_contact
+from .rosenbrock import dense_eval_contact
 
 ENTERED_NONE = 0  # no switch at this event
 ENTERED_CROSSING = 1  # switched by crossing its threshold (a stick entry may be refused)

@@ -32,7 +32,7 @@ from frictiondisk.kernel.jit import kernel_entry_allocating, kernel_jit, kernel_
 from frictiondisk.kernel.linalg import copy_vector, stage_workspace
 from frictiondisk.kernel.model import n_coords, rhs
 from frictiondisk.kernel.recording import record_dense, record_state
-from frictiondisk.kernel.rodas import N_WORK_ROWS, dense_eval
+from frictiondisk.kernel.rosenbrock import N_WORK_ROWS, dense_eval
 from frictiondisk.verdict import machine
 from frictiondisk.verdict.records import RECHECK, STOP
 from frictiondisk.verdict.section_sequence import new_sequence
