@@ -187,9 +187,8 @@ def test_every_generated_block_equals_what_the_code_generates():
 
 
 def test_the_outcome_meanings_name_exactly_the_outcomes_of_the_code():
-    from frictiondisk.cli.docs_blocks import OUTCOME_MEANING, outcomes_table
+    from frictiondisk.cli.docs_blocks import outcomes_table
 
-    assert tuple(OUTCOME_MEANING) == OUTCOMES
     table = outcomes_table()
     assert table.count("\n| `") == len(OUTCOMES)
     for page in ("README.md", "docs/user-guide.md", "docs/model.md"):
@@ -201,11 +200,8 @@ def test_the_generated_blocks_follow_a_change_of_the_code(monkeypatch):
     from frictiondisk.cli import docs_blocks
     from frictiondisk.verdict import outcomes
 
-    monkeypatch.setattr(outcomes, "OUTCOMES", (*OUTCOMES, "wobble"))
-    monkeypatch.setattr(
-        outcomes, "OUTCOME_CLASS", {**outcomes.OUTCOME_CLASS, "wobble": "not_stick"}
-    )
-    monkeypatch.setitem(docs_blocks.OUTCOME_MEANING, "wobble", "wobbles")
+    wobble = outcomes.Outcome("wobble", "not_stick", "wobbles", "k", "k", "o", "wobble")
+    monkeypatch.setattr(outcomes, "RECORDS", (*outcomes.RECORDS, wobble))
     assert "| `wobble` | wobbles | not stick |" in docs_blocks.outcomes_table()
     assert "README.md" in docs_blocks.stale_blocks(ROOT)
 

@@ -26,24 +26,7 @@ START = "<!-- generated: {name} -->"
 END = "<!-- end generated -->"
 _BLOCK = re.compile(r"<!-- generated: ([a-z-]+) -->\n(.*?)<!-- end generated -->", re.S)
 
-# What each outcome means to a user, in the words of the README and docs/model.md; the
-# names, their order and their side of the jump come from verdict/outcomes.py, and
-# tests/test_docs.py holds this mapping to exactly those names.
-OUTCOME_MEANING = {
-    "stick": "co-rotates with the master for good: its plastic slip per revolution has died out",
-    "creep": "keeps its small orbit but ratchets: a steady slip every revolution that does "
-    "not die out",
-    "stick_slip": "runs on a limit cycle, sticking as a whole for part of it and sliding "
-    "for the rest",
-    "self_centring": "slides to rest at a sliding equilibrium near the master axis",
-    "slide_cycle": "slides on a limit cycle: the pin's large whirl, the braked disk's "
-    "circular whirl",
-    "modulated": "slides on a whirl whose radius and spin swell and shrink on a slow envelope",
-    "slide": "does not stick, and its motion is not (yet) shown to be one of the above",
-    "undetermined": "could not be decided; the reason says why (integrator failure, or "
-    "still settling when the horizon budget ran out)",
-}
-_SIDE = {"stick": "stick", "not_stick": "not stick", "undetermined": "—"}
+_SIDE = {"stick": "stick", "not_stick": "not stick", "undetermined": "—"}  # by Outcome.side
 
 
 def _cell(text: str) -> str:
@@ -52,14 +35,13 @@ def _cell(text: str) -> str:
 
 
 def outcomes_table() -> str:
-    """Every outcome in listing order: what the slave does, and its side of the jump."""
-    from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
+    """Every outcome in listing order (verdict/outcomes.py RECORDS): what it means, and its
+    side of the jump."""
+    from frictiondisk.verdict import outcomes
 
-    lines = ["| outcome | the slave … | side of the jump |", "|---|---|---|"]
-    for name in OUTCOMES:
-        lines.append(
-            f"| `{name}` | {_cell(OUTCOME_MEANING[name])} | {_SIDE[outcome_class(name)]} |"
-        )
+    lines = ["| outcome | what the run showed | side of the jump |", "|---|---|---|"]
+    for record in outcomes.RECORDS:
+        lines.append(f"| `{record.name}` | {_cell(record.description)} | {_SIDE[record.side]} |")
     return "\n".join(lines)
 
 
