@@ -26,8 +26,6 @@ START = "<!-- generated: {name} -->"
 END = "<!-- end generated -->"
 _BLOCK = re.compile(r"<!-- generated: ([a-z-]+) -->\n(.*?)<!-- end generated -->", re.S)
 
-_SIDE = {"stick": "stick", "not_stick": "not stick", "undetermined": "—"}  # by Outcome.side
-
 
 def _cell(text: str) -> str:
     """Text for one cell of a markdown table (a | inside would split the row)."""
@@ -39,9 +37,14 @@ def outcomes_table() -> str:
     side of the jump."""
     from frictiondisk.verdict import outcomes
 
+    sides = {
+        outcomes.STICK: outcomes.STICK,
+        outcomes.NOT_STICK: "not stick",
+        outcomes.UNDETERMINED: "—",
+    }
     lines = ["| outcome | what the run showed | side of the jump |", "|---|---|---|"]
     for record in outcomes.RECORDS:
-        lines.append(f"| `{record.name}` | {_cell(record.description)} | {_SIDE[record.side]} |")
+        lines.append(f"| `{record.name}` | {_cell(record.description)} | {sides[record.side]} |")
     return "\n".join(lines)
 
 

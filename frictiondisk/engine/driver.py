@@ -154,35 +154,14 @@ class Driver:
                 return
             except TimeoutError:
                 pass
-            alone_since = self._no_worker_since(client, alone_since)
+            alone_since = no_worker_since(client, alone_since, self.worker_wait)
 
     def _await_a_worker(self, client) -> None:
         """Return once some worker is alive at --scheduler (same warning and limit)."""
-        alone_since = self._no_worker_since(client, None)
+        alone_since = no_worker_since(client, None, self.worker_wait)
         while alone_since is not None:
             time.sleep(min(POLL, self.worker_wait))
-            alone_since = self._no_worker_since(client, alone_since)
-
-    def _no_worker_since(self, client, alone_since: float | None) -> float | None:
-        """None if a worker is alive; else since when none is [monotonic s]: warns at the
-        start and raises SchedulerFailed after `worker_wait` seconds."""
-        if client.scheduler_info().get("workers"):
-            return None
-        now = time.monotonic()
-        if alone_since is None:
-            on_stderr(
-                print,
-                f"warning: no worker is alive at the scheduler; waiting up to "
-                f"{self.worker_wait:g} s for one (--worker-wait)",
-                file=sys.stderr,
-            )
-            return now
-        if now - alone_since >= self.worker_wait:
-            raise SchedulerFailed(
-                f"no worker alive at the scheduler for {self.worker_wait:g} s; "
-                "start workers and resume (the journal keeps every finished run)"
-            )
-        return alone_since
+            alone_since = no_worker_since(client, alone_since, self.worker_wait)
 
     def _submit(self, client, run: CampaignRun, job_id, job) -> None:
         """Hand one job of `run`'s planner to Dask (engine/worker.py executes it)."""
@@ -321,3 +300,25 @@ class Driver:
             self._last_partial = time.perf_counter()
             cost = self._last_partial - now
             self._partial_every = max(PARTIAL_EVERY, PARTIAL_COST_FACTOR * cost)
+
+
+def no_worker_since(client, alone_since: float | None, worker_wait: float) -> float | None:
+    """None if a worker is alive; else since when none is [monotonic s]: warns at the
+    start and raises SchedulerFailed after `worker_wait` [s]."""
+    if client.scheduler_info().get("workers"):
+        return None
+    now = time.monotonic()
+    if alone_since is None:
+        on_stderr(
+            print,
+            f"warning: no worker is alive at the scheduler; waiting up to "
+            f"{worker_wait:g} s for one (--worker-wait)",
+            file=sys.stderr,
+        )
+        return now
+    if now - alone_since >= worker_wait:
+        raise SchedulerFailed(
+            f"no worker alive at the scheduler for {worker_wait:g} s; "
+            "start workers and resume (the journal keeps every finished run)"
+        )
+    return alone_since

@@ -173,7 +173,7 @@ class Journal:
         self.n_corrupt += 1
         self.corrupt_reasons.append(f"{what}: {reason}")
         refuse_symlink(self.corrupt_dir).mkdir(exist_ok=True)
-        self._append(self.corrupt_dir / REASONS_LOG, f"{what}\t{reason}\n")
+        append_to(self.corrupt_dir / REASONS_LOG, f"{what}\t{reason}\n")
         return None
 
     @classmethod
@@ -212,7 +212,7 @@ class Journal:
                 return None
             fsync_directory(path.parent)
             fsync_directory(self.corrupt_dir)
-            self._append(self.corrupt_dir / REASONS_LOG, f"{target.name}\t{reason}\n")
+            append_to(self.corrupt_dir / REASONS_LOG, f"{target.name}\t{reason}\n")
             return None
         return None
 
@@ -314,7 +314,7 @@ class Journal:
         self._pack_data = (name, data)
         if self._log_fd is None:
             self._log_fd = open_nofollow(self.log_path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
-        self._write_line(self._log_fd, "".join(f"{key}\n" for key, _, _ in entries))
+        append_line(self._log_fd, "".join(f"{key}\n" for key, _, _ in entries))
 
     def _log(self, key: str) -> None:
         """Append `<key>\\n` to computed.log in one write (O_APPEND: atomic per line). The
@@ -322,27 +322,7 @@ class Journal:
         name cost more than the rest of a put."""
         if self._log_fd is None:
             self._log_fd = open_nofollow(self.log_path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
-        self._write_line(self._log_fd, f"{key}\n")
-
-    @staticmethod
-    def _write_line(fd: int, text: str) -> None:
-        """Append one line to the open file `fd` in one write."""
-        line = text.encode()
-        size = os.fstat(fd).st_size
-        if size and os.pread(fd, 1, size - 1) != b"\n":
-            # A previous append was cut short: end that line first, so it cannot
-            # swallow this key (computed_counts ignores the fragment).
-            line = b"\n" + line
-        os.write(fd, line)
-
-    @classmethod
-    def _append(cls, path: Path, text: str) -> None:
-        """Append one line to `path` in one write (O_APPEND, O_NOFOLLOW)."""
-        fd = open_nofollow(path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
-        try:
-            cls._write_line(fd, text)
-        finally:
-            os.close(fd)
+        append_line(self._log_fd, f"{key}\n")
 
     def clean_temp_files(self) -> int:
         """Remove temporary files left by writers that died mid-put; returns how many.
@@ -361,3 +341,23 @@ class Journal:
                 tmp.unlink()
                 removed += 1
         return removed
+
+
+def append_line(fd: int, text: str) -> None:
+    """Append one line to the open file `fd` in one write."""
+    line = text.encode()
+    size = os.fstat(fd).st_size
+    if size and os.pread(fd, 1, size - 1) != b"\n":
+        # A previous append was cut short: end that line first, so it cannot
+        # swallow this key (computed_counts ignores the fragment).
+        line = b"\n" + line
+    os.write(fd, line)
+
+
+def append_to(path: Path, text: str) -> None:
+    """Append one line to `path` in one write (O_APPEND, O_NOFOLLOW)."""
+    fd = open_nofollow(path, os.O_RDWR | os.O_APPEND | os.O_CREAT)
+    try:
+        append_line(fd, text)
+    finally:
+        os.close(fd)

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+from frictiondisk.verdict.outcomes import UNDETERMINED
+
 
 def problems_of(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str], str]:
     """Why the point fails (empty: it does not), and the note on prescan values left
@@ -26,7 +28,7 @@ def problems_of(state, jumps, scan, vanished: int, unresolved) -> tuple[list[str
     undecided_note = ""
     if undetermined:
         mus = ", ".join(f"{mu:.6g}" for mu in sorted(undetermined))
-        what = "undetermined" if state.between.is_default else "on neither side"
+        what = UNDETERMINED if state.between.is_default else "on neither side"
         undecided_note = f"prescan {what} at mu = {mus} after every retry"
         if not jumps:
             problems.append(undecided_note)
