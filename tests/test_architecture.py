@@ -354,6 +354,9 @@ def test_shared_machinery_reaches_a_task_through_the_registry():
 LONGEST_MODULE = 400  # lines, in tasks/ and verdict/
 # Modules over the cap, to be split at their seams: each entry leaves once its module is
 # short (test_every_module_being_split_is_still_long says when).
+# One record of every threshold, by design (a field a threshold, each with unit, default,
+# range and reason): its length is the number of thresholds, not a module doing two jobs.
+ONE_RECORD_MODULES = frozenset({"frictiondisk/verdict/params.py"})
 LONG_MODULES_BEING_SPLIT = frozenset(
     {
         "frictiondisk/verdict/motion_evidence.py",
@@ -378,6 +381,7 @@ def test_no_module_of_tasks_or_verdict_is_over_400_lines():
         if path.relative_to(PACKAGE).parts[0] in ("tasks", "verdict")
         and (n := len(path.read_text().splitlines())) > LONGEST_MODULE
         and module_path(path) not in LONG_MODULES_BEING_SPLIT
+        and module_path(path) not in ONE_RECORD_MODULES
     ]
     assert not long, "\n".join(long)
 
