@@ -25,6 +25,7 @@ import yaml
 
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
+from frictiondisk.verdict.outcomes import STICK
 
 CERTIFIED = (1, 2)  # certification flags: certified, recertified
 
@@ -76,7 +77,7 @@ def main(argv: list[str] | None = None) -> int:
     stuck = 0
     for key, mu in ends:
         res = simulate(watch_scene(results, key, mu, args.horizon))
-        stuck += res.outcome == "stick"
+        stuck += res.outcome == STICK
         where = "" if key is None else f"key {key:.10g}  "
         print(f"{where}mu {mu:.10g}: {res.outcome} at t = {res.t_end:.6g} s ({res.decided_by})")
     print(
