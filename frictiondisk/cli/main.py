@@ -119,8 +119,9 @@ def simulate(
     """Simulate one SCENE (a YAML file) and report its outcome.
 
     The outcome is one of stick, creep, stick_slip, self_centring, slide_cycle, modulated,
-    slide or undetermined (always with a reason),
-    reported with the first sticking radius R1, the cycle size and a, the number of
+    slide or undetermined (always with a reason): stick_slip wherever the slave sticks as a
+    whole for part of the final window, slide only where it never does and its motion is not
+    yet shown (cycle_converged says whether a motion has settled); reported with the first sticking radius R1, the cycle size and a, the number of
     stick/slide transitions and the stick fraction of the final window.
     """
     record = output is not None or plot_path is not None
