@@ -299,6 +299,54 @@ class VerdictParams:
         "an envelope frequency within this share of the layout ripple N |Omega - phidot| "
         "aliased to the own period is the discrete ring, not a modulation",
     )
+    # --- the pure-sliding motions: measures, the size's trend, the ring's ripple ----------
+    own_period_rows: int = _param(
+        4, "own periods", "newest own-section steps whose mean duration is the own period"
+    )
+    env_min_depth_tols: float = _param(
+        10.0,
+        "cycle_tol",
+        "a modulation's depth (or the depth its envelopes settle towards) is at least this "
+        "many cycle_tol: less lies within the section's own tolerance",
+    )
+    alias_min_steps: int = _param(
+        8,
+        "own periods",
+        "least newest own periods over which the layout ripple's aliased frequency is read "
+        "(at least an envelope's)",
+    )
+    amp_trend_count: int = _param(
+        16,
+        "own periods",
+        "least own periods (the newer half of the regime, at least this) behind the trend of "
+        "the motion's size: a repeat needs it shown steady (a spiral near a Hopf point "
+        "repeats within tolerance while it decays: 3.8e-4 1/s at 4e-8 1/s error over 16)",
+    )
+    amp_trend_sigmas: float = _param(
+        4.0,
+        "standard errors",
+        "the size's rate counts beyond this many standard errors; a steady size's change is "
+        "bounded at value plus this many (as env_trend_sigmas)",
+    )
+    amp_precision: float = _param(
+        1e-3,
+        "1",
+        "a rate that changes the size by less than this share over the fitted span is no "
+        "trend: the precision of an extent (a whirl's scatters by 1e-9, a Hopf spiral's "
+        "ln(size) by 7e-5 about its line)",
+    )
+    amp_steady_change: float = _param(
+        0.01,
+        "1",
+        "a steady size changes by at most this share over as long again at its rate's "
+        "bound (as env_tol)",
+    )
+    ring_ripple_tol: float = _param(
+        0.01,
+        "1",
+        "own periods within this share of 2 pi / (N |phidot|) turn with the ring's ripple: "
+        "a disk at rest shaken by its contacts (measured within 4e-6 at 48 points)",
+    )
 
     def record(self) -> np.void:
         """The record the numba state machine reads (dtype PARAMS; one per distinct set
