@@ -10,7 +10,9 @@ import pytest
 
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
-from frictiondisk.verdict.params import PARAMS, VerdictParams, markdown_table
+from frictiondisk.verdict.params import PARAMS, VerdictParams, allowed_range, markdown_table
+
+FIELDS = {f.name: f for f in dataclasses.fields(VerdictParams)}
 
 MODEL_DOC = Path(__file__).resolve().parents[1] / "docs" / "model.md"
 
@@ -58,3 +60,39 @@ def test_a_study_varies_a_threshold_without_editing_code():
     close = simulate(config, verdict=VerdictParams(limit_min_spacing=2))
     assert default.outcome == close.outcome == "stick"
     assert close.t_end < default.t_end - 20.0
+
+
+@pytest.mark.parametrize(
+    ("field", "value"),
+    [
+        ("verdict_revs", 0),
+        ("verdict_revs", 2.5),
+        ("q_max", 1.5),
+        ("q_max", 1.0),
+        ("q_max", float("nan")),
+        ("shakedown_zero", -0.01),
+        ("stick_noise", -1e-9),
+        ("rim_min_fall", 1.0),
+        ("repeat_count", True),
+    ],
+)
+def test_nonsense_is_refused_naming_the_field_and_its_range(field, value):
+    allowed = str(allowed_range(FIELDS[field]))
+    with pytest.raises(ValueError) as error:
+        VerdictParams(**{field: value})
+    assert f"VerdictParams.{field} = {value!r}" in str(error.value)
+    assert allowed in str(error.value)
+
+
+def test_every_default_lies_in_its_range_and_every_range_refuses_something():
+    for field in dataclasses.fields(VerdictParams):
+        allowed = allowed_range(field)
+        assert allowed.holds(field.default), field.name
+        assert not allowed.holds(-1.0), field.name  # no threshold may be negative
+
+
+def test_the_ends_of_a_range_are_accepted_or_refused_as_written():
+    assert VerdictParams(layout_alias=0.0).layout_alias == 0.0  # [0, ...): switches it off
+    assert VerdictParams(shakedown_depth=1.0).shakedown_depth == 1.0  # (0, 1]
+    with pytest.raises(ValueError, match=r"shakedown_depth = 0\.0: must be a number in \(0, 1\]"):
+        VerdictParams(shakedown_depth=0.0)

@@ -21,13 +21,65 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
+import numbers
 from typing import Any
 
 import numpy as np
 
+from frictiondisk.kernel.records import REV_RING
 
-def _param(default: float | int, unit: str, reason: str) -> Any:
-    return dataclasses.field(default=default, metadata={"unit": unit, "reason": reason})
+from .section_sequence import SEQ_MAX
+
+
+@dataclasses.dataclass(frozen=True)
+class Allowed:
+    """The range a threshold may take: lo .. hi, each end open or closed."""
+
+    lo: float
+    hi: float = math.inf
+    lo_open: bool = False
+    hi_open: bool = True
+
+    def holds(self, value: float) -> bool:
+        above = value > self.lo if self.lo_open else value >= self.lo
+        below = value < self.hi if self.hi_open else value <= self.hi
+        return above and below
+
+    def __str__(self) -> str:
+        hi = "inf" if math.isinf(self.hi) else f"{self.hi:g}"
+        return f"{'(' if self.lo_open else '['}{self.lo:g}, {hi}{')' if self.hi_open else ']'}"
+
+
+# the ranges most thresholds take; a field without its own is a positive number (a count
+# at least 1): nonsense such as 0 revolutions or a negative share is refused either way
+SHARE = Allowed(0.0, 1.0, lo_open=True)  # a share strictly between 0 and 1
+RATIO = SHARE  # a contraction ratio: 1 does not contract
+POSITIVE = Allowed(0.0, lo_open=True)
+NON_NEGATIVE = Allowed(0.0)
+REVOLUTIONS = Allowed(1, REV_RING, hi_open=False)  # at most the revolution ring holds
+
+
+def _count(least: int, most: float = math.inf) -> Allowed:
+    return Allowed(least, most, hi_open=math.isinf(most))
+
+
+def _param(default: float | int, unit: str, reason: str, allowed: Allowed | None = None) -> Any:
+    metadata = {"unit": unit, "reason": reason}
+    if allowed is not None:
+        metadata["allowed"] = allowed
+    return dataclasses.field(default=default, metadata=metadata)
+
+
+def allowed_range(field: dataclasses.Field) -> Allowed:
+    """The range of a field: its own, else a positive number (an int: a count >= 1)."""
+    if "allowed" in field.metadata:
+        return field.metadata["allowed"]
+    return _count(1) if _is_int(field) else POSITIVE
+
+
+def _is_int(field: dataclasses.Field) -> bool:
+    return field.type in ("int", int)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -40,12 +92,14 @@ class VerdictParams:
         "revolutions",
         "revolutions on the small orbit behind a slip-trend verdict: four decay ratios give "
         "a standard error; fewer let one grazing contact's lumpy slip look like a trend",
+        allowed=_count(3, REV_RING),
     )
     slide_revs: int = _param(
         8,
         "revolutions",
         "revolutions of whole-body sliding behind the sliding evidence: a slip that fell at "
         "every one of them is an approach to sticking",
+        allowed=_count(3, REV_RING // 2),
     )
     envelope_periods: float = _param(
         2.0,
@@ -53,158 +107,234 @@ class VerdictParams:
         "each window of the sliding evidence's lowest-slip comparison spans this many periods "
         "of the slip's oscillation (read from its troughs), so that each holds a trough: an "
         "oscillating slip whose troughs fall cannot pass (issue 50)",
+        allowed=POSITIVE,
     )
     envelope_min_revs: int = _param(
         8,
         "revolutions",
         "least revolutions in each window of that comparison (the sliding evidence's own "
         "slide_revs): a slip that does not oscillate still shows its lowest value over 8",
+        allowed=_count(1, REV_RING // 2),
     )
     verdict_z: float = _param(
-        2.0, "standard errors", "by how much a decay must be established (~97.5 % one-sided)"
+        2.0,
+        "standard errors",
+        "by how much a decay must be established (~97.5 % one-sided)",
+        allowed=POSITIVE,
     )
     limit_min_spacing: int = _param(
         4,
         "revolutions",
         "least spacing of Aitken's limit of the slip per revolution: at 2 the last fast "
         "transient of a braked disk reads as the limit",
+        allowed=_count(1, REV_RING // 4),
     )
     limit_drift: float = _param(
         0.02,
         "1",
         "largest spread of the limit's estimates (made 0 ... m revolutions back), as a share "
         "of the limit, for a ratchet to count as settled",
+        allowed=Allowed(0.0, 1.0, hi_open=False),
     )
     creep_share: float = _param(
         0.5,
         "1",
         "share of the last revolution's slip the extrapolated limit must keep for a settled "
         "ratchet (most of today's slip persists)",
+        allowed=SHARE,
     )
     # --- evidence from the motion's own section ---------------------------------------------
-    repeat_count: int = _param(3, "section steps", "distances within tolerance that make a repeat")
+    repeat_count: int = _param(
+        3,
+        "section steps",
+        "distances within tolerance that make a repeat",
+        allowed=_count(1, SEQ_MAX // 2),
+    )
     max_lag: int = _param(
-        3, "sticking phases", "sticking phases per period of a cycle recognised as a repeat"
+        3,
+        "sticking phases",
+        "sticking phases per period of a cycle recognised as a repeat",
+        allowed=_count(1, SEQ_MAX // 4),
     )
     contract_distances: int = _param(
-        5, "section steps", "distances behind a contraction ratio and its trend"
+        5,
+        "section steps",
+        "distances behind a contraction ratio and its trend",
+        allowed=_count(3, SEQ_MAX // 2),
     )
     q_max: float = _param(
-        0.98, "1", "largest extrapolated contraction ratio accepted as convergence to a cycle"
+        0.98,
+        "1",
+        "largest extrapolated contraction ratio accepted as convergence to a cycle",
+        allowed=RATIO,
     )
     rho_max: float = _param(
-        0.9, "1", "the contraction ratio's own changes must shrink at least this fast ..."
+        0.9,
+        "1",
+        "the contraction ratio's own changes must shrink at least this fast ...",
+        allowed=RATIO,
     )
-    q_steady: float = _param(0.01, "1", "... unless each of them is below this")
+    q_steady: float = _param(0.01, "1", "... unless each of them is below this", allowed=SHARE)
     geometric_keep: float = _param(
         0.75,
         "1",
         "1 - q now must keep this share of 1 - q half the sequence ago: geometric, not "
         "algebraic (a power law halves it)",
+        allowed=Allowed(0.0, 1.0, lo_open=True, hi_open=False),
     )
     contract_slip_fall: float = _param(
         0.1,
         "1",
         "share of the slip per step that may still fall on the way to a contracting cycle",
+        allowed=SHARE,
     )
     contract_slip_fall_stribeck: float = _param(
         0.01,
         "1",
         "the same under a Stribeck law, whose friction rises as the slip slows and feeds its "
         "own fall: only what a steady slip may lose (steady_fall)",
+        allowed=SHARE,
     )
     slip_steady: float = _param(
-        1e-4, "1", "changes of the slip per step below this share of it are no change"
+        1e-4,
+        "1",
+        "changes of the slip per step below this share of it are no change",
+        allowed=SHARE,
     )
     depart_steps: int = _param(
-        4, "section steps", "steps of growing slip and shrinking sticking time behind a departure"
+        4,
+        "section steps",
+        "steps of growing slip and shrinking sticking time behind a departure",
+        allowed=_count(2, SEQ_MAX // 2),
     )
     stick_noise: float = _param(
-        1e-9, "s", "sticking times closer than this are equal (event location ~1e-11 s)"
+        1e-9,
+        "s",
+        "sticking times closer than this are equal (event location ~1e-11 s)",
+        allowed=NON_NEGATIVE,
     )
     approach_steps: int = _param(
-        8, "section steps", "steps over which a creep onto a sticking circle is recognised ..."
+        8,
+        "section steps",
+        "steps over which a creep onto a sticking circle is recognised ...",
+        allowed=_count(2, SEQ_MAX),
     )
     approach_fall: float = _param(
-        1e-3, "1", "... by a fall of the slip per step by more than this share of it"
+        1e-3,
+        "1",
+        "... by a fall of the slip per step by more than this share of it",
+        allowed=Allowed(0.0, 1.0),
     )
     shakedown_steps: int = _param(
-        8, "section steps", "steps needed before a slip limit is extrapolated (shakedown)"
+        8,
+        "section steps",
+        "steps needed before a slip limit is extrapolated (shakedown)",
+        allowed=_count(4, SEQ_MAX),
     )
     shakedown_depth: float = _param(
         1e-2,
         "1",
         "a limit is read only once the slip per step has fallen below this share of its "
         "largest value: a first fall that looks geometric can level off at a cycle",
+        allowed=Allowed(0.0, 1.0, lo_open=True, hi_open=False),
     )
     shakedown_zero: float = _param(
         1e-2,
         "1",
         "the extrapolated limit must be at most this share of the slip still left: a fall "
         "levelling off at a slip below eps T is a cycle there, not sticking",
+        allowed=SHARE,
     )
     section_min_spacing: int = _param(
         4,
         "section steps",
         "least spacing of an Aitken triple of the section's slip: at 2 a last transient looks "
         "like a limit",
+        allowed=_count(1, SEQ_MAX // 4),
     )
     aitken_slowing: float = _param(
         0.7,
         "1",
         "the second fall of an Aitken triple must be at most this share of the first: an "
         "almost linear fall gives no well-conditioned limit (S ~ n^-p, p >= 1.03)",
+        allowed=RATIO,
     )
     log_lookback: float = _param(
         0.75,
         "1",
         "a power law's log-spaced fall ratio is compared with the one at this share of n ...",
+        allowed=SHARE,
     )
     log_ratio_drift: float = _param(
-        0.03, "1", "... and may have grown by at most this (a fall levelling off grows it)"
+        0.03,
+        "1",
+        "... and may have grown by at most this (a fall levelling off grows it)",
+        allowed=Allowed(0.0, 1.0),
     )
     # --- is a small slip per period steady? ------------------------------------------------
     fall_window: int = _param(
-        128, "section steps", "newest steps over which a slip per period is shown steady"
+        128,
+        "section steps",
+        "newest steps over which a slip per period is shown steady",
+        allowed=_count(3, SEQ_MAX),
     )
-    fall_min: int = _param(8, "periods", "least periods in that window")
+    fall_min: int = _param(8, "periods", "least periods in that window", allowed=_count(3, SEQ_MAX))
     steady_fall: float = _param(
         0.01,
         "1",
         "a steady slip per period loses (or gains) at most this share over the window ...",
+        allowed=SHARE,
     )
-    fall_z: float = _param(2.0, "standard errors", "... at this many standard errors of its trend")
+    fall_z: float = _param(
+        2.0, "standard errors", "... at this many standard errors of its trend", allowed=POSITIVE
+    )
     # --- Melan's shakedown bound of a braked disk -------------------------------------------
     on_orbit_revs: int = _param(
-        5, "revolutions", "revolutions on the small orbit before the bound decides (as the rules)"
+        5,
+        "revolutions",
+        "revolutions on the small orbit before the bound decides (as the rules)",
+        allowed=_count(1, REV_RING),
     )
     bound_blocks: int = _param(
         3,
         "blocks",
         "blocks of on_orbit_revs revolutions whose reserves show it approaching zero or not",
+        allowed=_count(2),
     )
     bound_solver_rtol: float = _param(
         1e-8,
         "1",
         "relative accuracy of the limit analysis (measured 1e-9), part of the bound's margin",
+        allowed=SHARE,
     )
     # --- the exact Coulomb pin creeping onto the rim of its sticking disc -------------------
-    rim_check_every: int = _param(8, "stick onsets", "onsets between two tests of a creep")
-    rim_min_onsets: int = _param(16, "stick onsets", "onsets in the fitted window at least")
+    rim_check_every: int = _param(
+        8, "stick onsets", "onsets between two tests of a creep", allowed=_count(1)
+    )
+    rim_min_onsets: int = _param(
+        16, "stick onsets", "onsets in the fitted window at least", allowed=_count(3)
+    )
     rim_min_fall: float = _param(
         1.5,
         "1",
         "the gap to the rim falls by this factor over the window (1/n falls by 2 over its "
         "newest half)",
+        allowed=Allowed(1.0, lo_open=True),
     )
     rim_max_residual: float = _param(
-        0.05, "1", "rms residual of the tangent-map line, relative to its mean"
+        0.05, "1", "rms residual of the tangent-map line, relative to its mean", allowed=POSITIVE
     )
     rim_max_ratio_drift: float = _param(
-        0.1, "1", "relative change of 1 - ratio over a geometric approach to a cycle"
+        0.1,
+        "1",
+        "relative change of 1 - ratio over a geometric approach to a cycle",
+        allowed=POSITIVE,
     )
     rim_max_limit: float = _param(
-        0.1, "1", "the fitted limit may lie above the rim by this share of the newest gap"
+        0.1,
+        "1",
+        "the fitted limit may lie above the rim by this share of the newest gap",
+        allowed=NON_NEGATIVE,
     )
 
     # --- the motion's own section: the pure-sliding motions (verdict/motion_evidence.py) --
@@ -213,47 +343,55 @@ class VerdictParams:
         "own periods",
         "own-section steps without whole-body sticking before a motion counts as sliding "
         "(a sticking phase ends the regime and its rows)",
+        allowed=_count(1),
     )
     own_ratios: int = _param(
         4,
         "ratios",
         "successive ratios of the own section behind a geometric decay (as contract_distances)",
+        allowed=_count(2),
     )
     own_rest_zero: float = _param(
         0.01,
         "1",
         "Aitken's limit of the largest speed per own period at most this share of the newest "
         "one: the motion comes to rest (as shakedown_zero)",
+        allowed=Allowed(0.0, 1.0),
     )
     own_motion_keep: float = _param(
         0.5,
         "1",
         "Aitken's limit of the largest speed per own period at least this share of the newest "
         "one: the limit still moves (a cycle, not rest)",
+        allowed=POSITIVE,
     )
     own_rest_slip: float = _param(
         10.0,
         "eps",
         "slip rate of the mean contact over the newest own period above this many eps: the "
         "rest state slides (a state at rest that does not slip is sticking)",
+        allowed=POSITIVE,
     )
     own_window: int = _param(
         32,
         "own periods",
         "window over which the band of the step-mean |r| of a disk's whirl is compared with "
         "its ring's ripple within an own period, and with the band of the window before",
+        allowed=_count(2),
     )
     band_change: float = _param(
         2.0,
         "1",
         "a whirl's band of the step-mean |r| is steady while it changes by less than this "
         "factor from one window to the next (the ripple's aliasing beats it by less)",
+        allowed=Allowed(1.0, lo_open=True),
     )
     env_count: int = _param(
         3,
         "envelopes",
         "whole envelopes of the step-mean |r| behind a modulation (amplitudes A_j and A_j-1 "
         "compared twice)",
+        allowed=_count(2),
     )
     env_tol: float = _param(
         0.01,
@@ -261,24 +399,28 @@ class VerdictParams:
         "envelopes agree within this share of their period and depth: sampled once a whirl "
         "(~20 samples an envelope) the extremes read from a parabola jitter ~1e-4, the "
         "layout ripple adds ~1e-5 m",
+        allowed=SHARE,
     )
     env_min_depth: float = _param(
         0.001,
         "1",
         "a modulation needs a depth of at least this share of the mean radius (and 10 "
         "cycle_tol): less is the whirl with its ripple",
+        allowed=SHARE,
     )
     env_trend_count: int = _param(
         12,
         "envelopes",
         "whole envelopes (at least; all but the first env_count) behind the trend of the "
         "depth (ln depth against time) read ahead, and the most behind a steady depth's bound",
+        allowed=_count(3),
     )
     env_trend_sigmas: float = _param(
         4.0,
         "standard errors",
         "a trend's rate counts beyond this many standard errors; a decay's implied limit and "
         "a steady depth's change are bounded at value plus this many",
+        allowed=POSITIVE,
     )
     env_depth_precision: float = _param(
         0.004,
@@ -286,19 +428,26 @@ class VerdictParams:
         "relative precision of an envelope's depth, a floor on the error of its trend's "
         "bend: near the torus bifurcation ln(depth) wobbles about its line by +-0.35 % with "
         "a period of ~20 envelopes (measured), which the residuals of fewer do not show",
+        allowed=SHARE,
     )
     env_trend_limit: float = _param(
         0.5,
         "1",
         "a decay whose bend implies a limit below this share of the newest depth dies out "
         "(a decay towards a modulation keeps more)",
+        allowed=SHARE,
     )
     layout_alias: float = _param(
         0.05,
         "1",
         "an envelope frequency within this share of the layout ripple N |Omega - phidot| "
         "aliased to the own period is the discrete ring, not a modulation",
+        allowed=Allowed(0.0, 0.5),
     )
+
+    def __post_init__(self) -> None:
+        for field in dataclasses.fields(self):
+            _check(field, getattr(self, field.name))
 
     def record(self) -> np.void:
         """The record the numba state machine reads (dtype PARAMS; one per distinct set
@@ -313,6 +462,23 @@ class VerdictParams:
             for f in dataclasses.fields(self)
             if getattr(self, f.name) != getattr(default, f.name)
         }
+
+
+def _check(field: dataclasses.Field, value: Any) -> None:
+    """Refuse a value of the wrong kind or outside the field's range (ValueError naming the
+    field, its range and its unit)."""
+    allowed = allowed_range(field)
+    kind = "an integer" if _is_int(field) else "a number"
+    if _is_int(field):
+        fits = isinstance(value, numbers.Integral) and not isinstance(value, bool)
+    else:
+        fits = isinstance(value, numbers.Real) and not isinstance(value, bool)
+        fits = fits and not math.isnan(value)
+    if not (fits and allowed.holds(value)):
+        raise ValueError(
+            f"VerdictParams.{field.name} = {value!r}: must be {kind} in {allowed} "
+            f"[{field.metadata['unit']}]"
+        )
 
 
 PARAMS = np.dtype(
@@ -331,9 +497,10 @@ def _record(params: VerdictParams) -> np.void:
 
 def markdown_table() -> str:
     """The record as a markdown table (docs/model.md, section 6: its parameters)."""
-    lines = ["| name | unit | default | reason |", "|---|---|---|---|"]
+    lines = ["| name | unit | default | allowed | reason |", "|---|---|---|---|---|"]
     for f in dataclasses.fields(VerdictParams):
         lines.append(
-            f"| `{f.name}` | {f.metadata['unit']} | {f.default!r} | {f.metadata['reason']} |"
+            f"| `{f.name}` | {f.metadata['unit']} | {f.default!r} | {allowed_range(f)} | "
+            f"{f.metadata['reason']} |"
         )
     return "\n".join(lines)
