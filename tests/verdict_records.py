@@ -14,9 +14,18 @@ from frictiondisk.verdict.section_sequence import SEQ_MAX
 DEFAULT = VerdictParams().record()
 
 
-def records(slip_tol=np.nan, *, arm=0.0, rtol=1e-6, atol=1e-9, cycle_tol=1e-6, stribeck=False):
+def records(
+    slip_tol=np.nan,
+    *,
+    arm=0.0,
+    rtol=1e-6,
+    atol=1e-9,
+    cycle_tol=1e-6,
+    stribeck=False,
+    stick_radius=-np.inf,
+):
     """(rules, motion, vs): a run's RULES, MOTION and VERDICT records, the verdict's
-    measures NaN (as a run begins them)."""
+    measures NaN (as a run begins them); stick_radius: R* [m] (-inf: no sticking disc)."""
     rules = one(RULES)
     rules["corotation"] = True
     rules["rtol"], rules["atol"], rules["cycle_tol"] = rtol, atol, cycle_tol
@@ -29,6 +38,7 @@ def records(slip_tol=np.nan, *, arm=0.0, rtol=1e-6, atol=1e-9, cycle_tol=1e-6, s
             vs[name] = np.nan
     vs["slip_tol"] = slip_tol
     vs["stribeck"] = stribeck
+    vs["stick_radius"] = stick_radius
     return rules, motion, vs
 
 

@@ -47,6 +47,7 @@ from .records import (
     STICK_HELD,
     STOP,
 )
+from .section_evidence import sticking_radius
 from .shakedown_bound import close_revolution, holds_here
 
 
@@ -63,6 +64,7 @@ def begin(vp, rules, p, pts, motion, vs):
     # made the braked disk's mu* move with atol (docs/model.md 6).
     vs.slip_tol = p.eps * rules.hold
     vs.cannot_stick = cannot_corotate(vp, p, pts, motion.arm, rules.bound)
+    vs.stick_radius = sticking_radius(p, pts)
     vs.decay = math.nan
     vs.decay_se = math.nan
     vs.remaining = math.nan

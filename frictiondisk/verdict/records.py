@@ -74,6 +74,7 @@ VERDICT = np.dtype(
         ("stribeck", np.bool_),  # the friction law falls with the slip speed (r < 1)
         ("cannot_stick", np.bool_),  # no co-rotation can be held (horizon_evidence.cannot_corotate)
         ("slip_tol", np.float64),  # slip per revolution that counts as none, eps T [m]
+        ("stick_radius", np.float64),  # R*: no co-rotating circle beyond it holds [m]
         # the co-rotation rule's measures of the last revolution verdict
         ("decay", np.float64),  # mean log ratio of successive slips per revolution [1/rev]
         ("decay_se", np.float64),  # its standard error [1/rev]

@@ -200,6 +200,8 @@ def _contracts(vp, vs, pts, slip, n, s0, fall_share):
     if not (q_half < 1.0 and (1.0 - q) >= vp.geometric_keep * (1.0 - q_half)):
         return False
     vs.ev_limit = d_prev * q_up / (1.0 - q_up)
+    if not _limit_off_sticking(vs, pts, n):
+        return False
     # the cycle it converges to still slips, nearly as much as now: the slip per step,
     # extrapolated at the slower of its own ratio and the section's (the distances can
     # shrink fast along one direction while the slip follows a slower one), keeps all but
@@ -210,6 +212,38 @@ def _contracts(vp, vs, pts, slip, n, s0, fall_share):
         return False
     fall = abs(slip[n - 1] - slip[n - 2]) * r / (1.0 - r)
     return slip[n - 1] - fall > s0 and fall <= fall_share * slip[n - 1]
+
+
+@kernel_jit
+def sticking_radius(p, pts):
+    """R* [m]: no co-rotating circle beyond this radius can hold, on any layout: a slave
+    co-rotating on a circle of radius R needs a contact force that reaches c_s |x_ms| +
+    g R once a revolution (the preload turns against the body frame), and no contact
+    pattern carries more than its friction limit plus the band beta eps of its stuck
+    contacts, sum (mu F_n,i + beta_i eps) w_i; a braked disk needs more (its torque).
+    -inf where no circle holds (g R* < 0), inf where g = 0."""
+    hold = 0.0
+    for i in range(pts.shape[0]):
+        hold += (p.mu * p.F_n_i + p.beta_i * p.eps) * pts[i, 2]
+    reserve = hold - p.c_s * abs(p.x_ms)
+    g = math.hypot(p.c_s - p.m_s * p.omega_m * p.omega_m, p.beta_s * p.omega_m)
+    if g == 0.0:
+        return math.inf if reserve >= 0.0 else -math.inf
+    return reserve / g if reserve >= 0.0 else -math.inf
+
+
+@kernel_jit
+def _limit_off_sticking(vs, pts, n):
+    """Whether the limit of a contracting section lies outside the sticking region by more
+    than its own error: every point within the travel still to come (vs.ev_limit, at the
+    ratio's bound) of the newest point lies beyond vs.stick_radius from the master axis.
+    A limit that may lie where the slave can co-rotate for good is no evidence of a cycle
+    that still slips: the section of a slave spiralling out of an unstable sliding state
+    inside its sticking disc contracts at first, and the slave then sticks (a Stribeck
+    pin, r 0.78, mu 0.11174375: contracting by 0.65 a revolution towards a sliding state
+    at |r| ~0.03 m inside R* = 0.05 m at 30 s, it sticks at 84 s)."""
+    radius = math.hypot(pts[n - 1, 0], pts[n - 1, 1])
+    return radius - vs.ev_limit > vs.stick_radius
 
 
 @kernel_jit
