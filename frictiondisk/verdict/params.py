@@ -262,14 +262,23 @@ class VerdictParams:
     log_lookback: float = _param(
         0.75,
         "1",
-        "a power law's log-spaced fall ratio is compared with the one at this share of n ...",
+        "a power law's fitted exponent is compared with the one fitted at this share of n ...",
         allowed=SHARE,
     )
-    log_ratio_drift: float = _param(
-        0.03,
+    law_exponent_drift: float = _param(
+        0.25,
         "1",
-        "... and may have grown by at most this (a fall levelling off grows it)",
-        allowed=Allowed(0.0, 1.0),
+        "... and may differ from it by at most this share: a fall that changes its law as it "
+        "goes (a transient, or noise on a slow creep) is not read ahead",
+        allowed=SHARE,
+    )
+    law_bend: float = _param(
+        0.15,
+        "1",
+        "the falls of the slip summed over four blocks: -k / ln(ratio) of successive blocks "
+        "is (n - n0) / (p + 1) for a power law A (n - n0)^-p, a line; the middle one may lie "
+        "off the line through the outer two by this share of itself",
+        allowed=SHARE,
     )
     # --- is a small slip per period steady? ------------------------------------------------
     fall_window: int = _param(
