@@ -1,5 +1,5 @@
-"""Watch the not-stick end of every certified bracket of a finished trace or find_jump
-campaign: does it stick after all?
+"""Watch the not-stick end of every certified bracket of a finished trace campaign: does
+it stick after all?
 
 A certified bracket promises that its one end sticks and its other does not. This study
 runs each certified point's not-stick end again with `numerics.evidence: observe` (only
