@@ -441,15 +441,6 @@ OUTCOMES_MODULE = "frictiondisk/verdict/outcomes.py"
 SPELLING_OUTCOMES_TODAY = frozenset(
     {
         "frictiondisk/simulation/coulomb.py",
-        "frictiondisk/studies/brake/rotation_term.py",
-        "frictiondisk/studies/error_model.py",
-        "frictiondisk/studies/wellposed/judge.py",
-        "frictiondisk/studies/wellposed/report.py",
-        "frictiondisk/studies/wellposed/study.py",
-        "frictiondisk/tasks/jump_search/runs.py",
-        "frictiondisk/tasks/jump_search/sides.py",
-        "frictiondisk/tasks/map/cells.py",
-        "frictiondisk/tasks/scan/planner.py",
         "frictiondisk/verdict/coulomb_rules.py",
         "frictiondisk/verdict/deciding_rule.py",
         "frictiondisk/verdict/label.py",
