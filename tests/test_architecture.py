@@ -360,9 +360,6 @@ ONE_RECORD_MODULES = frozenset({"frictiondisk/verdict/params.py"})
 LONG_MODULES_BEING_SPLIT = frozenset(
     {
         "frictiondisk/verdict/motion_evidence.py",
-        "frictiondisk/tasks/trace/fold.py",
-        "frictiondisk/tasks/trace/branch.py",
-        "frictiondisk/tasks/find_jump/figure_line.py",
     }
 )
 MOST_METHODS = 20
@@ -440,21 +437,9 @@ OUTCOMES_MODULE = "frictiondisk/verdict/outcomes.py"
 # empties this list after the merges (a module here should import the name instead).
 SPELLING_OUTCOMES_TODAY = frozenset(
     {
-        "frictiondisk/simulation/coulomb.py",
-        "frictiondisk/studies/brake/rotation_term.py",
-        "frictiondisk/studies/error_model.py",
-        "frictiondisk/studies/wellposed/judge.py",
-        "frictiondisk/studies/wellposed/report.py",
-        "frictiondisk/studies/wellposed/study.py",
-        "frictiondisk/tasks/jump_search/runs.py",
-        "frictiondisk/tasks/jump_search/sides.py",
-        "frictiondisk/tasks/map/cells.py",
-        "frictiondisk/tasks/scan/planner.py",
-        "frictiondisk/verdict/coulomb_rules.py",
+        # "creep" there names a deciding rule (stored in runs.nc), which is not the outcome
         "frictiondisk/verdict/deciding_rule.py",
-        "frictiondisk/verdict/label.py",
         "frictiondisk/verdict/motion_evidence.py",
-        "frictiondisk/verdict/shakedown_verdict.py",
     }
 )
 

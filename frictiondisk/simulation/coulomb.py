@@ -34,6 +34,7 @@ from scipy.integrate import solve_ivp
 from frictiondisk.simulation.result import SimulationResult
 from frictiondisk.verdict.coulomb_rules import CoulombRules
 from frictiondisk.verdict.horizon import horizon_of, revolution
+from frictiondisk.verdict.outcomes import STICK, UNDETERMINED
 from frictiondisk.verdict.params import VerdictParams
 from frictiondisk.verdict.reserve import friction_reserve
 
@@ -116,12 +117,12 @@ def simulate_coulomb(
         reason=reason,
         R1=first[2],
         t_R1=first[0],
-        size=sticks[-1][2] if outcome == "stick" else math.nan,
+        size=sticks[-1][2] if outcome == STICK else math.nan,
         a=math.nan,
         # each stick phase begins with a slide->stick switch and, unless it is still
         # going at the end, ends with a stick->slide switch
         n_transitions=sum(1 if end >= t_end else 2 for _, end, _ in sticks),
-        stick_fraction=1.0 if outcome == "stick" else frac,
+        stick_fraction=1.0 if outcome == STICK else frac,
         t_end=t_end,
         n_steps=n_steps,
         n_rejected=0,
@@ -167,7 +168,7 @@ def _integrate(config, pin: _Pin, rules: CoulombRules):
                 if permanent is not None:
                     reason, circle = permanent
                     sticks.append((t, math.inf, circle))
-                    outcome = "stick"
+                    outcome = STICK
                     break
                 tau = pin.breakaway(r_s)
                 t_break = min(t + tau, horizon)
@@ -197,12 +198,12 @@ def _integrate(config, pin: _Pin, rules: CoulombRules):
         )
         n_steps += len(sol.t) - 1
         if sol.status == -1:
-            outcome, reason = "undetermined", rules.failure_reason(sol.message)
+            outcome, reason = UNDETERMINED, rules.failure_reason(sol.message)
             break
         t, y = float(sol.t[-1]), sol.y[:, -1].copy()
         stopped = sol.status == 1
         if n_steps > num.max_steps:
-            outcome, reason = "undetermined", rules.budget_reason()
+            outcome, reason = UNDETERMINED, rules.budget_reason()
             break
 
     return t, sticks, n_steps, outcome, reason

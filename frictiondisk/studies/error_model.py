@@ -44,6 +44,7 @@ from pathlib import Path
 
 from frictiondisk.model.auto_numerics import TABLE
 from frictiondisk.studies import campaigns
+from frictiondisk.verdict.outcomes import UNDETERMINED
 
 PACKAGE_TABLE = Path(__file__).resolve().parents[1] / "model" / TABLE
 RTOLS = (1.0e-4, 1.0e-5, 1.0e-6, 1.0e-7, 1.0e-8, 1.0e-9)
@@ -157,7 +158,7 @@ def measured(folder: Path) -> dict:
         "mu_star": 0.5 * (mu_lo + mu_hi),
         "half_width": 0.5 * (mu_hi - mu_lo),
         "n_runs": int(runs.sizes["run"]),
-        "n_undetermined": int((runs.outcome == "undetermined").sum()),
+        "n_undetermined": int((runs.outcome == UNDETERMINED).sum()),
         "n_steps": int(runs.n_steps.sum()),
         "t_simulated": float(runs.t_end.sum()),
     }

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 
+from .outcomes import SLIDE, STICK_SLIP, UNDETERMINED
 from .params import VerdictParams
 from .rim_approach import repeats, rim_limit
 
@@ -73,10 +74,10 @@ class CoulombRules:
         stick, or the stick onsets repeat off the rim (a cycle); otherwise `undetermined`
         with the onsets' approach to the rim."""
         if frac > 0.0:
-            outcome = "stick_slip"
+            outcome = STICK_SLIP
             reason = f"sticking and sliding alternate in the final window [{lo:.6g}, {t_end:.6g}] s"
         else:
-            outcome = "slide"
+            outcome = SLIDE
             reason = f"no sticking in the final window [{lo:.6g}, {t_end:.6g}] s"
         if self.disc < 0.0:
             return outcome, reason + (
@@ -89,7 +90,7 @@ class CoulombRules:
         if cycle:
             return outcome, f"{reason}; {shown}: a cycle reached"
         _, evidence = rim_limit(gaps, self.num.cycle_tol, self.vp)
-        return "undetermined", (
+        return UNDETERMINED, (
             f"horizon reached at t = {t_end:.6g} s without evidence that it will not stick "
             f"(numerics.evidence observe; {reason}): {evidence}; {shown}"
         )

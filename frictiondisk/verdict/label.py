@@ -16,6 +16,7 @@ from . import records as rc
 from .deciding_rule import deciding_rule
 from .facts import Revolutions, RunFacts
 from .motion_evidence import MotionEvidence, judge
+from .outcomes import CREEP, SLIDE, STICK, STICK_SLIP, UNDETERMINED
 from .params import VerdictParams
 from .shakedown_verdict import decide as bound_decides
 
@@ -54,10 +55,10 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
             config, outcome, reason, facts.revolution_log, facts.floor, vp, stopped
         )
         rule = rule if (outcome, reason) == ruled else "bound"
-    if outcome == "stick" and facts.steps == 0:
+    if outcome == STICK and facts.steps == 0:
         # sticking for a revolution takes time, hence steps: a stick at t = 0 contradicts
         # itself (a revolution shorter than round-off); never report it
-        outcome, reason = "undetermined", "stick decided after 0 steps: the inputs are degenerate"
+        outcome, reason = UNDETERMINED, "stick decided after 0 steps: the inputs are degenerate"
         rule = "error"
     motion = None
     if _refinable(facts, outcome):
@@ -66,9 +67,9 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
         rule = motion.rule or rule  # a trend read ahead named the motion
     size = math.nan
     a = math.nan
-    if outcome == "stick":
+    if outcome == STICK:
         size = facts.radius_end
-    elif outcome == "stick_slip" and facts.cycle_converged:
+    elif outcome == STICK_SLIP and facts.cycle_converged:
         # only a converged cycle has a size (docs/model.md section 6); before that the
         # sticking segments still creep outwards, and their radius says nothing about the
         # final cycle
@@ -91,7 +92,7 @@ def _refinable(facts: RunFacts, outcome: str) -> bool:
     or a `stick_slip` named by a departure alone (docs/model.md section 6)."""
     if facts.own_scene is None:
         return False
-    return outcome == "slide" or (outcome == "stick_slip" and _departs_only(facts))
+    return outcome == SLIDE or (outcome == STICK_SLIP and _departs_only(facts))
 
 
 def _refine(facts: RunFacts, outcome: str, reason: str, motion: MotionEvidence):
@@ -99,8 +100,8 @@ def _refine(facts: RunFacts, outcome: str, reason: str, motion: MotionEvidence):
     departure from sticking is `slide` (not stick, its motion not named)."""
     if motion.motion:
         return motion.motion, f"{motion.reason} ({reason})"
-    if outcome == "stick_slip":
-        return "slide", (
+    if outcome == STICK_SLIP:
+        return SLIDE, (
             f"not stick, its motion not settled: {reason}; a departure from sticking alone "
             "names no motion"
         )
@@ -127,7 +128,7 @@ def _classify(facts: RunFacts, vp: VerdictParams) -> tuple[str, str]:
         reason = ERROR_REASONS[facts.status].format(
             t=facts.t_end, max_steps=facts.max_steps, max_events=facts.max_events
         )
-        return "undetermined", reason
+        return UNDETERMINED, reason
     return _by_corotation(facts) or _by_window(facts, vp)
 
 
@@ -144,13 +145,13 @@ def _by_corotation(facts: RunFacts) -> tuple[str, str] | None:
             f"{revs.limit:.3g} m (estimates spread {revs.limit_spread:.2g} m) <= "
             f"eps T = {revs.tol:.3g} m (slip still to come {revs.remaining:.3g} m)"
         )
-        return "stick", (
+        return STICK, (
             f"co-rotates with the master without net slip at t = {t:.6g} s: last revolution "
             f"{_rates(revs)}; {how}"
         )
     if facts.status == rc.SHAKEN_DOWN:
         ev = facts.evidence
-        return "stick", (
+        return STICK, (
             f"shakes down to co-rotation at t = {t:.6g} s: {ev.describe()} <= "
             f"eps T = {revs.tol:.3g} m a revolution (last revolution {_rates(revs)})"
         )
@@ -161,13 +162,13 @@ def _by_corotation(facts: RunFacts) -> tuple[str, str] | None:
             else f", extrapolated limit {revs.limit:.3g} m, its estimates spread "
             f"{revs.limit_spread:.2g} m"
         )
-        return "creep", (
+        return CREEP, (
             f"ratchets on its small orbit at t = {t:.6g} s: {_rates(revs)}, not decaying "
             f"to zero ({_trend(revs)}{limit})"
         )
     if facts.status == rc.BOUND_DECIDED:
         # worded by verdict/shakedown_verdict.py, which reads the same reserves
-        return "undetermined", (
+        return UNDETERMINED, (
             f"the run stopped at t = {t:.6g} s for the shakedown bound, which then did not "
             "decide (a kernel and outcome mismatch)"
         )
@@ -182,13 +183,13 @@ def _by_window(facts: RunFacts, vp: VerdictParams) -> tuple[str, str]:
     # integrators without revolution measures apply the contacts rule (the pin only)
     contacts_rule = facts.stick_rule == "contacts" or revs is None
     if facts.status == rc.STICK_HELD or (contacts_rule and facts.stuck_for >= facts.hold):
-        return "stick", (
+        return STICK, (
             f"every contact stuck without interruption for one master revolution "
             f"({facts.hold:.6g} s) from t = {t - facts.stuck_for:.6g} s"
         )
     lo, hi = facts.window
     if facts.status == rc.CYCLE_FOUND:
-        return "stick_slip", f"limit cycle with sticking and sliding converged at t = {t:.6g} s"
+        return STICK_SLIP, f"limit cycle with sticking and sliding converged at t = {t:.6g} s"
     if revs is not None and revs.settling:
         if facts.stick_rule == "corotation" and revs.count < vp.verdict_revs:
             where = (
@@ -202,7 +203,7 @@ def _by_window(facts: RunFacts, vp: VerdictParams) -> tuple[str, str]:
             where = f"without evidence that it will not stick: {evidence}"
         # the co-rotation rule reads a slip trend on the small orbit only
         trend = f"; {_trend(revs)}" if revs.on_orbit else ""
-        return "undetermined", (
+        return UNDETERMINED, (
             f"horizon budget reached at t = {t:.6g} s {where}: last revolution {_rates(revs)}"
             f"{trend} (raise numerics.horizon_budget or t_decide)"
         )
@@ -219,18 +220,18 @@ def _by_window(facts: RunFacts, vp: VerdictParams) -> tuple[str, str]:
         partial = (
             f"; single contacts stuck {facts.frac_any:.3g} of it" if facts.frac_any > 0 else ""
         )
-        return "slide", (
+        return SLIDE, (
             f"the slave never stuck as a whole in the final window [{lo:.6g}, {hi:.6g}] s"
             f"{partial}{why}"
         )
     if facts.status == rc.AT_T_MAX:
-        return "undetermined", (
+        return UNDETERMINED, (
             f"limit cycle not converged by numerics.t_max = {t:.6g} s "
             f"(stick fraction {facts.frac_all:.3g} in the final window)"
         )
     if facts.status == rc.AT_HORIZON:
-        return "stick_slip", (
+        return STICK_SLIP, (
             f"sticking and sliding alternate in the final window [{lo:.6g}, {hi:.6g}] s "
             f"(stick fraction {facts.frac_all:.3g}){why}"
         )
-    return "undetermined", f"unknown kernel status {facts.status} at t = {t:.6g} s"
+    return UNDETERMINED, f"unknown kernel status {facts.status} at t = {t:.6g} s"

@@ -40,6 +40,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import shakedown_bound as sdb
+from .outcomes import CREEP, STICK, UNDETERMINED
 from .params import VerdictParams
 
 __all__ = ["applies", "centred", "decide", "margin"]
@@ -98,17 +99,17 @@ def decide(
         return outcome, reason
     width = margin(config, vp)
     orbiting = rows is not None and rows.shape[0] > 0 and bool(rows[-1]["any_stuck"])
-    if floor < -width and (outcome == "stick" or (orbiting and outcome != "undetermined")):
+    if floor < -width and (outcome == STICK or (orbiting and outcome != UNDETERMINED)):
         # no circle holds it: a stick of the rules is a ratchet slower than eps T, and a
         # disk on its small orbit ratchets there (`slide` or `stick_slip` by the rules)
         where = " on its small orbit" if orbiting else ""
-        return "creep", (
+        return CREEP, (
             f"ratchets for ever (Koiter){where}: mu F_n lies below the least shakedown "
             f"demand of any sticking circle, c_s |x_ms| + N beta_b omega_m / sum |a_i| "
             f"(reserve {floor:+.3g}; the bound's margin {width:.2g}), so no circle holds it "
             f"for good (the rules said: {reason})"
         )
-    if outcome not in ("stick", "creep", "undetermined") or rows is None:
+    if outcome not in (STICK, CREEP, UNDETERMINED) or rows is None:
         return outcome, reason
     record = vp.record()
     values = np.empty(vp.bound_blocks + 1)
@@ -125,13 +126,13 @@ def decide(
         + f" every {vp.on_orbit_revs} revolutions before; the bound's margin {width:.2g})"
     )
     if says > 0:
-        bound_says = "stick"
+        bound_says = STICK
         text = (
             f"shakes down (Melan) {where}: a safe residual contact pattern exists, so the "
             "slip per revolution dies out"
         )
     else:
-        bound_says = "creep"
+        bound_says = CREEP
         text = (
             f"ratchets for ever (Koiter) {where}: no residual contact pattern carries the "
             "load, so the contacts slip in every revolution"

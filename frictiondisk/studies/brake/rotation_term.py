@@ -21,6 +21,7 @@ from frictiondisk.studies.brake.common import (
     transitions_per_rev,
 )
 from frictiondisk.verdict import admissibility as ad
+from frictiondisk.verdict.outcomes import STICK
 
 VARIANTS = {"with rotation term (ours)": True, "without (u = v)": False}
 # scipy-radau measures no slip per revolution, so a disk there takes the `contacts` rule
@@ -84,7 +85,7 @@ def part3(no_radau: bool, quick: bool):
 
             def sticks(m, obj=obj):
                 cfg = scene(m, bb, OMEGA, **RADAU)
-                return simulate_radau(cfg, objective_rate=obj).outcome == "stick"
+                return simulate_radau(cfg, objective_rate=obj).outcome == STICK
 
             lo, hi = bisect(sticks, 0.15, 1.35 if obj else 2.55, 0.02)
             mustar[label] = (lo, hi)

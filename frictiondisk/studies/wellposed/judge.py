@@ -16,9 +16,7 @@ import math
 
 from frictiondisk.studies.wellposed.found import Found
 from frictiondisk.studies.wellposed.settings import PERSIST, SETTLE_MAX, TOL
-
-UNDETERMINED = "undetermined"
-STICK = "stick"
+from frictiondisk.verdict.outcomes import STICK, UNDETERMINED
 
 
 def disagrees(found: Found, reference: Found) -> bool:

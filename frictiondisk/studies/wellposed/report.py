@@ -18,6 +18,7 @@ from frictiondisk.studies.wellposed.judge import (
 from frictiondisk.studies.wellposed.scenes import describe
 from frictiondisk.studies.wellposed.settings import PERSIST_STEPS, SETTINGS, TOL
 from frictiondisk.tasks.jump_search.jump_result import NO_JUMP
+from frictiondisk.verdict.outcomes import STICK
 
 
 def report(rows: list[dict], wall_s: float) -> list[str]:
@@ -86,7 +87,7 @@ def end_watch_line(watched: list[dict]) -> str:
             f"{again['contradicted']}, open {again['open']}"
         )
     if exact:
-        stuck = sum(1 for w in exact if w["outcome"] == "stick")
+        stuck = sum(1 for w in exact if w["outcome"] == STICK)
         longest = max(w["t_end"] for w in exact)
         text += (
             f"; exact Coulomb watches {len(exact)} (stick {stuck}, the longest to {longest:.0f} s)"

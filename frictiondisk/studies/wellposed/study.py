@@ -13,7 +13,6 @@ from pathlib import Path
 from frictiondisk.studies import campaigns
 from frictiondisk.studies.wellposed.found import read_found
 from frictiondisk.studies.wellposed.judge import (
-    UNDETERMINED,
     certified_ends,
     combine_watches,
     contradicted_ends,
@@ -33,6 +32,7 @@ from frictiondisk.studies.wellposed.settings import (
     watch_prefix,
     watch_scene,
 )
+from frictiondisk.verdict.outcomes import STICK, UNDETERMINED
 
 SCENES_PER_CALL = 20  # scenes whose campaigns go to the engine together
 
@@ -202,7 +202,7 @@ def to_recheck(row: dict, confirmed: bool = False) -> list[float]:
         return (
             exact is not None
             and exact["outcome"] != UNDETERMINED
-            and (exact["outcome"] == "stick") == run["sticks"]
+            and (exact["outcome"] == STICK) == run["sticks"]
         )
 
     return [mu for mu in chosen if not exact_shows(runs[mu])]

@@ -38,14 +38,9 @@ from frictiondisk.tasks.jump_search.deferral import Deferrals
 from frictiondisk.tasks.jump_search.end_checks import EndChecks
 from frictiondisk.tasks.jump_search.itp import ITP_SLACK, ItpProbe, zero_crossing
 from frictiondisk.tasks.jump_search.probes import Probes
-from frictiondisk.tasks.jump_search.runs import (
-    STICK,
-    UNDETERMINED,
-    BisectionResult,
-    RunRecord,
-    RunRequest,
-)
+from frictiondisk.tasks.jump_search.runs import BisectionResult, RunRecord, RunRequest
 from frictiondisk.tasks.jump_search.straddle import UNDECIDED_SPAN, Straddle
+from frictiondisk.verdict.outcomes import STICK, UNDETERMINED
 
 # the run types and constants are used from here by the searches built on a bisection
 __all__ = [

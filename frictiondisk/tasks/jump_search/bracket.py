@@ -11,7 +11,8 @@ strategies (itp.py, straddle.py, deferral.py) read it; the bisection moves it.
 
 from __future__ import annotations
 
-from frictiondisk.tasks.jump_search.runs import STICK, RunRecord, RunRequest
+from frictiondisk.tasks.jump_search.runs import RunRecord, RunRequest
+from frictiondisk.verdict.outcomes import STICK
 
 ScheduleKey = tuple[int, int, float]  # (round, level, mu) when a request was first asked for
 

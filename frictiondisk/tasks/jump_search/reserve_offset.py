@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import math
 
-from frictiondisk.tasks.jump_search.runs import STICK, BisectionResult
+from frictiondisk.tasks.jump_search.runs import BisectionResult
+from frictiondisk.verdict.outcomes import STICK
 
 
 def learned_offset(result: BisectionResult | None, tol: float) -> float:

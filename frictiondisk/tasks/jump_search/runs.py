@@ -7,8 +7,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
-STICK = "stick"
-UNDETERMINED = "undetermined"
+from frictiondisk.verdict.outcomes import UNDETERMINED
 
 
 @dataclasses.dataclass(frozen=True)

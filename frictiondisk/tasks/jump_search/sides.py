@@ -24,13 +24,10 @@ import functools
 
 from frictiondisk.model.axes import pair
 from frictiondisk.model.schema import did_you_mean, rule
-from frictiondisk.verdict.outcomes import OUTCOMES, outcome_class
+from frictiondisk.verdict.outcomes import NOT_STICK, OUTCOMES, STICK, UNDETERMINED, outcome_class
 
-HIGH = "stick"  # the searches' kind of side B (the stick side of the default jump)
+HIGH = STICK  # the searches' kind of side B (the stick side of the default jump)
 LOW = "not stick"  # their kind of side A
-STICK = "stick"
-NOT_STICK = "not_stick"
-UNDETERMINED = "undetermined"
 DEFAULT_BETWEEN = (NOT_STICK, STICK)
 
 
@@ -132,7 +129,7 @@ class Between:
     def undecided_text(self, outcome: str) -> str:
         """How a run on neither side is named in a failure's reason."""
         if outcome == UNDETERMINED:
-            return "undetermined"
+            return UNDETERMINED
         return f"{outcome} (neither {self.low} nor {self.high})"
 
     def label(self) -> str:

@@ -20,10 +20,10 @@ from __future__ import annotations
 import itertools
 from collections.abc import Sequence
 
+from frictiondisk.verdict.outcomes import UNDETERMINED
+
 Cell = tuple[int, ...]
 Block = tuple[tuple[int, int], ...]  # per axis (first index, last index), both run
-
-UNDETERMINED = "undetermined"
 
 
 def coarse_indices(n: int, stride: int) -> list[int]:

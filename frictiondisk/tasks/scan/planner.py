@@ -14,6 +14,7 @@ from frictiondisk.tasks.jobs import RunScenes, Sizing
 from frictiondisk.tasks.jump_search.runs import RunRequest
 from frictiondisk.tasks.protocol import Planner
 from frictiondisk.tasks.scan.results import ScanResults
+from frictiondisk.verdict.outcomes import UNDETERMINED
 
 
 class ScanPlanner(Planner):
@@ -120,4 +121,4 @@ class ScanPlanner(Planner):
         not journaled, so a resume tries again)."""
         for i in self._jobs.pop(job):
             self.busy.discard(i)
-            self.results[i] = {"outcome": "undetermined", "reason": reason}
+            self.results[i] = {"outcome": UNDETERMINED, "reason": reason}

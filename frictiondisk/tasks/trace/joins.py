@@ -17,7 +17,8 @@ from __future__ import annotations
 
 import math
 
-from frictiondisk.tasks.trace.branch import Branch, Curve
+from frictiondisk.tasks.trace.branch import Branch
+from frictiondisk.tasks.trace.curve import Curve
 from frictiondisk.tasks.trace.steps import Vec, norm, sub, unit
 
 JOIN_COS = 0.5  # directions in loop order agree within 60 degrees

@@ -29,10 +29,12 @@ from typing import Any
 
 from frictiondisk.tasks.jump_search.jumps import JumpSearch, run_role
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
-from frictiondisk.tasks.trace.branch import Branch, Curve, CurvePoint
-from frictiondisk.tasks.trace.fold import Fold, FoldLocator, Probe
+from frictiondisk.tasks.trace.branch import Branch
+from frictiondisk.tasks.trace.curve import Curve, CurvePoint
+from frictiondisk.tasks.trace.fold import Fold, FoldLocator
 from frictiondisk.tasks.trace.joins import approach_caps, find_join, join
 from frictiondisk.tasks.trace.plane import Line, LineBracket, LineSearch, PlaneRequest
+from frictiondisk.tasks.trace.probe import Probe
 from frictiondisk.tasks.trace.steps import Plane
 
 
