@@ -19,11 +19,11 @@ from frictiondisk.verdict.section_evidence import section_evidence
 S0 = 1e-8  # slip per step that counts as none [m]
 
 
-def evidence(points, slip, stick, rtol=1e-6, stribeck=False, stick_radius=-math.inf):
+def evidence(points, slip, stick, rtol=1e-6, stribeck=False):
     """The EV_* code of a sequence and the verdict record with its diagnostics: points
     (n, <= 5) [m], slip (n) [m], stick (n) [s]; stribeck: the friction law falls with the
-    slip speed; stick_radius: R* [m], the radius of the sticking disc."""
-    rules, _, vs = records(S0, rtol=rtol, stribeck=stribeck, stick_radius=stick_radius)
+    slip speed."""
+    rules, _, vs = records(S0, rtol=rtol, stribeck=stribeck)
     seq = sequence(points, slip, stick)
     return int(section_evidence(DEFAULT, rules, vs, seq, len(slip), S0)), vs
 
@@ -66,41 +66,6 @@ def test_a_geometric_contraction_to_a_slipping_cycle_is_evidence():
     assert mf["ev_limit"] == pytest.approx(
         steps[-1] * mf["ev_ratio_bound"] / (1 - mf["ev_ratio_bound"])
     )
-
-
-def test_a_contraction_whose_limit_may_lie_in_the_sticking_disc_is_no_evidence():
-    """The limit of a contracting section lies within the travel still to come of its newest
-    point; only a limit beyond R* by more than that is a cycle that still slips."""
-    q = 0.78
-    steps = 0.01 * q ** np.arange(14)
-    slip = 0.1 + 0.08 * q ** np.arange(15)
-    stick = 1.237 + 0.1 * q ** np.arange(15)
-    points = along(steps)
-    radius = math.hypot(*points[-1, :2])
-    code, mf = evidence(points, slip, stick)
-    assert code == rc.EV_CONTRACT
-    travel = mf["ev_limit"]
-    assert travel > 3.0 * steps[-1]  # the geometric tail: q / (1 - q) ~ 3.5 newest steps
-    code, _ = evidence(points, slip, stick, stick_radius=radius - travel * 1.01)
-    assert code == rc.EV_CONTRACT
-    code, _ = evidence(points, slip, stick, stick_radius=radius - travel * 0.99)
-    assert code == rc.EV_NONE
-
-
-def test_a_pin_spiralling_out_of_a_sliding_state_inside_its_sticking_disc_sticks():
-    """A Stribeck pin (r 0.78, the trace_stribeck_pin campaign) slides round a sliding state
-    at |r| ~0.03 m, inside R* = (mu F_n - c_s x_ms) / g = 0.049 m, and its revolution section
-    contracts by 0.65 at first: called `slide` at 36 s by the contract rule, it sticks at
-    84 s (watched to 600 s it stays stuck)."""
-    data = {
-        "scene": "pin",
-        "params": {"mu": 0.11174375},
-        "contact": {"stribeck": {"r": 0.78, "v_s": 0.03}},
-        "numerics": {"mode": "decide", "t_decide": 30.0},
-    }
-    res = simulate(scene_from_dict(data))
-    assert res.outcome == "stick", res.reason
-    assert res.R1 < 0.049 and res.t_end > 84.0
 
 
 def test_a_fast_contraction_while_the_slip_falls_ever_slower_is_no_evidence():
