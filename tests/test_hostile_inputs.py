@@ -834,3 +834,30 @@ def test_a_stop_a_library_turned_into_its_own_error_still_exits_130(capsys):
     finally:
         clear_stop_requests()
         signal.signal(signal.SIGINT, previous)
+
+
+def test_a_stop_a_library_swallowed_still_exits_130(capsys):
+    """A Ctrl-C that lands in a library's teardown and is swallowed there (the command then
+    returns normally) still ends in the stop's notice and exit code 130."""
+    import click
+
+    from frictiondisk.cli import run_and_exit as entry_point
+    from frictiondisk.engine.signals import clear_stop_requests, request_stop
+
+    @click.command()
+    def swallowed():
+        request_stop(KeyboardInterrupt)  # noted by the handler, the exception lost
+
+    @click.command()
+    def finished():
+        pass
+
+    previous = signal.getsignal(signal.SIGINT)
+    try:
+        assert entry_point._run(lambda: swallowed, []) == 130
+        assert "error: interrupted; no finished run is lost" in capsys.readouterr().err
+        clear_stop_requests()
+        assert entry_point._run(lambda: finished, []) == 0
+    finally:
+        clear_stop_requests()
+        signal.signal(signal.SIGINT, previous)

@@ -41,6 +41,9 @@ def _run(load_group: Callable[[], object], args: list[str]) -> int:
         group = load_group()
         _note_ctrl_c()
         value = group.main(args=args, prog_name="frictiondisk", standalone_mode=False)
+        stop = noted_stop()
+        if stop is not None:  # a Ctrl-C that a library swallowed (Dask's teardown, say)
+            return _stopped(stop())
         return value if isinstance(value, int) and not isinstance(value, bool) else 0
     except SystemExit as stop:  # our commands end so (fail, a stopped campaign)
         return exit_code(stop.code)
