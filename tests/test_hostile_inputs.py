@@ -861,3 +861,26 @@ def test_a_stop_a_library_swallowed_still_exits_130(capsys):
     finally:
         clear_stop_requests()
         signal.signal(signal.SIGINT, previous)
+
+
+def test_a_stop_during_the_teardown_is_noted_not_raised():
+    """While Dask's client and cluster close, Ctrl-C is noted, not raised (an exception
+    inside their close can leave it hung); the handler before it is restored after."""
+    import os
+
+    from frictiondisk.engine.signals import clear_stop_requests, noted_stop, stops_noted_only
+
+    def raising(signum, frame):
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, raising)
+    try:
+        clear_stop_requests()
+        with stops_noted_only():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)  # the handler runs here, in the main thread
+        assert noted_stop() is KeyboardInterrupt
+        assert signal.getsignal(signal.SIGINT) is raising
+    finally:
+        clear_stop_requests()
+        signal.signal(signal.SIGINT, previous)

@@ -25,7 +25,7 @@ from frictiondisk.engine.cluster import (
     start_client,
     task_sizing,
 )
-from frictiondisk.engine.signals import drop_hint, raise_if_stop_requested
+from frictiondisk.engine.signals import drop_hint, raise_if_stop_requested, stops_noted_only
 from frictiondisk.engine.worker import Sealed, run_job, run_sealed, warm_up
 from frictiondisk.tasks.jobs import RunScenes
 
@@ -102,12 +102,13 @@ class Driver:
                 self._drain(client, stop)
                 raise
         finally:
-            self._journaling.shutdown(wait=True)  # a job being journaled is finished first
-            for *_, future in self.in_flight.values():
-                future.cancel()
-            client.close()
-            if cluster is not None:
-                cluster.close()
+            with stops_noted_only():  # a stop raised inside Dask's close can hang it
+                self._journaling.shutdown(wait=True)  # a job being journaled finishes first
+                for *_, future in self.in_flight.values():
+                    future.cancel()
+                client.close()
+                if cluster is not None:
+                    cluster.close()
             if self._bar is not None:
                 self._bar.n, self._bar.total = self._progress()
                 self._bar.set_postfix(runs=self.runs_done(), in_flight=0, refresh=False)

@@ -4,7 +4,9 @@ wait that lets a stop interrupt a run in a numba kernel (wait_interruptibly)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 import threading
 from collections.abc import Callable
 from typing import Any, TypeVar
@@ -113,3 +115,28 @@ def wait_interruptibly(function: Callable[..., T], *args: Any, **kwargs: Any) ->
     if "error" in outcome:
         raise outcome["error"]
     return outcome["value"]
+
+
+@contextlib.contextmanager
+def stops_noted_only():
+    """While it holds, Ctrl-C, SIGTERM and SIGHUP are noted (request_stop), not raised: for a
+    teardown (the Dask client and cluster closing) that an exception raised inside it can
+    leave hung. The noted stop decides the command's exit afterwards (cli/run_and_exit.py).
+    Only the main thread's handlers that are Python functions are replaced, and restored."""
+    wanted = {signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated}
+    if hasattr(signal, "SIGHUP"):
+        wanted[signal.SIGHUP] = HungUp
+    previous = {}
+    if threading.current_thread() is threading.main_thread():
+        for signum, stop in wanted.items():
+            if callable(signal.getsignal(signum)):
+
+                def note(signum, frame, stop=stop):
+                    request_stop(stop)
+
+                previous[signum] = signal.signal(signum, note)
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
