@@ -30,7 +30,7 @@ def _signals_stop_the_campaign():
     """Ctrl-C (SIGINT), SIGTERM (a batch scheduler, `kill`) and SIGHUP (a closed
     terminal) stop a campaign alike: runs journaled, partial results. Each handler notes the stop before
     raising it, so that a raise lost in a finalizer still stops the campaign loop."""
-    from frictiondisk.engine.signals import HungUp, Terminated, request_stop
+    from frictiondisk.engine.signals import request_stop, stop_signals
 
     def stopper(stop):
         def handler(signum, frame):
@@ -39,12 +39,9 @@ def _signals_stop_the_campaign():
 
         return handler
 
-    wanted = {signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated}
-    if hasattr(signal, "SIGHUP"):
-        wanted[signal.SIGHUP] = HungUp
     previous = {}
     try:
-        for signum, stop in wanted.items():
+        for signum, stop in stop_signals().items():
             if signum != signal.SIGTERM and signal.getsignal(signum) is signal.SIG_IGN:
                 continue  # ignored when we started (nohup, a background job): stays so
             previous[signum] = signal.signal(signum, stopper(stop))

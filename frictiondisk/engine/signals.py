@@ -117,18 +117,24 @@ def wait_interruptibly(function: Callable[..., T], *args: Any, **kwargs: Any) ->
     return outcome["value"]
 
 
+def stop_signals() -> dict[int, type[KeyboardInterrupt]]:
+    """The signals that stop a campaign, each with the stop it raises: Ctrl-C, SIGTERM and
+    (where the platform has it) SIGHUP."""
+    stops = {signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated}
+    if hasattr(signal, "SIGHUP"):
+        stops[signal.SIGHUP] = HungUp
+    return stops
+
+
 @contextlib.contextmanager
 def stops_noted_only():
     """While it holds, Ctrl-C, SIGTERM and SIGHUP are noted (request_stop), not raised: for a
     teardown (the Dask client and cluster closing) that an exception raised inside it can
     leave hung. The noted stop decides the command's exit afterwards (cli/run_and_exit.py).
     Only the main thread's handlers that are Python functions are replaced, and restored."""
-    wanted = {signal.SIGINT: KeyboardInterrupt, signal.SIGTERM: Terminated}
-    if hasattr(signal, "SIGHUP"):
-        wanted[signal.SIGHUP] = HungUp
     previous = {}
     if threading.current_thread() is threading.main_thread():
-        for signum, stop in wanted.items():
+        for signum, stop in stop_signals().items():
             if callable(signal.getsignal(signum)):
 
                 def note(signum, frame, stop=stop):
