@@ -352,16 +352,12 @@ def test_shared_machinery_reaches_a_task_through_the_registry():
 # ---- size: one job a module, a class of few methods ----------------------------------
 
 LONGEST_MODULE = 400  # lines, in tasks/ and verdict/
-# Modules over the cap, to be split at their seams: each entry leaves once its module is
-# short (test_every_module_being_split_is_still_long says when).
 # One record of every threshold, by design (a field a threshold, each with unit, default,
 # range and reason): its length is the number of thresholds, not a module doing two jobs.
 ONE_RECORD_MODULES = frozenset({"frictiondisk/verdict/params.py"})
-LONG_MODULES_BEING_SPLIT = frozenset(
-    {
-        "frictiondisk/verdict/motion_evidence.py",
-    }
-)
+# Modules over the cap, to be split at their seams (none today): an entry leaves once its
+# module is short (test_every_module_being_split_is_still_long says when).
+LONG_MODULES_BEING_SPLIT: frozenset[str] = frozenset()
 MOST_METHODS = 20
 # Classes over the cap, to be split at their seams (none today).
 LARGE_CLASSES_BEING_SPLIT: frozenset[str] = frozenset()
@@ -432,16 +428,9 @@ def test_no_class_has_over_20_methods():
 # ---- an outcome's name lives in verdict/outcomes.py -----------------------------------
 
 OUTCOMES_MODULE = "frictiondisk/verdict/outcomes.py"
-# Modules that spell an outcome's name today, while the ui branch gives every outcome one
-# record in verdict/outcomes.py and the figures, tables and studies read it; the lead
-# empties this list after the merges (a module here should import the name instead).
-SPELLING_OUTCOMES_TODAY = frozenset(
-    {
-        # "creep" there names a deciding rule (stored in runs.nc), which is not the outcome
-        "frictiondisk/verdict/deciding_rule.py",
-        "frictiondisk/verdict/motion_evidence.py",
-    }
-)
+# Modules that spell an outcome's name instead of importing it from verdict/outcomes.py
+# (none today; the list only shrinks).
+SPELLING_OUTCOMES_TODAY: frozenset[str] = frozenset()
 
 
 def test_every_module_spelling_outcomes_still_does():

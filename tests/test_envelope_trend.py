@@ -20,6 +20,7 @@ from own_rows import recorded_rows
 from scipy.optimize import curve_fit
 
 from frictiondisk.verdict import motion_evidence as me
+from frictiondisk.verdict import own_evidence
 from frictiondisk.verdict.envelope_trend import depth_trend
 from frictiondisk.verdict.params import VerdictParams
 
@@ -111,7 +112,7 @@ def test_near_the_torus_bifurcation_the_trend_names_the_side(name, motion):
     -7.5e-5 and +3.9e-5 1/s; the two estimators differ by ~6e-6 1/s, 1e-4 in J_s)."""
     rows = recorded_rows(name)
     ev = me.judge(rows, _scene(), VerdictParams())
-    assert ev.motion == motion and ev.rule == me.ENVELOPE_TREND, ev.reason
+    assert ev.motion == motion and ev.rule == own_evidence.ENVELOPE_TREND, ev.reason
     assert not ev.converged
     rate = -ev.decay_rate
     reference = _sinusoid_rate(rows, 1300.0)

@@ -24,6 +24,7 @@ from frictiondisk.kernel.records import OWN_STEP
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
 from frictiondisk.verdict import motion_evidence as me
+from frictiondisk.verdict import own_evidence
 from frictiondisk.verdict.outcomes import is_not_stick
 from frictiondisk.verdict.params import VerdictParams
 
@@ -111,7 +112,7 @@ def test_the_own_section_rows_cover_the_run_and_mark_sticking():
     rows = res.own_section
     assert rows.dtype == OWN_STEP and rows.shape[0] >= 1
     assert rows["locked"][-1]  # while stuck the velocity turns with the master: locked rows
-    assert me.sliding_rows(rows).shape[0] == 0
+    assert own_evidence.sliding_rows(rows).shape[0] == 0
 
 
 # --- the disks: rows of the example scenes, replayed ------------------------------------
@@ -172,9 +173,9 @@ def test_the_ripple_of_a_12_point_ring_is_no_modulation():
 
 
 def test_aitken_is_exact_on_a_geometric_sequence():
-    assert me.aitken(np.array([1.0, 0.5, 0.25])) == pytest.approx(0.0, abs=1e-15)
-    assert me.aitken(np.array([3.0, 2.5, 2.25])) == pytest.approx(2.0)
-    assert math.isnan(me.aitken(np.array([1.0, 2.0, 4.0])))  # steps grow: no limit
+    assert own_evidence.aitken(np.array([1.0, 0.5, 0.25])) == pytest.approx(0.0, abs=1e-15)
+    assert own_evidence.aitken(np.array([3.0, 2.5, 2.25])) == pytest.approx(2.0)
+    assert math.isnan(own_evidence.aitken(np.array([1.0, 2.0, 4.0])))  # steps grow: no limit
 
 
 def test_a_ratio_that_turns_back_and_forth_is_not_steady():
@@ -182,9 +183,9 @@ def test_a_ratio_that_turns_back_and_forth_is_not_steady():
     (issue 49); its own section gives a steady 0.730."""
     vp = VerdictParams()
     alternating = np.cumprod([1.0, 0.684, 0.665, 0.684, 0.665, 0.684])
-    assert math.isnan(me.steady_ratio(alternating, vp.own_ratios, vp))
+    assert math.isnan(own_evidence.steady_ratio(alternating, vp.own_ratios, vp))
     steady = 0.730 ** np.arange(6.0)
-    assert me.steady_ratio(steady, vp.own_ratios, vp) == pytest.approx(0.730)
+    assert own_evidence.steady_ratio(steady, vp.own_ratios, vp) == pytest.approx(0.730)
 
 
 def test_too_few_sliding_rows_are_no_evidence():

@@ -437,7 +437,7 @@ MOTION_CASES = (
     Case(
         "self-centring pin (issue 49), 60 s",
         at(SELF_CENTRING_PIN, 0.095, **CONVERGE_60),
-        "motion_evidence._rest",
+        "self_centring_evidence.rest_evidence",
         "own_rest_zero",
         "self_centring",
         "self-centres",
@@ -450,7 +450,7 @@ MOTION_CASES = (
     Case(
         "large sliding cycle of the pin (issue 49), 90 s",
         at(LARGE_CYCLE_PIN, 0.05, **CONVERGE_90),
-        "motion_evidence._cycle",
+        "slide_cycle_evidence.section_cycle_evidence",
         "own_motion_keep",
         "slide_cycle",
         "contracts by 0.79",
@@ -474,7 +474,7 @@ MOTION_CASES = (
     Case(
         "the modulated braked disk (issue 49), J_s 0.3, 48 points",
         None,
-        "motion_evidence._envelope",
+        "modulated_evidence.envelope_evidence",
         "env_tol",
         "modulated",
         "",
@@ -484,7 +484,7 @@ MOTION_CASES = (
     Case(
         "the circular whirl of the braked disk, J_s 0.1, 48 points",
         None,
-        "motion_evidence._envelope",
+        "modulated_evidence.envelope_evidence",
         "env_min_depth",
         "slide_cycle",
         "",
@@ -494,7 +494,7 @@ MOTION_CASES = (
     Case(
         "the 12-point whirl's layout ripple",
         None,
-        "motion_evidence._aliased_ripple",
+        "envelopes.aliased_ripple",
         "layout_alias",
         "slide_cycle",
         "",
@@ -531,6 +531,20 @@ def test_every_covering_test_exists():
             path, name = case.covered_by.split("::")
             module = importlib.import_module(path.removeprefix("tests/").removesuffix(".py"))
             assert callable(getattr(module, name, None)), case.covered_by
+
+
+def test_every_rule_named_exists():
+    """Each row's rule (module.function, or a function of the module named before it)
+    is a function of frictiondisk/verdict/."""
+    for case in CASES:
+        module = None
+        for part in case.rule.split(", "):
+            if "." in part:
+                module, _, name = part.rpartition(".")
+            else:
+                name = part
+            found = importlib.import_module(f"frictiondisk.verdict.{module}")
+            assert callable(getattr(found, name, None)), f"{case.name}: {part}"
 
 
 @pytest.mark.parametrize("case", RUN_HERE, ids=[case.name for case in RUN_HERE])

@@ -12,6 +12,7 @@ import math
 
 from . import records as rc
 from .facts import RunFacts
+from .outcomes import CREEP
 
 EVIDENCE_RULES = {
     rc.EV_REPEAT: "repeat",
@@ -39,7 +40,7 @@ INTEGRATOR_FAILED = "error"  # undetermined: the integrator failed or ran out of
 DECIDING_RULES = (
     "corotation",  # co-rotates without net slip, seen (every contact stuck and still, or no slip)
     "corotation_limit",  # the slip per revolution extrapolated to a limit <= eps T
-    "creep",  # the slip per revolution shown not to fall, on the small orbit
+    CREEP,  # named after the outcome it decides: the slip per revolution shown not to fall
     "creep_limit",  # ... extrapolated to a limit that keeps most of it
     "contacts",  # every contact stuck for one revolution (stick_rule contacts)
     "cycle",  # mode converge: the cycle's section points agreed
@@ -61,7 +62,7 @@ def deciding_rule(facts: RunFacts) -> str:
     if status == rc.SHAKEN_DOWN:
         return "shakedown"
     if status == rc.CREEPING:
-        return "creep" if math.isnan(revs.limit) else "creep_limit"
+        return CREEP if math.isnan(revs.limit) else "creep_limit"
     if status == rc.BOUND_DECIDED:
         return "bound"
     if status == rc.STICK_HELD or (

@@ -364,9 +364,16 @@ class VerdictParams:
     env_min_depth: float = threshold(
         0.001,
         "1",
-        "a modulation needs a depth of at least this share of the mean radius (and 10 "
-        "cycle_tol): less is the whirl with its ripple",
+        "a modulation needs a depth of at least this share of the mean radius (and "
+        "env_min_depth_tols cycle_tol): less is the whirl with its ripple",
         allowed=SHARE,
+    )
+    env_min_depth_tols: float = threshold(
+        10.0,
+        "cycle_tol",
+        "a modulation needs a depth of at least this many cycle_tol: a shallower envelope is "
+        "within the section's own tolerance of a whirl",
+        allowed=Allowed(1.0),
     )
     env_trend_count: int = threshold(
         12,
@@ -403,6 +410,13 @@ class VerdictParams:
         "an envelope frequency within this share of the layout ripple N |Omega - phidot| "
         "aliased to the own period is the discrete ring, not a modulation",
         allowed=Allowed(0.0, 0.5),
+    )
+    alias_steps: int = threshold(
+        8,
+        "own periods",
+        "the fewest newest own steps (else one envelope's worth) over which the layout "
+        "ripple's aliased frequency is read: its spin and period are means over them",
+        allowed=count_range(2),
     )
 
     def __post_init__(self) -> None:

@@ -1,0 +1,117 @@
+"""The own section's rows, what every pure-sliding motion's evidence reads of them, and the
+record it returns (verdict/motion_evidence.py says which motion each module's evidence
+names).
+
+Section point p_k = (x, y, xdot / w0, ydot / w0, l phidot / w0) [m] (w0 = sqrt(c_s / m_s)
+the support's own frequency, or omega_m without a spring; l the longest arm),
+d_k = |p_k - p_k-1|, tol_k = max(cycle_tol, atol + rtol |p_k|_inf) (as the section
+evidence).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .params import VerdictParams
+
+ENVELOPE_TREND = "envelope_trend"  # the rule that reads an envelope's trend ahead
+
+
+@dataclasses.dataclass(frozen=True)
+class OwnScene:
+    """What the evidence needs of the scene and its numerics (SI units)."""
+
+    omega0: float  # the support's own frequency sqrt(c_s / m_s), or omega_m [rad/s]
+    arm: float  # longest contact arm [m] (0 for the pin)
+    eps: float  # the friction law's slide->stick threshold [m/s]
+    n_contacts: int
+    cycle_tol: float  # numerics.cycle_tol [m]
+    atol: float
+    rtol: float
+    observe: bool = False  # numerics.evidence observe: no extrapolation
+    # beta_s / 2 m_s [1/s]: the decay rate of a Coulomb pin's self-centring (its tangential
+    # mode, which friction does not touch), quoted beside the measured rate
+    tangential_rate: float = math.nan
+
+
+@dataclasses.dataclass(frozen=True)
+class MotionEvidence:
+    """A pure-sliding motion and its measures (NaN where a measure does not apply)."""
+
+    motion: str  # SELF_CENTRING, SLIDE_CYCLE, MODULATED (verdict/outcomes.py), or ""
+    converged: bool
+    reason: str
+    own_period: float = math.nan  # mean duration of the newest own steps [s]
+    mean_radius: float = math.nan  # time mean of |r| over the newest own step (modulated:
+    # over the envelopes) [m]
+    amplitude: float = math.nan  # (max |r| - min |r|) / 2 over the newest own step [m]
+    spin_rate: float = math.nan  # mean phidot over the newest own step [rad/s] (NaN: pin)
+    floquet_ratio: float = math.nan  # contraction of the own section per own period [1]
+    decay_rate: float = math.nan  # -ln(ratio) / own period [1/s]
+    r_eq_x: float = math.nan  # the rest point (self-centring) [m]
+    r_eq_y: float = math.nan
+    r_eq: float = math.nan  # its radius [m]
+    r_eq_angle: float = math.nan  # its angle from +x, counter-clockwise [rad]
+    envelope_period: float = math.nan  # the modulation's period [s]
+    envelope_depth: float = math.nan  # half its range of the step-mean |r| [m]
+    rule: str = ""  # ENVELOPE_TREND where a trend read ahead named the motion
+
+
+def sliding_rows(rows: np.ndarray) -> np.ndarray:
+    """The rows of the current sliding regime: those after the newest locked row."""
+    locked = np.flatnonzero(rows["locked"])
+    return rows[locked[-1] + 1 :] if locked.size else rows
+
+
+def section_points(rows: np.ndarray, scene: OwnScene) -> np.ndarray:
+    """(k, 5) section points in metres (module docstring)."""
+    w0 = scene.omega0
+    return np.column_stack(
+        (rows["x"], rows["y"], rows["xd"] / w0, rows["yd"] / w0, scene.arm * rows["phid"] / w0)
+    )
+
+
+def aitken(values: np.ndarray) -> float:
+    """Aitken's limit of the newest three values (NaN where their steps do not shrink)."""
+    a, b, c = (float(v) for v in values[-3:])
+    denominator = (c - b) - (b - a)
+    if denominator == 0.0 or abs(c - b) >= abs(b - a):
+        return math.nan
+    return c - (c - b) ** 2 / denominator
+
+
+def steady_ratio(values: np.ndarray, count: int, vp: VerdictParams) -> float:
+    """The ratio of successive values where the newest `count` ratios are all <= q_max and
+    within q_steady of each other; NaN otherwise."""
+    if values.shape[0] < count + 1 or np.any(values[-count - 1 : -1] <= 0.0):
+        return math.nan
+    ratios = values[-count:] / values[-count - 1 : -1]
+    if np.max(ratios) > vp.q_max or np.ptp(ratios) > vp.q_steady:
+        return math.nan
+    return float(ratios[-1])
+
+
+def own_measures(rows: np.ndarray, scene: OwnScene) -> dict[str, float]:
+    last = rows[-1]
+    newest = rows[-min(rows.shape[0], 4) :]
+    spin = float(last["spin"] / last["dt"]) if scene.arm > 0.0 else math.nan
+    return {
+        "own_period": float(np.mean(newest["dt"])),
+        "mean_radius": float(last["r_mean"]),
+        "amplitude": 0.5 * float(last["r_max"] - last["r_min"]),
+        "spin_rate": spin,
+    }
+
+
+def own_tolerance(point: np.ndarray, scene: OwnScene) -> float:
+    return max(scene.cycle_tol, scene.atol + scene.rtol * float(np.max(np.abs(point))))
+
+
+def cycle_reason(how: str, measures: dict[str, float]) -> str:
+    return (
+        f"a pure-sliding limit cycle: {how}; own period {measures['own_period']:.6g} s, mean "
+        f"radius {measures['mean_radius']:.6g} m, amplitude {measures['amplitude']:.4g} m"
+    )
