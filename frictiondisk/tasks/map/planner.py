@@ -1,6 +1,8 @@
 """Which runs a `map` campaign needs: the cells of a coarse lattice, then the cells where
 neighbours differ (cells.py), each run once from the scene's start or `samples` times from
-sampled starts (frictiondisk.tasks.sampling.draws, as the basin task draws them).
+sampled starts (frictiondisk.tasks.sampling.draws, as the basin task draws them). Which
+runs are wanted, out or known, and the jobs that carry them, are the run book's
+(frictiondisk.tasks.sampling.run_book, shared with the basin task): linear in the runs.
 
 The planner contract of frictiondisk.tasks.protocol: the cells asked for depend on the
 motions found only (a refinement round starts once every wanted cell is known), never on
@@ -13,11 +15,13 @@ from typing import Any
 
 from frictiondisk.tasks.jobs import RunScenes, Sizing
 from frictiondisk.tasks.map.cells import CellRefinement
-from frictiondisk.tasks.map.motions import UNDETERMINED, MapCellResult, leading_motion
+from frictiondisk.tasks.map.motions import MapCellResult, leading_motion
 from frictiondisk.tasks.map.results import MapResults
 from frictiondisk.tasks.protocol import Planner
-from frictiondisk.tasks.sampling.draws import sample_values
+from frictiondisk.tasks.sampling.run_book import RunBook
 from frictiondisk.tasks.sampling.runs import SampleRequest
+
+JOB_RUNS = 1  # runs per job without the driver's sizing (tests, a direct use)
 
 
 class MapPlanner(Planner):
@@ -30,36 +34,25 @@ class MapPlanner(Planner):
         self.cell_index = {p.index: i for i, p in enumerate(self.points)}
         self.results: dict[int, MapCellResult] = {}
         self.cells = CellRefinement(campaign.shape, self.task.strides())
-        self.known: dict[int, dict[int, dict[str, Any]]] = {}  # point -> sample -> summary
-        self.todo: set[tuple[int, int]] = set()  # (point, sample) wanted, not known, not out
-        self.out: dict[int, int] = {}  # point -> its runs out on a worker
-        self.failed: dict[int, str] = {}  # point -> why a job of it never came back
-        self._jobs: dict[tuple[int, int], list[tuple[int, int]]] = {}
-        self._blocks: dict[int, dict] = {}  # point -> its draw blocks (a sampled start)
+        self.book = RunBook(self.task, self.points, JOB_RUNS)
         self._want(self.cells.wanted)
 
     # ---- cells and their runs ----------------------------------------------------------
     def _want(self, cells) -> None:
-        for cell in cells:
-            i = self.cell_index[cell]
-            self.todo |= {(i, j) for j in range(self.task.runs_per_cell)}
+        points = sorted(self.cell_index[cell] for cell in cells)
+        self.book.want((i, j) for i in points for j in range(self.task.runs_per_cell))
 
     def start_values(self, i: int, j: int) -> dict[str, float]:
         """The sampled initial state of run j of cell i ({} from the scene's own start)."""
-        if not self.task.sampled:
-            return {}
-        blocks = self._blocks.setdefault(i, {})
-        return sample_values(self.task, self.points[i].coords, j, blocks)
+        return self.book.sample_values(i, j)
 
     def config_for(self, i: int, request: SampleRequest):
-        values = self.start_values(i, request.index)
-        point = self.points[i].config
-        return point.with_overrides(values) if values else point
+        return self.book.config_for(i, request)
 
     # ---- planner protocol -------------------------------------------------------------
     @property
     def done(self) -> bool:
-        return not self.todo and not any(self.out.values()) and not self.cells.waiting
+        return self.book.open_runs == 0 and not self.cells.waiting
 
     def progress(self) -> tuple[int, int]:
         """(cells known: run, or inferred once the map is complete; cells)."""
@@ -76,71 +69,51 @@ class MapPlanner(Planner):
         return MapResults(self.campaign, tuple(self.points), results, inferred)
 
     def requests(self) -> list[tuple[int, SampleRequest]]:
-        return [(i, SampleRequest(j)) for i, j in sorted(self.todo)]
+        return self.book.requests()
+
+    def new_requests(self) -> list[tuple[int, SampleRequest]]:
+        """The runs asked for since the last call (each once), still wanted."""
+        return self.book.new_requests()
+
+    def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
+        self.book.remember_canonical(i, request, canonical)
 
     def feed(self, i: int, request: SampleRequest, result: dict[str, Any]) -> None:
         """Take a result; one the cell no longer waits for is ignored."""
-        if (i, request.index) not in self.todo:
-            return
-        self._take(i, request.index, result)
-        self._advance([i])
+        if self.book.take(i, request.index, result):
+            self._advance([i])
 
     def jobs(self, sizing: Sizing | None = None) -> list[tuple[tuple[int, int], RunScenes]]:
-        """Every requested run not yet out, sizing.batch_runs to a job (1 without)."""
-        per_job = max(1, sizing.batch_runs) if sizing is not None else 1
-        wanted = sorted(self.todo)
-        out = []
-        for start in range(0, len(wanted), per_job):
-            items = wanted[start : start + per_job]
-            self._jobs[items[0]] = items
-            for i, j in items:
-                self.todo.discard((i, j))
-                self.out[i] = self.out.get(i, 0) + 1
-            scenes = [self.config_for(i, SampleRequest(j)).canonical() for i, j in items]
-            out.append((items[0], RunScenes(tuple(scenes))))
-        return out
+        """Requested runs not yet out, in the order asked (RunBook.jobs)."""
+        return self.book.jobs(sizing)
 
     def complete(self, job, value) -> list[tuple[int, SampleRequest, dict[str, Any]]]:
         """Take a finished job back; returns its runs, for the journal."""
-        items = self._jobs.pop(job)
-        made = []
-        for (i, j), result in zip(items, value, strict=True):
-            self.out[i] -= 1
-            self._take(i, j, result)
-            made.append((i, SampleRequest(j), result))
-        self._advance(sorted({i for i, _ in items}))
+        made, points = self.book.complete(job, value)
+        self._advance(points)
         return made
 
     def fail(self, job, reason: str) -> None:
         """A job that never came back: its runs are `undetermined` with that reason and its
         cells failed (nothing is journaled, so a resume runs them again)."""
-        items = self._jobs.pop(job)
-        for i, j in items:
-            self.out[i] -= 1
-            self._take(i, j, {"outcome": UNDETERMINED, "reason": reason})
-            self.failed[i] = reason
-        self._advance(sorted({i for i, _ in items}))
+        self._advance(self.book.fail(job, reason))
 
     # ---- a cell's motion, and the refinement -------------------------------------------
-    def _take(self, i: int, j: int, result: dict[str, Any]) -> None:
-        self.known.setdefault(i, {})[j] = result
-        self.todo.discard((i, j))
-
     def _advance(self, points: list[int]) -> None:
         """Finish every cell of `points` whose runs are all known; once no cell waits, the
         next refinement round."""
         n = self.task.runs_per_cell
         for i in points:
-            runs = self.known.get(i, {})
-            if i in self.results or len(runs) < n or self.out.get(i):
+            if i in self.results or self.book.busy(i) or len(self.book.known[i]) < n:
                 continue
-            results = tuple(runs[j] for j in range(n))
-            failed = self.failed.get(i)
+            results = self.book.results_of(i, n)
+            failed = self.book.failed.get(i)
             self.results[i] = MapCellResult(
                 status="failed" if failed else "converged",
                 reason=f"a job failed: {failed}" if failed else "every run of the cell ran",
                 results=results,
             )
             self.cells.settle(self.points[i].index, leading_motion(results))
+            self.book.forget(i, n)
         if not self.cells.waiting:
             self._want(self.cells.refine())
