@@ -16,6 +16,7 @@ from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
 from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 
 X0_RANGE = (-0.05, 0.05)  # [m]
 PIN = {"scene": "pin", "params": {"x_ms": 0.1, "mu": 0.125}}
@@ -66,7 +67,7 @@ def test_pin_stick_fraction_agrees_with_the_boundary_located_by_bisection(tmp_pa
     changes = np.flatnonzero(np.diff(sticks))
     assert sticks[0] and not sticks[-1] and changes.size == 1, list(zip(scan, sticks, strict=True))
     # ... so it is [-0.05, x0*): bisect x0* (a falling jump: stick below, not stick above)
-    bisection = Bisection(X0_RANGE, 1e-4, X0_RANGE, max_retries=2, rising=False)
+    bisection = Bisection(X0_RANGE, BisectionSettings(1e-4, X0_RANGE, max_retries=2, rising=False))
     while not bisection.done:
         for request in bisection.pending():
             bisection.feed(request, {"outcome": _outcome(request.mu, request.level)})

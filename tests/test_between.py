@@ -13,6 +13,7 @@ from frictiondisk.engine.runner import run_campaign
 from frictiondisk.model.scene import ConfigError
 from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.jumps import JumpSearch
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
 from frictiondisk.tasks.map.motions import outcome_order
@@ -75,7 +76,9 @@ def test_the_boundary_moves_with_the_motions_and_the_sides_swap():
 
 
 def test_a_third_motion_inside_the_bracket_stops_the_bisection_and_is_named():
-    bisection = Bisection((0.05, 0.3), TOL, (0.01, 1.0), 1, between=Between("stick_slip", "creep"))
+    bisection = Bisection(
+        (0.05, 0.3), BisectionSettings(TOL, (0.01, 1.0), 1, between=Between("stick_slip", "creep"))
+    )
     drive(bisection, three_motions)
     res = bisection.result()
     assert res.status == "failed"

@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 import frictiondisk.tasks.jump_search as package
 from frictiondisk.tasks.jump_search.bisection import Bisection, RunRequest
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 
 
 def drive(bis, oracle):
@@ -28,7 +29,7 @@ def step_at(mu_star):
 
 
 def test_converges_to_a_bracket_holding_the_jump():
-    res = drive(Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2), step_at(0.12653))
+    res = drive(Bisection((0.05, 0.3), BisectionSettings(1e-4, (1e-6, 10.0), 2)), step_at(0.12653))
     assert res.status == "converged"
     assert res.mu_lo < 0.12653 <= res.mu_hi
     assert res.width <= 1e-4
@@ -42,13 +43,13 @@ def test_converges_to_a_bracket_holding_the_jump():
 
 @pytest.mark.parametrize("mu_star", [0.9, 0.004])
 def test_widens_the_bracket_when_both_ends_agree(mu_star):
-    res = drive(Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2), step_at(mu_star))
+    res = drive(Bisection((0.05, 0.3), BisectionSettings(1e-4, (1e-6, 10.0), 2)), step_at(mu_star))
     assert res.status == "converged"
     assert res.mu_lo < mu_star <= res.mu_hi
 
 
 def test_fails_naming_both_ends_when_the_limits_stop_the_widening():
-    res = drive(Bisection((0.05, 0.3), 1e-4, (0.01, 0.5), 2), step_at(0.8))
+    res = drive(Bisection((0.05, 0.3), BisectionSettings(1e-4, (0.01, 0.5), 2)), step_at(0.8))
     assert res.status == "failed"
     assert "no stick up to the limit" in res.reason
     assert "0.5" in res.reason and "stick_slip" in res.reason
@@ -57,7 +58,7 @@ def test_fails_naming_both_ends_when_the_limits_stop_the_widening():
 
 def test_inverted_bracket_fails_with_both_outcomes():
     res = drive(
-        Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2),
+        Bisection((0.05, 0.3), BisectionSettings(1e-4, (1e-6, 10.0), 2)),
         lambda r: "stick" if r.mu < 0.1 else "slide",
     )
     assert res.status == "failed"
@@ -73,7 +74,7 @@ def test_undetermined_is_retried_with_longer_horizons_then_used():
             return "undetermined"
         return step_at(0.2)(req)
 
-    res = drive(Bisection((0.05, 0.3), 1e-3, (1e-6, 10.0), 2), oracle)
+    res = drive(Bisection((0.05, 0.3), BisectionSettings(1e-3, (1e-6, 10.0), 2)), oracle)
     assert res.status == "converged"
     assert [r.level for r in calls if abs(r.mu - 0.175) < 1e-12] == [0, 1, 2]
     assert res.mu_lo < 0.2 <= res.mu_hi
@@ -81,7 +82,7 @@ def test_undetermined_is_retried_with_longer_horizons_then_used():
 
 def test_undetermined_after_all_retries_fails_with_the_run_reason():
     res = drive(
-        Bisection((0.05, 0.3), 1e-3, (1e-6, 10.0), 1),
+        Bisection((0.05, 0.3), BisectionSettings(1e-3, (1e-6, 10.0), 1)),
         lambda r: "undetermined" if r.mu > 0.2 else "stick_slip",
     )
     assert res.status == "failed"
@@ -96,14 +97,14 @@ def test_non_monotone_runs_are_reported_not_hidden():
     def oracle(req):
         return "stick" if 0.05 <= req.mu < 0.055 or req.mu >= 0.1 else "stick_slip"
 
-    res = drive(Bisection((0.05, 0.06), 1e-4, (1e-6, 10.0), 0), oracle)
+    res = drive(Bisection((0.05, 0.06), BisectionSettings(1e-4, (1e-6, 10.0), 0)), oracle)
     assert res.status == "failed"
     assert not res.monotone
     assert res.contradictions == ((0.05, 0.06),)
 
 
 def test_feed_rejects_runs_it_did_not_ask_for():
-    bis = Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2)
+    bis = Bisection((0.05, 0.3), BisectionSettings(1e-4, (1e-6, 10.0), 2))
     with pytest.raises(ValueError):
         bis.feed(RunRequest(0.17), {"outcome": "stick"})
 
@@ -117,7 +118,7 @@ def test_feed_rejects_runs_it_did_not_ask_for():
 )
 def test_any_step_oracle_is_bracketed(mu_star, lo, width, tol):
     hi = lo + width
-    res = drive(Bisection((lo, hi), tol, (1e-4, 20.0), 0), step_at(mu_star))
+    res = drive(Bisection((lo, hi), BisectionSettings(tol, (1e-4, 20.0), 0)), step_at(mu_star))
     if 1e-4 < mu_star <= 20.0:
         assert res.status == "converged"
         assert res.mu_lo < mu_star <= res.mu_hi
@@ -137,7 +138,10 @@ def slow_near(lo, hi, mu_star):
 
 def test_an_interval_of_undecided_mu_is_bracketed_from_both_sides():
     tol = 1e-4
-    res = drive(Bisection((0.1, 0.2), tol, (1e-6, 10.0), 1), slow_near(0.1500, 0.1503, 0.1501))
+    res = drive(
+        Bisection((0.1, 0.2), BisectionSettings(tol, (1e-6, 10.0), 1)),
+        slow_near(0.1500, 0.1503, 0.1501),
+    )
     assert res.status == "converged", res.reason
     assert res.mu_lo < 0.1500 and res.mu_hi > 0.1503  # the undecided span, both sides decided
     assert res.width <= 0.0003 + tol * (1 + 1e-9)
@@ -145,7 +149,10 @@ def test_an_interval_of_undecided_mu_is_bracketed_from_both_sides():
 
 
 def test_undecided_mu_spanning_more_than_ten_tol_fail_with_the_reason():
-    res = drive(Bisection((0.1, 0.2), 1e-4, (1e-6, 10.0), 1), slow_near(0.140, 0.160, 0.15))
+    res = drive(
+        Bisection((0.1, 0.2), BisectionSettings(1e-4, (1e-6, 10.0), 1)),
+        slow_near(0.140, 0.160, 0.15),
+    )
     assert res.status == "failed" and "undetermined at mu" in res.reason
 
 
@@ -155,7 +162,10 @@ def test_a_bracket_end_in_the_slow_approach_moves_out_and_is_straddled():
     bisection brackets the band from both sides instead of failing."""
     tol = 1e-4
     band = (0.18760, 0.18790)
-    res = drive(Bisection((0.18770, 0.18800), tol, (0.1, 0.3), 1), slow_near(*band, 0.18775))
+    res = drive(
+        Bisection((0.18770, 0.18800), BisectionSettings(tol, (0.1, 0.3), 1)),
+        slow_near(*band, 0.18775),
+    )
     assert res.status == "converged", res.reason
     assert res.mu_lo < band[0] and res.mu_hi > band[1]
     assert res.end_result("lo")["outcome"] == "stick_slip"
@@ -166,13 +176,17 @@ def test_a_bracket_end_in_the_slow_approach_moves_out_and_is_straddled():
 
 def test_a_bracket_end_cannot_move_past_its_limit():
     res = drive(
-        Bisection((0.1876, 0.1880), 1e-4, (0.1876, 0.3), 1), slow_near(0.1870, 0.1877, 0.1875)
+        Bisection((0.1876, 0.1880), BisectionSettings(1e-4, (0.1876, 0.3), 1)),
+        slow_near(0.1870, 0.1877, 0.1875),
     )
     assert res.status == "failed" and "undetermined at mu = 0.1876" in res.reason
 
 
 def test_both_ends_undecided_beyond_the_span_fail():
-    res = drive(Bisection((0.140, 0.160), 1e-4, (0.1, 0.3), 1), slow_near(0.139, 0.161, 0.15))
+    res = drive(
+        Bisection((0.140, 0.160), BisectionSettings(1e-4, (0.1, 0.3), 1)),
+        slow_near(0.139, 0.161, 0.15),
+    )
     assert res.status == "failed" and "undetermined at mu" in res.reason
 
 

@@ -8,6 +8,7 @@ import pytest
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.tasks.jump_search.bisection import RunRequest
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection, point_certification
 from frictiondisk.tasks.jump_search.jumps import JumpSearch
 from frictiondisk.tasks.jump_search.requests import run_config
@@ -34,7 +35,7 @@ DEFAULT = Certify()
 
 
 def bisection(certify=DEFAULT):
-    return CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=certify)
+    return CertifiedBisection((0.05, 0.3), BisectionSettings(TOL, (1e-6, 10.0), 2), certify=certify)
 
 
 def test_a_jump_that_holds_at_stricter_numerics_is_certified():
@@ -242,7 +243,9 @@ def drive_results(search, answer):
 
 
 def guided(tol=TOL, bracket=(0.05, 0.3)):
-    return CertifiedBisection(bracket, tol, (1e-6, 10.0), 2, certify=DEFAULT, guided=True)
+    return CertifiedBisection(
+        bracket, BisectionSettings(tol, (1e-6, 10.0), 2), certify=DEFAULT, guided=True
+    )
 
 
 @pytest.mark.parametrize("tol", [1e-4, 1e-8])
@@ -257,7 +260,8 @@ def test_a_cold_search_opens_at_the_stick_end_and_never_runs_a_far_lo(tol):
     assert 0.3 in searched  # opened at the stick end
     assert 0.05 not in searched  # the bracket's lo end was never needed
     plain = drive_results(
-        CertifiedBisection((0.05, 0.3), tol, (1e-6, 10.0), 2, certify=DEFAULT), answer
+        CertifiedBisection((0.05, 0.3), BisectionSettings(tol, (1e-6, 10.0), 2), certify=DEFAULT),
+        answer,
     )
     assert len(result.runs) < len(plain.runs)
 
@@ -277,7 +281,8 @@ def test_an_opening_without_a_usable_reserve_is_the_plain_check():
     answer = reserve_oracle(0.13, lambda mu: None)
     result = drive_results(guided(), answer)
     plain = drive_results(
-        CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=DEFAULT), answer
+        CertifiedBisection((0.05, 0.3), BisectionSettings(TOL, (1e-6, 10.0), 2), certify=DEFAULT),
+        answer,
     )
     assert [r.request for r in result.runs] == [r.request for r in plain.runs]
 

@@ -12,6 +12,7 @@ from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.model.search_settings import Certify
 from frictiondisk.simulation.simulate import simulate
 from frictiondisk.tasks.jump_search.bisection import RunRequest
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
 from frictiondisk.tasks.jump_search.requests import run_config
 from frictiondisk.tasks.jump_search.sides import Between
@@ -60,7 +61,9 @@ def _answer(jump: float, rule_lo: str, t_lo: float):
 
 @pytest.mark.parametrize(("rule", "watched"), [("sliding", True), ("cannot", False)])
 def test_an_extrapolated_end_is_checked_by_a_watching_run(rule, watched):
-    search = CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=Certify())
+    search = CertifiedBisection(
+        (0.05, 0.3), BisectionSettings(TOL, (1e-6, 10.0), 2), certify=Certify()
+    )
     result = drive_results(search, _answer(0.13, rule, 91.5))
     assert result.certification == "certified"
     checks = {run.request.mu: run.request for run in result.runs if run.request.strict == 1}
@@ -70,7 +73,9 @@ def test_an_extrapolated_end_is_checked_by_a_watching_run(rule, watched):
 
 def test_no_watch_when_certification_observes_or_the_factor_is_zero():
     for certify in (Certify(observe=True), Certify(watch=0.0)):
-        search = CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=certify)
+        search = CertifiedBisection(
+            (0.05, 0.3), BisectionSettings(TOL, (1e-6, 10.0), 2), certify=certify
+        )
         result = drive_results(search, _answer(0.13, "sliding", 91.5))
         assert all(run.request.watch == 0.0 for run in result.runs)
 
@@ -108,7 +113,9 @@ def test_an_end_that_flips_when_watched_is_searched_again_from_with_every_run_wa
             return {"outcome": "stick", "decided_by": "corotation", "t_end": 170.8}
         return {"outcome": "slide", "decided_by": "sliding", "t_end": t_lo}
 
-    search = CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=Certify())
+    search = CertifiedBisection(
+        (0.05, 0.3), BisectionSettings(TOL, (1e-6, 10.0), 2), certify=Certify()
+    )
     result = drive_requests(search, answer)
     assert result.certification == "recertified", result.reason
     assert result.mu_lo < 0.13 - 3 * TOL <= result.mu_hi and result.width <= TOL * (1 + 1e-9)
@@ -148,7 +155,7 @@ def test_a_motion_boundary_end_is_checked_on_at_least_twice_its_horizon():
 
     between = Between("self_centring", "slide_cycle")
     search = CertifiedBisection(
-        (1.40, 1.55), 2e-3, (1.0, 2.5), 1, certify=Certify(), between=between
+        (1.40, 1.55), BisectionSettings(2e-3, (1.0, 2.5), 1, between=between), certify=Certify()
     )
     result = drive_requests(search, answer)
     checks = [run.request for run in result.runs if run.request.strict]
@@ -160,7 +167,9 @@ def test_a_motion_boundary_end_is_checked_on_at_least_twice_its_horizon():
 
 
 def test_the_stick_jump_keeps_an_unwatched_check_of_a_seen_verdict():
-    search = CertifiedBisection((0.05, 0.3), TOL, (1e-6, 10.0), 2, certify=Certify())
+    search = CertifiedBisection(
+        (0.05, 0.3), BisectionSettings(TOL, (1e-6, 10.0), 2), certify=Certify()
+    )
     result = drive_results(search, _answer(0.13, "cycle", 91.5))
     assert all(run.request.watch == 0.0 for run in result.runs)
 

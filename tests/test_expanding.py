@@ -12,6 +12,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.expanding import PLAIN, PREDICTED, Expanding
 
 TOL = 1e-8
@@ -42,7 +43,7 @@ def oracle(mu_star=MU_STAR, band=(), bias=None, slow_below=0.0):
 def search(bracket, answer, expanding=PLAIN, tol=TOL, limits=LIMITS, reverse=False):
     """The bisection's answer, its runs fed in the order asked (`reverse`: the last asked
     first, as results from two workers may arrive)."""
-    bis = Bisection(bracket, tol, limits, 2, expanding=expanding)
+    bis = Bisection(bracket, BisectionSettings(tol, limits, 2, expanding=expanding))
     while not bis.done:
         requests = bis.pending()
         assert requests, "a bisection neither done nor asking for a run"

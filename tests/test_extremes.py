@@ -14,6 +14,7 @@ from frictiondisk.engine.worker import run_bisection
 from frictiondisk.model.scene import scene_from_dict
 from frictiondisk.simulation.simulate import simulate
 from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.verdict.outcomes import OUTCOMES, is_not_stick
 
 G = g_factor()  # default pin [N/m]
@@ -140,7 +141,7 @@ def test_steep_stribeck_curve_is_classified():
 
 def bisect(contact):
     base = scene_from_dict({"scene": "pin", "contact": contact})
-    bis = Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 2)
+    bis = Bisection((0.05, 0.3), BisectionSettings(1e-4, (1e-6, 10.0), 2))
     bis, _ = run_bisection(bis, base.canonical(), 2.0, campaign_dir="/nonexistent")
     res = bis.result()
     assert res.status == "converged"

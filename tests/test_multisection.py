@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.jumps import JumpSearch
 
 
@@ -38,7 +39,10 @@ def step_at(mu_star):
     split=st.integers(2, 9),
 )
 def test_any_split_brackets_the_step_to_tol(mu_star, tol, split):
-    res, _, _ = drive(Bisection((0.05, 0.3), tol, (1e-6, 10.0), 0, split=split), step_at(mu_star))
+    res, _, _ = drive(
+        Bisection((0.05, 0.3), BisectionSettings(tol, (1e-6, 10.0), 0, split=split)),
+        step_at(mu_star),
+    )
     assert res.status == "converged"
     assert res.mu_lo < mu_star <= res.mu_hi
     assert res.width <= tol * (1 + 1e-9)
@@ -48,7 +52,8 @@ def test_any_split_brackets_the_step_to_tol(mu_star, tol, split):
 def test_rounds_and_runs_follow_the_schedule(split):
     width, tol = 0.25, 1e-8
     res, rounds, runs = drive(
-        Bisection((0.05, 0.3), tol, (1e-6, 10.0), 0, split=split), step_at(0.1234567)
+        Bisection((0.05, 0.3), BisectionSettings(tol, (1e-6, 10.0), 0, split=split)),
+        step_at(0.1234567),
     )
     # 1 round of end checks, then ceil(log_k(width / tol)) rounds of at most k - 1 runs
     cuts = math.ceil(math.log(width / tol) / math.log(split) - 1e-12)
@@ -58,8 +63,10 @@ def test_rounds_and_runs_follow_the_schedule(split):
 
 
 def test_plain_bisection_is_split_two():
-    a, _, _ = drive(Bisection((0.05, 0.3), 1e-6, (1e-6, 10.0), 0), step_at(0.2))
-    b, _, _ = drive(Bisection((0.05, 0.3), 1e-6, (1e-6, 10.0), 0, split=2), step_at(0.2))
+    a, _, _ = drive(Bisection((0.05, 0.3), BisectionSettings(1e-6, (1e-6, 10.0), 0)), step_at(0.2))
+    b, _, _ = drive(
+        Bisection((0.05, 0.3), BisectionSettings(1e-6, (1e-6, 10.0), 0, split=2)), step_at(0.2)
+    )
     assert a == b
 
 
@@ -71,7 +78,11 @@ def test_order_of_arrival_does_not_change_the_result(split):
         return "stick" if (mu >= 0.2 or 0.11 < mu < 0.1112) else "stick_slip"
 
     results = [
-        drive(Bisection((0.05, 0.3), 1e-7, (1e-6, 10.0), 0, split=split), ragged, order)[0]
+        drive(
+            Bisection((0.05, 0.3), BisectionSettings(1e-7, (1e-6, 10.0), 0, split=split)),
+            ragged,
+            order,
+        )[0]
         for order in (None, random.Random(1), random.Random(2))
     ]
     assert results[0] == results[1] == results[2]
@@ -98,7 +109,7 @@ def test_jump_search_bisects_every_jump_with_the_split_and_any_order():
 
 def test_split_below_two_is_refused():
     with pytest.raises(ValueError, match="split"):
-        Bisection((0.05, 0.3), 1e-4, (1e-6, 10.0), 0, split=1)
+        Bisection((0.05, 0.3), BisectionSettings(1e-4, (1e-6, 10.0), 0, split=1))
 
 
 @pytest.mark.parametrize("value", [1, 0, 2.5, 65, "three"])

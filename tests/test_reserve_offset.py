@@ -10,6 +10,7 @@ from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.find_jump.planner import JumpPlanner
 from frictiondisk.tasks.jobs import RunScenes, Sizing
 from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.expanding import Expanding
 from frictiondisk.tasks.jump_search.reserve_offset import learned_offset
 from frictiondisk.tasks.jump_search.runs import BisectionResult, RunRecord, RunRequest
@@ -110,8 +111,8 @@ def test_a_deferred_runs_reserve_aims_the_next_probe_at_the_jump():
 
     counts = []
     for read in (True, False):
-        bis = Bisection((mu_star - 1e-4, mu_star + 1e-3), TOL, (1e-6, 10.0), 2,
-                        expanding=Expanding(defer=True))  # fmt: skip
+        bis = Bisection((mu_star - 1e-4, mu_star + 1e-3), BisectionSettings(TOL, (1e-6, 10.0), 2,
+                        expanding=Expanding(defer=True)))  # fmt: skip
         while not bis.done:
             request = bis.pending()[0]
             bis.feed(request, run(request, read))

@@ -14,6 +14,7 @@ from frictiondisk.model.scene import ConfigError
 from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.find_jump.planner import refinement
 from frictiondisk.tasks.jump_search.bisection import ITP_SLACK, Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 
 BRACKET, LIMITS = (0.05, 0.3), (1e-6, 10.0)
 
@@ -29,7 +30,7 @@ def oracle(mu_star, reserve):
 
 
 def search(answer, tol, root_finder="itp", bracket=BRACKET):
-    bis = Bisection(bracket, tol, LIMITS, 2, root_finder=root_finder)
+    bis = Bisection(bracket, BisectionSettings(tol, LIMITS, 2, root_finder=root_finder))
     while not bis.done:
         for request in bis.pending():
             if bis.done:

@@ -15,7 +15,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from frictiondisk.model.search_settings import Certify
-from frictiondisk.tasks.jump_search.bisection import Bisection, BisectionSettings
+from frictiondisk.tasks.jump_search.bisection import Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
 from frictiondisk.tasks.jump_search.expanding import PLAIN, PREDICTED, Expanding
 from frictiondisk.tasks.jump_search.jumps import JumpSearch
@@ -155,12 +156,9 @@ def test_every_certified_search_ends_and_its_resume_ends_alike(
     def make():
         return CertifiedBisection(
             (0.04, 0.3),
-            tol,
-            (1e-6, 10.0),
-            2,
+            BisectionSettings(tol, (1e-6, 10.0), 2, expanding=expanding),
             certify=Certify(),
             guided=guided,
-            expanding=expanding,
         )
 
     asked, found = drive(make(), answer)
@@ -204,7 +202,10 @@ def test_a_tol_below_what_mu_resolves_fails_at_the_floor_with_the_reason(tol):
     """A clean jump (every run decided, an exact reserve) bisected past the floating-point
     resolution of mu: the bracket ends a few ulps wide, `failed`, naming why."""
     mu_star = 0.1234567890123
-    asked, found = drive(Bisection((0.04, 0.3), tol, (1e-6, 10.0), 2), pattern(mu_star, 0, 0, 0, 1))
+    asked, found = drive(
+        Bisection((0.04, 0.3), BisectionSettings(tol, (1e-6, 10.0), 2)),
+        pattern(mu_star, 0, 0, 0, 1),
+    )
     assert found.status == "failed"
     assert "cannot be split finer than mu resolves" in found.reason
     assert f"tol {tol:.3g} cannot be reached" in found.reason
@@ -227,7 +228,8 @@ def test_an_undecided_mu_is_never_run_again_at_its_last_level():
     land on the undecided mu itself (re-run for ever, as a resume from a journal did);
     the search fails instead."""
     asked, found = drive(
-        Bisection((0.04, 0.3), 1e-300, (1e-6, 10.0), 1), pattern(0.12, 1e-6, 1.0, 0.0, 0)
+        Bisection((0.04, 0.3), BisectionSettings(1e-300, (1e-6, 10.0), 1)),
+        pattern(0.12, 1e-6, 1.0, 0.0, 0),
     )
     assert found.status == "failed"
     assert len(asked) == len(set(asked))  # no request is asked twice

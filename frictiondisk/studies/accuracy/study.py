@@ -41,6 +41,7 @@ from frictiondisk.studies.accuracy.ladder import (
 )
 from frictiondisk.tasks.jobs import RunSearch
 from frictiondisk.tasks.jump_search.bisection import UNDETERMINED, Bisection
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.requests import PointScenes
 from frictiondisk.version import __version__
 
@@ -112,7 +113,8 @@ def setting_search(config: SceneConfig, task, tol: float) -> RunSearch:
     """The bisection of mu* for one scene with the find_jump `task`'s bracket and rules at
     `tol`, as a job (no certification)."""
     bisection = Bisection(
-        tuple(task.bracket), tol, tuple(task.limits), task.max_retries, root_finder=task.root_finder
+        tuple(task.bracket),
+        BisectionSettings(tol, tuple(task.limits), task.max_retries, root_finder=task.root_finder),
     )
     return RunSearch(bisection, PointScenes(config.canonical(), task.horizon_factor))
 

@@ -35,6 +35,7 @@ from frictiondisk.tasks.find_jump.results import FindJumpResults
 from frictiondisk.tasks.in_order import feed_in_order
 from frictiondisk.tasks.jobs import RunScenes, RunSearch, Sizing
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRequest, cold_run_count
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
 from frictiondisk.tasks.jump_search.expanding import PREDICTED, Expanding
 from frictiondisk.tasks.jump_search.jumps import JumpSearch, JumpSearchResult, run_role
@@ -246,21 +247,22 @@ class JumpPlanner(Planner):
         bracket = self._predicted_bracket(i)
         self.warm[i] = bracket is not None
         full = tuple(self.task.bracket)
-        self.bisections[i] = CertifiedBisection(
-            bracket or full,
+        rules = BisectionSettings(
             self.task.tol,
             tuple(self.task.limits),
             self.task.max_retries,
             split=self.task.split,
-            certify=self.task.certify,
             root_finder=self.task.root_finder,
-            guided=bracket is None,  # cold: open with the stick end and its reserve
             # a prediction that misses widens x8, x64, ... up to the full bracket, and the
             # ladder waits where a probe elsewhere may make it unnecessary (expanding.py)
             expanding=dataclasses.replace(PREDICTED, full=full) if bracket else COLD,
             between=self.task.sides,
             reserve_offset=self._reserve_offset(i),
             resolution=self._resolution(),
+        )
+        # cold (guided): open with the stick end and its reserve
+        self.bisections[i] = CertifiedBisection(
+            bracket or full, rules, self.task.certify, guided=bracket is None
         )
 
     def _resolution(self) -> float:

@@ -68,14 +68,9 @@ class Bisection:
     `between`, the boundary between any two sides: sides.py; "stick" then reads side B,
     "not stick" side A, and a run on neither side is undecided like an undetermined one).
 
-    `Bisection(bracket, settings)`, or `Bisection(bracket, tol, limits, max_retries, ...)`
-    with the fields of `BisectionSettings` in their order."""
+    `bracket` [mu] is where it starts; `settings` hold its rules for the whole search."""
 
-    def __init__(
-        self, bracket: tuple[float, float], settings: BisectionSettings | float, *args, **kwargs
-    ):
-        if not isinstance(settings, BisectionSettings):
-            settings = BisectionSettings(settings, *args, **kwargs)
+    def __init__(self, bracket: tuple[float, float], settings: BisectionSettings):
         lo, hi = bracket
         if not settings.limits[0] <= lo < hi <= settings.limits[1]:
             raise ValueError(

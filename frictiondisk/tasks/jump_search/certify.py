@@ -43,8 +43,7 @@ from frictiondisk.tasks.jump_search.bisection import (
     RunRecord,
     RunRequest,
 )
-from frictiondisk.tasks.jump_search.expanding import PLAIN, Expanding
-from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK, Between
+from frictiondisk.tasks.jump_search.expanding import PLAIN
 from frictiondisk.tasks.jump_search.watch import check_watch
 from frictiondisk.verdict.deciding_rule import BUDGET_RAN_OUT, INTEGRATOR_FAILED
 
@@ -64,58 +63,38 @@ class CertifiedBisection:
     def __init__(
         self,
         bracket: tuple[float, float],
-        tol: float,
-        limits: tuple[float, float],
-        max_retries: int,
-        rising: bool = True,
-        split: int = 2,
+        settings: BisectionSettings,
         certify: Certify = OFF,
-        root_finder: str = "itp",
         guided: bool = False,
         outer: tuple[float, float] | None = None,
-        expanding: Expanding = PLAIN,
-        between: Between = NOT_STICK_STICK,
-        reserve_offset: float = 0.0,
-        resolution: float = 0.0,
-        strict: int = 0,
     ):
-        self.tol = tol
-        self.strict = strict  # certification level of its first search (a repair goes on there)
-        self.between = between  # the two sides of the boundary (sides.py)
+        """`settings` are the rules of its first search (a re-search at stricter numerics
+        differs in its level and limits alone, _research); `guided` opens with the stick
+        end and the reserve's zero (module docstring); `outer` is where a re-search may
+        look besides settings.limits."""
+        limits = settings.limits
+        self.settings = settings
+        self.tol = settings.tol
+        self.strict = settings.strict  # level of its first search (a repair goes on there)
+        self.between = settings.between  # the two sides of the boundary (sides.py)
         self.limits = limits
         # where a re-search at stricter numerics may look: a jump that leaves its prescan
         # cell (the cell's end flips too) is followed into the next cells, not lost
         self.outer = (
             limits if outer is None else (min(outer[0], limits[0]), max(outer[1], limits[1]))
         )
-        self.max_retries = max_retries
-        self.rising = rising
-        self.split = split
+        self.max_retries = settings.max_retries
+        self.rising = settings.rising
+        self.split = settings.split
         self.certify = certify
-        self.root_finder = root_finder
-        self.expanding = expanding  # how its first search reaches past a missed prediction
-        self.reserve_offset = reserve_offset  # the reserve at the jump per unit mu (learned)
-        # the rules of every search of this jump; a re-search at stricter numerics
-        # differs in its level and limits alone (_research)
-        self.settings = BisectionSettings(
-            tol,
-            limits,
-            max_retries,
-            rising,
-            split,
-            strict,
-            root_finder=root_finder,
-            expanding=expanding,
-            between=between,
-            reserve_offset=reserve_offset,
-            resolution=resolution,
-        )
+        self.root_finder = settings.root_finder
+        self.expanding = settings.expanding  # how its first search reaches past a miss
+        self.reserve_offset = settings.reserve_offset  # reserve at the jump per unit mu
         self.search = Bisection(bracket, self.settings)
         self.searches: list[Bisection] = [self.search]
         # the guided opening (module docstring): the stick end, then the reserve's zero
-        self._opening = (
-            guided and rising and split == 2 and root_finder == "itp" and between.uses_reserve
-        )
+        self._opening = guided and settings.rising and settings.interpolates
+        self._opening = self._opening and settings.between.uses_reserve
         self._opened: list[RunRecord] = []  # its runs
         self._checks: dict[float, RunRecord] = {}  # mu -> decided strict run of this check
         self._check_level: dict[float, int] = {}  # mu -> retry level to ask for next

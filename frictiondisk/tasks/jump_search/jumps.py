@@ -39,6 +39,7 @@ from typing import Any
 
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.tasks.jump_search.bisection import RunRecord, RunRequest
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
 from frictiondisk.tasks.jump_search.headline import Persistence, never_sticks
 from frictiondisk.tasks.jump_search.jump_result import (
@@ -261,18 +262,18 @@ class JumpSearch:
         ]
 
     def _bisect(self, mu_a: float, mu_b: float, rising: bool) -> None:
-        bisection = CertifiedBisection(
-            (mu_a, mu_b),
+        rules = BisectionSettings(
             self.tol,
             (mu_a, mu_b),
             self.max_retries,
             rising,
             self.split,
-            self.certify,
-            self.root_finder,
-            outer=(self.mus[0], self.mus[-1]),
+            root_finder=self.root_finder,
             between=self.between,
             resolution=self.resolution,
+        )
+        bisection = CertifiedBisection(
+            (mu_a, mu_b), rules, self.certify, outer=(self.mus[0], self.mus[-1])
         )
         # its end checks are runs already made: fed, not run again
         decided = self._decided()

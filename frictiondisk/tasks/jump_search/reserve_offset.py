@@ -7,7 +7,7 @@ demand a fixed fraction too low, and the reserve at mu* reads `offset` x mu* (th
 the default contact stiffness: offset -2.6e-6 at every x_ms, the zero 46 tol above mu* at
 x_ms = 0.14, tol 1e-8; docs/model.md section 7). A point that aims its probes at the
 reserve's zero then lands that far from the jump and walks back. Where a finished point
-shows the offset, later points correct their reserves by it (`Bisection(reserve_offset=)`)
+shows the offset, later points correct their reserves by it (`BisectionSettings.reserve_offset`)
 and aim at the jump instead. Verdicts alone move a bracket: a wrong offset costs runs,
 never a wrong answer.
 """

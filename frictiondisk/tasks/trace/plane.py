@@ -30,6 +30,7 @@ from typing import Any
 
 from frictiondisk.model.search_settings import OFF
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRequest
+from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
 from frictiondisk.tasks.jump_search.sides import NOT_STICK_STICK
 
@@ -193,18 +194,17 @@ def line_bisection(
     line = Line(fixed, value, sign, slope)
     lo, hi = sorted(line.coordinate(x) for x in bracket)
     low, high = sorted(line.coordinate(x) for x in limits)
-    search = CertifiedBisection(
-        (lo, hi),
+    rules = BisectionSettings(
         tol,
         (min(low, lo), max(high, hi)),
         settings.max_retries,
         rising=True,
         split=settings.split,
-        certify=getattr(settings, "certify", OFF),
+        strict=strict,
         root_finder=settings.root_finder,
         between=getattr(settings, "between", NOT_STICK_STICK),
-        strict=strict,
     )
+    search = CertifiedBisection((lo, hi), rules, certify=getattr(settings, "certify", OFF))
     return LineSearch(search, line)
 
 
