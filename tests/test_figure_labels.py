@@ -117,6 +117,12 @@ def test_a_find_jump_in_another_key_names_it_and_its_unit(tmp_path, monkeypatch)
     ax = fig.get_axes()[0]
     assert ax.get_ylabel().endswith("x_ms [m]") and "\u03bc" not in ax.get_ylabel()
     assert any(t.startswith("x_ms* with its bracket") for t in _legend_texts(fig))
+    # runs.nc: `mu` holds the bisected x_ms, `point_mu` each run's mu along the points
+    runs = xr.load_dataset(tmp_path / "runs.nc")
+    assert runs["mu"].attrs["units"] == "m" and "x_ms" in runs["mu"].attrs["long_name"]
+    assert np.all((runs["mu"] >= 0.05 - 1e-12) & (runs["mu"] <= 0.2 + 1e-12))
+    expected = np.asarray([0.15, 0.18])[runs["point"].values]
+    assert np.array_equal(runs["point_mu"].values, expected)
 
 
 @pytest.mark.parametrize("between", [None, "[self_centring, slide_cycle]"])

@@ -259,4 +259,16 @@ def runs_dataset(snapshot, key_of) -> xr.Dataset:
             units=key_attrs(task.parameter_key).get("units", "1"),
             long_name=f"value of {task.parameter_key}, the bisected parameter",
         )
+        # mu itself, where it varies along the points, gets a column of its own
+        if "params.mu" in snapshot.campaign.dims:
+            points = snapshot.points
+            ds["point_mu"] = (
+                "run",
+                np.asarray([points[i].coords["params.mu"] for i in ds["point"].values], float),
+                {
+                    "units": "1",
+                    "long_name": "mu of the run's point (the column mu holds "
+                    f"{task.parameter_key})",
+                },
+            )
     return ds
