@@ -74,8 +74,10 @@ def _fmt(value: float | None, unit: str = "", spec: str = ".6g") -> str:
 
 SIMULATE_HELP = f"""Simulate one SCENE (a YAML file) and report its outcome.
 
-    The outcome is one of {outcomes.names_text()} (always with a reason),
-    reported with the first sticking radius R1, the cycle size and a, the number of
+    The outcome is one of {outcomes.names_text()} (always with a reason):
+    stick_slip wherever the slave sticks as a whole for part of the final window, slide only
+    where it never does and its motion is not yet shown (cycle_converged says whether a
+    motion has settled); reported with the first sticking radius R1, the cycle size and a, the number of
     stick/slide transitions and the stick fraction of the final window.
     """
 

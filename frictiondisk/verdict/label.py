@@ -63,7 +63,7 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
     motion = None
     if _refinable(facts, outcome):
         motion = judge(facts.own_rows, facts.own_scene, vp)
-        outcome, reason = _refine(facts, outcome, reason, motion)
+        outcome, reason = _refine(outcome, reason, motion)
         rule = motion.rule or rule  # a trend read ahead named the motion
     size = math.nan
     a = math.nan
@@ -81,30 +81,18 @@ def label(facts: RunFacts, config, vp: VerdictParams) -> Label:
     return Label(outcome, reason, size, a, rule, converged, motion)
 
 
-def _departs_only(facts: RunFacts) -> bool:
-    """A `stick_slip` at the horizon whose only evidence is a departure from sticking."""
-    ev = facts.evidence
-    return facts.status == rc.AT_HORIZON and ev is not None and ev.kind == rc.EV_DEPART
-
-
 def _refinable(facts: RunFacts, outcome: str) -> bool:
-    """Whether the own section may name the motion: a run that slides in its final window,
-    or a `stick_slip` named by a departure alone (docs/model.md section 6)."""
-    if facts.own_scene is None:
-        return False
-    return outcome == SLIDE or (outcome == STICK_SLIP and _departs_only(facts))
+    """Whether the own section may name the motion: a run that never stuck as a whole in
+    its final window (`slide`). Where sticking and sliding alternate there, that is what the
+    run has shown: `stick_slip`, whatever its section evidence (docs/model.md section 6)."""
+    return facts.own_scene is not None and outcome == SLIDE
 
 
-def _refine(facts: RunFacts, outcome: str, reason: str, motion: MotionEvidence):
-    """(outcome, reason): the pure-sliding motion the own section shows; without one a
-    departure from sticking is `slide` (not stick, its motion not named)."""
+def _refine(outcome: str, reason: str, motion: MotionEvidence) -> tuple[str, str]:
+    """(outcome, reason): the pure-sliding motion the own section shows, else `slide` with
+    what the section showed (not stick, its motion not yet shown)."""
     if motion.motion:
         return motion.motion, f"{motion.reason} ({reason})"
-    if outcome == STICK_SLIP:
-        return SLIDE, (
-            f"not stick, its motion not settled: {reason}; a departure from sticking alone "
-            "names no motion"
-        )
     return outcome, f"{reason}; {motion.reason}"
 
 

@@ -79,7 +79,7 @@ RECORDS: tuple[Outcome, ...] = (
     Outcome(
         STICK_SLIP,
         NOT_STICK,
-        "sticking and sliding alternate (a cycle reached, or approached)",
+        "sticking and sliding alternate in the final window (settled or not: cycle_converged)",
         SLIDE_COLOR,
         "#3f6e8c",
         "o",
@@ -116,8 +116,8 @@ RECORDS: tuple[Outcome, ...] = (
     Outcome(
         SLIDE,
         NOT_STICK,
-        "it never sticks as a whole, and its motion is not (yet) shown to be one of the "
-        "pure-sliding motions",
+        "it never sticks as a whole in the final window, and its motion is not yet shown to "
+        "be one of the pure-sliding motions",
         "0.55",
         "0.35",
         "s",
