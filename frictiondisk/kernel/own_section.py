@@ -8,9 +8,17 @@ where the unwrapped velocity phase psi = atan2(ydot, xdot) reaches the next mult
 and forth across one multiple is counted once): there ydot = 0 and xdot > 0. The crossing
 is located on the step's dense output by bisection. Each row (kernel/records.py OWN_STEP)
 holds the state there and what the motion did since the row before: the time mean, least
-and largest |r| (Simpson and the cubic Hermite of |r|), the largest speed, the spin, the
-plastic slip, the sticking times and switches, and whether every contact stuck at some
-instant (`locked`). A locked row ends a sliding regime: `OWN.start` then moves past it.
+and largest |r| (Simpson and the cubic Hermite of |r|), the least and largest x and y (the
+centre's extent, cubic Hermite), the largest speed, the spin, the plastic slip, the
+sticking times and switches, and whether every contact stuck at some instant (`locked`).
+A locked row ends a sliding regime: `OWN.start` then moves past it.
+
+A slave at rest turns its velocity on noise, or not at all: where the velocity has not
+turned within REST_SPAN times the longest row so far (before the first row: the master's
+revolution), a row is closed by time (turn 0).
+The section so keeps its newest rows (a run's measures are never those of an old row),
+and at rest the rows' durations double, so rest adds a row per doubling of the time and
+does not fill the ring.
 
 Facts only: what they mean is decided in frictiondisk/verdict/motion_evidence.py. The
 step loop calls `begin` at t = 0 and `piece` after every accepted piece of a step (the
@@ -28,6 +36,7 @@ from .rosenbrock import dense_eval_contact
 
 TWO_PI = 2.0 * math.pi
 BISECTIONS = 60  # halvings of the step fraction: below round-off of any step
+REST_SPAN = 2.0  # a step open this many times the longest row is closed by time
 
 
 @kernel_jit
@@ -57,6 +66,10 @@ def _open(own, t, y, nq, slip, switches, locked):
     own.r_min = _radius(y)
     own.r_max = own.r_min
     own.v_max = _speed(y, nq)
+    own.x_min = y[0]
+    own.x_max = y[0]
+    own.y_min = y[1]
+    own.y_max = y[1]
     own.locked = locked
 
 
@@ -67,7 +80,23 @@ def begin(own, t, y, nq, slip, all_stuck):
     own.start = 0
     own.psi = math.atan2(y[nq + 1], y[nq]) if _speed(y, nq) > 0.0 else math.nan
     own.level = math.nan
+    own.longest = 0.0
     _open(own, t, y, nq, slip, 0, all_stuck)
+
+
+@kernel_jit
+def _span(lo, hi, wa, wb, da, db):
+    """(least, largest) of lo, hi and the cubic Hermite through end values wa, wb with end
+    slopes da, db (per unit of the piece)."""
+    lo = min(lo, wa, wb)
+    hi = max(hi, wa, wb)
+    top, at = hermite_max(wa, wb, da, db)
+    if at >= 0.0:
+        hi = max(hi, top)
+    low, at = hermite_max(-wa, -wb, -da, -db)
+    if at >= 0.0:
+        lo = min(lo, -low)
+    return lo, hi
 
 
 @kernel_jit
@@ -87,6 +116,10 @@ def _extremes(own, ya, yb, nq, dt):
         low, at = hermite_max(-ra, -rb, -da, -db)
         if at >= 0.0:
             own.r_min = min(own.r_min, -low)
+    own.x_min, own.x_max = _span(own.x_min, own.x_max, ya[0], yb[0], dt * ya[nq], dt * yb[nq])
+    own.y_min, own.y_max = _span(
+        own.y_min, own.y_max, ya[1], yb[1], dt * ya[nq + 1], dt * yb[nq + 1]
+    )
 
 
 @kernel_jit
@@ -137,6 +170,10 @@ def _close(own, ring, motion, phases, intervals, t, y, nq, slip, turn):
     row.r_min = own.r_min
     row.r_max = own.r_max
     row.v_max = own.v_max
+    row.x_min = own.x_min
+    row.x_max = own.x_max
+    row.y_min = own.y_min
+    row.y_max = own.y_max
     row.spin = (y[2] - own.phi0) if nq == 3 else 0.0
     row.slip = slip - own.slip0
     row.stick_all_t = frac_all * dt
@@ -144,6 +181,7 @@ def _close(own, ring, motion, phases, intervals, t, y, nq, slip, turn):
     row.switches = motion.switches - own.switches0
     row.turn = turn
     row.locked = own.locked or row.stick_all_t > 0.0 or motion.all_stuck
+    own.longest = max(own.longest, dt)
     own.n += 1
     if row.locked:
         own.start = own.n  # a sliding regime starts after a step with whole-body sticking
@@ -180,6 +218,14 @@ def piece(
         own.psi = psi
     if math.isnan(target):
         _add(own, y0, ymid, y_end, nq, s_end * h)
+        t_end = t + s_end * h
+        longest = own.longest
+        if longest == 0.0 and motion.n_rev > 0:
+            longest = motion.rev_t0 / motion.n_rev  # no row yet: the master's revolution
+        if longest > 0.0 and t_end - own.t0 >= REST_SPAN * longest:
+            # the velocity has not turned: at rest (or turning on noise); close by time
+            _close(own, ring, motion, phases, intervals, t_end, y_end, nq, slip_b, 0)
+            _open(own, t_end, y_end, nq, slip_b, motion.switches, motion.all_stuck)
         return
     ystar, ym = ys[0], ys[1]
     s_cut = _crossing(y0, y1, wk, s_end, target, nq, ystar)

@@ -167,7 +167,12 @@ OWN = np.dtype(
         ("r_min", np.float64),  # smallest |r| in it so far [m]
         ("r_max", np.float64),  # largest |r| in it so far [m]
         ("v_max", np.float64),  # largest |rdot| in it so far [m/s]
+        ("x_min", np.float64),  # least x in it so far [m]
+        ("x_max", np.float64),  # largest x [m]
+        ("y_min", np.float64),  # least y [m]
+        ("y_max", np.float64),  # largest y [m]
         ("locked", np.bool_),  # every contact stuck at some instant of it
+        ("longest", np.float64),  # the longest row closed so far [s] (0: none yet)
     ]
 )
 
@@ -185,12 +190,17 @@ OWN_STEP = np.dtype(
         ("r_min", np.float64),  # smallest |r| over it [m]
         ("r_max", np.float64),  # largest |r| over it [m]
         ("v_max", np.float64),  # largest |rdot| over it [m/s]
+        ("x_min", np.float64),  # least x of the centre over it [m]
+        ("x_max", np.float64),  # largest x [m]
+        ("y_min", np.float64),  # least y [m]
+        ("y_max", np.float64),  # largest y [m]
         ("spin", np.float64),  # integral of phidot dt over it [rad] (0 for the pin)
         ("slip", np.float64),  # net plastic slip of the mean contact over it [m]
         ("stick_all_t", np.float64),  # time with every contact stuck [s]
         ("stick_any_t", np.float64),  # time with some contact stuck [s]
         ("switches", np.int64),  # contact mode switches in it
-        ("turn", np.int64),  # +1: psi turned forwards a whole turn, -1: backwards
+        ("turn", np.int64),  # +1: psi turned forwards a whole turn, -1: backwards, 0: it
+        # did not turn within REST_SPAN times the longest row before (closed by time)
         ("locked", np.bool_),  # every contact stuck at some instant: not a sliding step
     ]
 )
