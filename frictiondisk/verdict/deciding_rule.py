@@ -33,6 +33,7 @@ EXTRAPOLATED = frozenset(
         "corotation_limit",
         "creep_limit",
         "envelope_trend",
+        "amplitude_trend",
     }
 )
 BUDGET_RAN_OUT = "budget"  # undetermined: the run looked as far as its horizon budget lets it
@@ -48,6 +49,7 @@ DECIDING_RULES = (
     *EVIDENCE_RULES.values(),  # the section evidence at the horizon (verdict/horizon_evidence.py)
     "window",  # the final window without section evidence (stick_rule contacts)
     "envelope_trend",  # a pure-sliding motion named by its envelope's trend read ahead
+    "amplitude_trend",  # ... by its size's trend read ahead (a spiral dying out or growing)
     BUDGET_RAN_OUT,  # undetermined: the horizon budget ran out
     INTEGRATOR_FAILED,  # undetermined: the integrator failed or ran out of work
 )

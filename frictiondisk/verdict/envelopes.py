@@ -1,6 +1,7 @@
-"""The envelopes of the step-mean |r| of a pure-sliding regime, and the frequency at which
-a ring's layout ripple appears in a section taken once a whirl (plain numpy on the own
-section's rows, kernel/own_section.py)."""
+"""The envelopes of a pure slide's step-mean |r| (docs/model.md section 6, "The modulated
+cycle"): whole envelopes between upward crossings of its mean, and the layout ripple's
+frequency as a section taken once a whirl aliases it. Facts only: modulated.py reads them.
+"""
 
 from __future__ import annotations
 
@@ -28,7 +29,7 @@ class Envelopes:
         return float(np.sum(part["r_mean"] * part["dt"]) / np.sum(part["dt"]))
 
 
-def parabola_peak(values: np.ndarray, i: int) -> float:
+def peak(values: np.ndarray, i: int) -> float:
     """The vertex of the parabola through values[i - 1 : i + 2] (sampled once a whirl)."""
     if i <= 0 or i >= values.shape[0] - 1:
         return float(values[i])
@@ -50,8 +51,8 @@ def envelopes(rows: np.ndarray) -> Envelopes | None:
     depths = []
     for a, b in zip(up[:-1], up[1:], strict=True):
         part = s[a - 1 : b + 1]
-        top = parabola_peak(part, int(np.argmax(part)))
-        low = -parabola_peak(-part, int(np.argmin(part)))
+        top = peak(part, int(np.argmax(part)))
+        low = -peak(-part, int(np.argmin(part)))
         depths.append(0.5 * (top - low))
     middles = 0.5 * (times[:-1] + times[1:])
     return Envelopes(np.diff(times), np.array(depths), middles, mean, up)

@@ -411,12 +411,56 @@ class VerdictParams:
         "aliased to the own period is the discrete ring, not a modulation",
         allowed=Allowed(0.0, 0.5),
     )
-    alias_steps: int = threshold(
+    # --- the pure-sliding motions: measures, the size's trend, the ring's ripple ----------
+    own_period_rows: int = threshold(
+        4,
+        "own periods",
+        "newest own-section steps whose mean duration is the own period",
+        allowed=count_range(1),
+    )
+    alias_min_steps: int = threshold(
         8,
         "own periods",
-        "the fewest newest own steps (else one envelope's worth) over which the layout "
-        "ripple's aliased frequency is read: its spin and period are means over them",
+        "least newest own periods over which the layout ripple's aliased frequency is read "
+        "(at least an envelope's): its spin and period are means over them",
         allowed=count_range(2),
+    )
+    amp_trend_count: int = threshold(
+        16,
+        "own periods",
+        "least own periods (the newer half of the regime, at least this) behind the trend of "
+        "the motion's size: a repeat needs it shown steady (a spiral near a Hopf point "
+        "repeats within tolerance while it decays: 3.8e-4 1/s at 4e-8 1/s error over 16)",
+        allowed=count_range(3),
+    )
+    amp_trend_sigmas: float = threshold(
+        4.0,
+        "standard errors",
+        "the size's rate counts beyond this many standard errors; a steady size's change is "
+        "bounded at value plus this many (as env_trend_sigmas)",
+        allowed=POSITIVE,
+    )
+    amp_precision: float = threshold(
+        1e-3,
+        "1",
+        "a rate that changes the size by less than this share over the fitted span is no "
+        "trend: the precision of an extent (a whirl's scatters by 1e-9, a Hopf spiral's "
+        "ln(size) by 7e-5 about its line)",
+        allowed=SHARE,
+    )
+    amp_steady_change: float = threshold(
+        0.01,
+        "1",
+        "a steady size changes by at most this share over as long again at its rate's "
+        "bound (as env_tol)",
+        allowed=SHARE,
+    )
+    ring_ripple_tol: float = threshold(
+        0.01,
+        "1",
+        "own periods within this share of 2 pi / (N |phidot|) turn with the ring's ripple: "
+        "a disk at rest shaken by its contacts (measured within 4e-6 at 48 points)",
+        allowed=SHARE,
     )
 
     def __post_init__(self) -> None:

@@ -1,17 +1,19 @@
-"""What the envelopes of a whirl's step-mean |r| show (verdict/motion_evidence.py):
-modulated, or slide_cycle for a ripple or a dying envelope.
+"""The evidence of a modulated cycle, or of a whirl's ripple or dying envelope, from the
+envelopes of the step-mean |r| (envelopes.py; docs/model.md section 6, "The modulated
+cycle").
 
-* modulated: env_count whole envelopes (between upward crossings of the mean) agree in
-  period and depth within env_tol, their depth shows no trend (envelope_trend.py: no rate
-  beyond its errors over up to env_trend_count envelopes, and at its bound a change within
-  env_tol over as long again), the depth at least env_min_depth of the mean radius and
-  env_min_depth_tols cycle_tol, and not at the layout's aliased ripple frequency (a ring
-  of N contacts makes |r| ripple at N |Omega - phidot|, which a section taken once a whirl
-  aliases into a slow beat). Or the depths settle geometrically towards a limit that keeps
-  that depth (Aitken), converged where the rest is within tol. Or, read ahead over at
-  least env_trend_count envelopes (rule ENVELOPE_TREND), the depth grows: the motion
-  leaves the whirl.
-* slide_cycle: steady envelopes shallower than that, or at the layout ripple; or an
+* modulated: env_count whole envelopes agree in period and depth within env_tol, their
+  depth shows no trend (envelope_trend.py: no rate beyond its errors over up to
+  env_trend_count envelopes, and at its bound a change within env_tol over as long again),
+  the depth at least env_min_depth of the mean radius and env_min_depth_tols cycle_tol,
+  and not at the layout's aliased ripple frequency (the layout guard: a ring of N contacts
+  makes |r| ripple at N |Omega - phidot|, which a section taken once a whirl aliases into
+  a slow beat). Or the depths settle geometrically towards a limit that keeps that depth
+  (Aitken), converged where the rest is within tol. Or, read ahead over at least
+  env_trend_count envelopes (rule envelope_trend), the depth grows: the motion leaves the
+  whirl.
+* slide_cycle: steady envelopes shallower than that, or at the aliased ripple, of a size
+  shown steady (slide_cycle.py `shown`: else a spiral dying out or leaving); or an
   envelope that dies out geometrically (Aitken, or that trend falling on a line that does
   not bend towards a limit): the approach to a whirl.
 """
@@ -25,23 +27,13 @@ import numpy as np
 from .envelope_trend import DepthTrend, depth_trend
 from .envelopes import Envelopes, aliased_ripple, envelopes
 from .outcomes import MODULATED, SLIDE_CYCLE
-from .own_evidence import (
-    ENVELOPE_TREND,
-    MotionEvidence,
-    OwnScene,
-    aitken,
-    cycle_reason,
-    own_measures,
-)
+from .own_evidence import ENVELOPE_TREND, MotionEvidence, OwnScene, aitken, cycle_reason
+from .own_evidence import measures as own_measures
 from .params import VerdictParams
+from .slide_cycle import shown
 
 
-def least_depth(mean_radius: float, scene: OwnScene, vp: VerdictParams) -> float:
-    """The least depth [m] of a modulation about `mean_radius` [m]."""
-    return max(vp.env_min_depth * mean_radius, vp.env_min_depth_tols * scene.cycle_tol)
-
-
-def envelope_evidence(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None:
+def envelope(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidence | None:
     """modulated, or slide_cycle for a ripple or a dying envelope (module docstring)."""
     env = envelopes(rows)
     if env is None or env.periods.shape[0] < vp.env_count:
@@ -54,14 +46,14 @@ def envelope_evidence(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidenc
     depth_tol = max(scene.cycle_tol, vp.env_tol * depth)
     steady_period = np.ptp(periods) <= vp.env_tol * period
     steady_depth = np.ptp(depths) <= depth_tol
-    deep = depth >= least_depth(mean, scene, vp)
-    alias = aliased_ripple(rows[-max(vp.alias_steps, int(period / rows["dt"][-1])) :], scene)
+    deep = depth >= max(vp.env_min_depth * mean, vp.env_min_depth_tols * scene.cycle_tol)
+    alias = aliased_ripple(rows[-max(vp.alias_min_steps, int(period / rows["dt"][-1])) :], scene)
     layout = not math.isnan(alias) and abs(1.0 / period - alias) <= vp.layout_alias / period
-    measures = own_measures(rows, scene)
+    measures = own_measures(rows, scene, vp)
     shape = f"envelope period {period:.5g} s, depth {depth:.4g} m about {mean:.5g} m"
     if steady_period and steady_depth and (not deep or layout):
         why = "the layout ripple of the discrete ring" if layout else "a ripple"
-        return MotionEvidence(
+        found = MotionEvidence(
             SLIDE_CYCLE,
             True,
             cycle_reason(f"its step-mean |r| only shows {why} ({shape})", measures),
@@ -69,6 +61,7 @@ def envelope_evidence(rows, scene: OwnScene, vp: VerdictParams) -> MotionEvidenc
             envelope_depth=depth,
             **measures,
         )
+        return shown(rows, found, scene, vp)
     if layout:
         return None
     count = env.depths.shape[0]
@@ -189,7 +182,9 @@ def _settling_envelope(
             decay_rate=-math.log(ratio) / period,
             **measures,
         )
-    if limit < least_depth(measures["mean_radius"], scene, vp):
+    if limit < max(
+        vp.env_min_depth * measures["mean_radius"], vp.env_min_depth_tols * scene.cycle_tol
+    ):
         return None
     return MotionEvidence(
         MODULATED,
