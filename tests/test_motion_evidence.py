@@ -194,3 +194,37 @@ def test_too_few_sliding_rows_are_no_evidence():
     ev = me.judge(rows, _disk_scene(1), VerdictParams())
     assert ev.motion == "" and not ev.converged
     assert "2 own periods of sliding" in ev.reason
+
+
+# --- names say what was seen; the own section keeps its newest rows -----------------------
+
+
+def test_the_demo_pin_reads_stick_slip():
+    """campaigns/demo_pin.yaml (decide mode, 60 s) promises the paper's stick-slip cycle:
+    its final window alternates sticking as a whole and sliding, so it is stick_slip,
+    not converged (it departs from sticking), whatever its own section shows."""
+    from pathlib import Path
+
+    from frictiondisk import load_scene
+
+    config = load_scene(Path(__file__).resolve().parents[1] / "campaigns" / "demo_pin.yaml")
+    res = simulate(config)
+    assert res.outcome == "stick_slip" and not res.cycle_converged, res.reason
+    assert 0.0 < res.stick_fraction < 1.0
+    assert "sticking and sliding alternate in the final window" in res.reason
+
+
+def test_a_slave_at_rest_keeps_its_newest_rows_without_filling_the_section():
+    """An overdamped pin (beta_s 5 > 2 sqrt(c_s m_s)) slides to rest without its velocity
+    turning: rows are closed by time (turn 0), each twice as long as the longest before, so
+    the newest row ends within a factor two of the run's end and rest adds a handful."""
+    res = simulate(scene_from_dict(pin(0.095, 0.8, 2000.0, beta_s=5.0)))
+    rows = res.own_section
+    assert rows.shape[0] < 40
+    assert rows["t"][-1] >= 0.5 * res.t_end
+    closed_by_time = rows[rows["turn"] == 0]
+    assert closed_by_time.shape[0] >= 3
+    assert all(closed_by_time["dt"][1:] >= 2.0 * closed_by_time["dt"][:-1] * (1 - 1e-12))
+    assert res.outcome == "self_centring" and res.cycle_converged, res.reason
+    # the measures are the newest row's: at rest, no amplitude left
+    assert res.amplitude <= CYCLE_TOL
