@@ -43,7 +43,7 @@ def default_run():
 
 
 def test_the_default_reads_the_departure_as_not_stick(default_run):
-    assert (default_run.outcome, default_run.decided_by) == ("slide", "depart")
+    assert (default_run.outcome, default_run.decided_by) == ("stick_slip", "depart")
     assert default_run.t_end < 40.0
 
 
