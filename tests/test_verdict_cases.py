@@ -437,7 +437,7 @@ MOTION_CASES = (
     Case(
         "self-centring pin (issue 49), 60 s",
         at(SELF_CENTRING_PIN, 0.095, **CONVERGE_60),
-        "self_centring_evidence.rest_evidence",
+        "self_centring.rest",
         "own_rest_zero",
         "self_centring",
         "self-centres",
@@ -450,7 +450,7 @@ MOTION_CASES = (
     Case(
         "large sliding cycle of the pin (issue 49), 90 s",
         at(LARGE_CYCLE_PIN, 0.05, **CONVERGE_90),
-        "slide_cycle_evidence.section_cycle_evidence",
+        "slide_cycle.cycle",
         "own_motion_keep",
         "slide_cycle",
         "contracts by 0.79",
@@ -476,7 +476,7 @@ MOTION_CASES = (
     Case(
         "the modulated braked disk (issue 49), J_s 0.3, 48 points",
         None,
-        "modulated_evidence.envelope_evidence",
+        "modulated.envelope",
         "env_tol",
         "modulated",
         "",
@@ -486,7 +486,7 @@ MOTION_CASES = (
     Case(
         "the circular whirl of the braked disk, J_s 0.1, 48 points",
         None,
-        "modulated_evidence.envelope_evidence",
+        "modulated.envelope",
         "env_min_depth",
         "slide_cycle",
         "",
