@@ -32,7 +32,7 @@
 #                and draw out/figures/<name>.png and .pdf (the tracked tree stays clean)
 #   make gallery draw every PNG under figures/ again from this code (frictiondisk/cli/gallery.py:
 #                the figure campaigns, the basin campaigns, the brake and corotation studies,
-#                the accuracy studies; commit them). An hour or more
+#                the accuracy studies; commit them). About 7 minutes on 2 cores
 #                from nothing; RUNS=DIR starts from finished run folders DIR/<campaign>/
 #                (`frictiondisk run campaigns/X.yaml -o DIR/X`), rerunning only what this
 #                numerics version has not journaled; GALLERY_ARGS="--only basin" picks
