@@ -64,3 +64,17 @@ def test_the_watch_runs_the_campaign_numerics_at_a_longer_horizon():
     converge = {"mode": "converge", "t_max": 100.0}
     config = watch_boundary_ends.watched_config(point, converge, "params.mu", 0.1, 3.0)
     assert config.numerics.t_max == 300.0
+
+
+def test_uncertain_brackets_are_watched_only_when_asked():
+    import xarray as xr
+
+    results = xr.Dataset(
+        {
+            "certification": ("point", [1, 3, 0, 2]),
+            "mu_lo": ("point", [0.1, 0.2, 0.3, 0.4]),
+            "mu_hi": ("point", [0.11, 0.21, 0.31, 0.41]),
+        }
+    )
+    assert [i for i, *_ in watch_boundary_ends.ends_of(results)] == [0, 3]
+    assert [i for i, *_ in watch_boundary_ends.ends_of(results, uncertain=True)] == [0, 1, 3]

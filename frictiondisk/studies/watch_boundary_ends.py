@@ -31,6 +31,7 @@ from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.jump_search.sides import HIGH, LOW
 
 CERTIFIED = (1, 2)  # certification flags: certified, recertified
+UNCERTAIN = 3  # a bracket its certification could not confirm (watched with --uncertain)
 
 
 def watched_config(point_config, numerics: dict, key: str, value: float, factor: float):
@@ -43,18 +44,21 @@ def watched_config(point_config, numerics: dict, key: str, value: float, factor:
     return point_config.with_overrides(overrides)
 
 
-def ends_of(results: xr.Dataset) -> list[tuple[int, float, float]]:
-    """(point, lo, hi) of every certified or recertified bracket, in point order."""
+def ends_of(results: xr.Dataset, uncertain: bool = False) -> list[tuple[int, float, float]]:
+    """(point, lo, hi) of every certified or recertified bracket (and `uncertain` ones too),
+    in point order."""
     flags = np.asarray(results["certification"].values).ravel()
     lo = np.asarray(results["mu_lo"].values).ravel()
     hi = np.asarray(results["mu_hi"].values).ravel()
-    return [(i, float(lo[i]), float(hi[i])) for i in range(flags.size) if flags[i] in CERTIFIED]
+    wanted = (*CERTIFIED, UNCERTAIN) if uncertain else CERTIFIED
+    return [(i, float(lo[i]), float(hi[i])) for i in range(flags.size) if flags[i] in wanted]
 
 
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m frictiondisk.studies.watch_boundary_ends")
     p.add_argument("campaign", type=Path, help="a finished find_jump campaign folder")
     p.add_argument("--factor", type=float, default=3.0, help="horizon x this [1]")
+    p.add_argument("--uncertain", action="store_true", help="watch uncertain brackets too")
     args = p.parse_args(argv)
     with xr.open_dataset(args.campaign / "results.nc") as results:
         results = results.load()
@@ -64,7 +68,7 @@ def main(argv: list[str] | None = None) -> int:
     sides, key = task.sides, task.parameter_key
     points = campaign.points()
     counts = {"confirmed": 0, "contradicted": 0, "open": 0}
-    for i, lo, hi in ends_of(results):
+    for i, lo, hi in ends_of(results, args.uncertain):
         for value, claim in ((lo, LOW), (hi, HIGH)):
             config = watched_config(points[i].config, numerics, key, value, args.factor)
             res = simulate_module.simulate(config)
@@ -78,7 +82,7 @@ def main(argv: list[str] | None = None) -> int:
             )
     total = sum(counts.values())
     print(
-        f"{total} certified ends watched to {args.factor:g} x the horizon: "
+        f"{total} {'certified or uncertain' if args.uncertain else 'certified'} ends watched to {args.factor:g} x the horizon: "
         + ", ".join(f"{n} {name}" for name, n in counts.items())
     )
     return 1 if counts["contradicted"] else 0
