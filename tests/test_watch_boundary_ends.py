@@ -13,19 +13,7 @@ from frictiondisk.tasks.campaign import campaign_from_text
 
 sys.path.insert(0, "tests")
 from fake_simulate import install  # noqa: E402
-
-# the fake's stick side becomes slide_cycle (side B), its stick_slip side self_centring (A)
-RENAMED = {"stick": "slide_cycle", "stick_slip": "self_centring"}
-BETWEEN = """\
-name: two_motions
-scene: pin
-params: {c_s: 1.5, y0: 0.01}
-find_jump:
-  bracket: [0.05, 0.3]
-  tol: 1.0e-3
-  between: [self_centring, slide_cycle]
-  along: {params.x_ms: [0.08, 0.1, 0.12]}
-"""
+from test_figure_labels import BETWEEN, RENAMED  # noqa: E402  (a two-motion campaign)
 
 
 def _renamed(monkeypatch, names):
