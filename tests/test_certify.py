@@ -321,6 +321,12 @@ def test_a_certification_level_tightens_rtol_atol_and_lengthens_the_budget():
         # judged from the same horizon on, with more room to find its evidence
         assert num.t_decide == pytest.approx(30.0)
         assert num.horizon_budget == pytest.approx(8.0 * DEFAULT.horizon**strict)
+        # and its work budgets grow with that time: steps and events per second of watch
+        assert num.max_steps == 2_000_000 * DEFAULT.horizon**strict
+        assert num.max_events == 200_000 * DEFAULT.horizon**strict
+    # a run of the point's own level keeps the point's budgets
+    same = run_config(point, RunRequest(0.2), 2.0, DEFAULT).numerics
+    assert (same.max_steps, same.max_events) == (2_000_000, 200_000)
 
 
 def test_a_certification_setting_survives_the_campaign_file_round_trip():

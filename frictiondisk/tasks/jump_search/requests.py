@@ -10,6 +10,7 @@ import functools
 from typing import Any
 
 from frictiondisk.model.scene import MAX_HORIZON_BUDGET, SceneConfig, scene_from_dict
+from frictiondisk.model.schema import INT64_MAX
 from frictiondisk.model.search_settings import OFF, Certify
 from frictiondisk.tasks.jump_search.bisection import RunRequest
 from frictiondisk.verdict.horizon import horizon_key, horizon_of
@@ -58,6 +59,12 @@ def run_config(
         # of them would (their horizon times the budget): the same reach, not restarted
         whole = min(budget * horizon_factor**request.reach, MAX_HORIZON_BUDGET)
         overrides["numerics.horizon_budget"] = whole
+        # the work budgets grow with the time the run may take: a check given 4x the
+        # horizon budget with the point's step budget ran out of steps, not of evidence
+        # (a 48-point disk watched 18 000 s: 2e6 steps at ~5 700 s)
+        share = whole / num.horizon_budget
+        overrides["numerics.max_steps"] = min(int(num.max_steps * share), INT64_MAX)
+        overrides["numerics.max_events"] = min(int(num.max_events * share), INT64_MAX)
         if certify.observe:
             # it decides only on what it sees (a repeating section, a stick): an
             # extrapolated verdict is then a prediction that certification checks
