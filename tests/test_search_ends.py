@@ -98,6 +98,17 @@ def replay(make, journal: dict):
     return drive(make(), lambda request: journal[request])
 
 
+def ends_and_resumes_alike(make, answer) -> tuple[list, object]:
+    """Drive a fresh search to its end, then resume it from the journal of its runs: the
+    resume asks for the same runs and ends the same way. Returns (asked, found)."""
+    asked, found = drive(make(), answer)
+    journal = {request: answer(request) for request in asked}
+    again, refound = replay(make, journal)
+    assert again == asked
+    assert (refound.status, refound.reason) == (found.status, found.reason)
+    return asked, found
+
+
 tols = st.sampled_from([1e-300, 1e-200, 1e-30, 1e-17, 1e-16, 1e-15, 1e-14, 1e-12, 1e-9])
 mus = st.floats(0.045, 0.29)
 bands = st.sampled_from([0.0, 1e-17, 1e-15, 1e-13, 1e-10, 1e-6])
@@ -124,14 +135,10 @@ def test_every_bisection_ends_and_its_resume_ends_alike(
     rules = BisectionSettings(
         tol, (1e-6, 10.0), max_retries, split=split, root_finder=root_finder, expanding=expanding
     )
-    asked, found = drive(Bisection((0.04, 0.3), rules), answer)
+    _, found = ends_and_resumes_alike(lambda: Bisection((0.04, 0.3), rules), answer)
     assert found.status in ("converged", "failed") and found.reason
     if found.status == "converged":
         assert found.width <= tol * (1 + 1e-9) or "undetermined after every retry" in found.reason
-    journal = {request: answer(request) for request in asked}
-    again, refound = replay(lambda: Bisection((0.04, 0.3), rules), journal)
-    assert again == asked
-    assert (refound.status, refound.reason) == (found.status, found.reason)
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -161,12 +168,8 @@ def test_every_certified_search_ends_and_its_resume_ends_alike(
             guided=guided,
         )
 
-    asked, found = drive(make(), answer)
+    _, found = ends_and_resumes_alike(make, answer)
     assert found.status in ("converged", "failed") and found.reason
-    journal = {request: answer(request) for request in asked}
-    again, refound = replay(make, journal)
-    assert again == asked
-    assert (refound.status, refound.reason) == (found.status, found.reason)
 
 
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -189,12 +192,8 @@ def test_every_jump_search_ends_and_its_resume_ends_alike(
     def make():
         return JumpSearch(grid, tol, 2, certify=Certify(), stride=stride)
 
-    asked, found = drive(make(), answer)
+    _, found = ends_and_resumes_alike(make, answer)
     assert found.status in ("converged", "failed", "no_jump") and found.reason
-    journal = {request: answer(request) for request in asked}
-    again, refound = replay(make, journal)
-    assert again == asked
-    assert (refound.status, refound.reason) == (found.status, found.reason)
 
 
 @pytest.mark.parametrize("tol", [1e-300, 1e-17])

@@ -176,16 +176,17 @@ def _numerics_reference(knob: str) -> Setting:
     )
 
 
-def _rodas(rtol: float, series: str = "rodas4 (rtol)", knob: str = "rtol") -> Setting:
+def _by_rtol(method: str, rtol: float, series: str, knob: str) -> Setting:
+    """The setting of `method` at `rtol` (atol as atol_for gives it)."""
     return Setting(
         knob=knob,
         series=series,
         key="numerics.rtol",
         value=rtol,
         tag=f"{rtol:.0e}",
-        label=f"rodas4 rtol = {rtol:g}, atol = {atol_for(rtol):g}",
+        label=f"{method} rtol = {rtol:g}, atol = {atol_for(rtol):g}",
         overrides={
-            "numerics.method": "rodas4",
+            "numerics.method": method,
             "numerics.rtol": rtol,
             "numerics.atol": atol_for(rtol),
         },
@@ -193,7 +194,9 @@ def _rodas(rtol: float, series: str = "rodas4 (rtol)", knob: str = "rtol") -> Se
 
 
 def _rtol(base: SceneConfig, quick: bool) -> Knob:
-    settings = tuple(_rodas(rtol) for rtol in _values("rtol", RTOLS, quick))
+    settings = tuple(
+        _by_rtol("rodas4", rtol, "rodas4 (rtol)", "rtol") for rtol in _values("rtol", RTOLS, quick)
+    )
     return Knob(
         "rtol",
         "numerics",
@@ -221,21 +224,7 @@ def _method(base: SceneConfig, quick: bool) -> Knob:
     # its mu* would answer another question, so the series is left out (docs/accuracy.md)
     radau_fits = base.scene == "pin" or base.numerics.stick_rule == "contacts"
     for rtol in _values("radau", RADAU_RTOLS, quick) if radau_fits else ():
-        settings.append(
-            Setting(
-                knob="method",
-                series="scipy-radau (rtol)",
-                key="numerics.rtol",
-                value=rtol,
-                tag=f"{rtol:.0e}",
-                label=f"scipy-radau rtol = {rtol:g}, atol = {atol_for(rtol):g}",
-                overrides={
-                    "numerics.method": "scipy-radau",
-                    "numerics.rtol": rtol,
-                    "numerics.atol": atol_for(rtol),
-                },
-            )
-        )
+        settings.append(_by_rtol("scipy-radau", rtol, "scipy-radau (rtol)", "method"))
     if base.scene == "pin" and not quick:
         settings.append(_coulomb("method"))
     return Knob(
