@@ -19,20 +19,15 @@ Which samples are wanted, out or known, and the jobs that carry them, are the ru
 
 from __future__ import annotations
 
-from typing import Any
-
 from frictiondisk.tasks.basin import stats as basin_stats
 from frictiondisk.tasks.basin.results import BasinResults
 from frictiondisk.tasks.basin.sampling import STICK, UNDETERMINED, BasinPointResult
-from frictiondisk.tasks.jobs import RunScenes, Sizing
-from frictiondisk.tasks.protocol import Planner
-from frictiondisk.tasks.sampling.run_book import RunBook
-from frictiondisk.tasks.sampling.runs import SampleRequest
+from frictiondisk.tasks.sampling.run_book import RunBook, RunBookPlanner
 
 JOB_RUNS = 16  # runs per job without the driver's sizing (tests, a direct use)
 
 
-class BasinPlanner(Planner):
+class BasinPlanner(RunBookPlanner):
     """basin: sampled initial states at every point (or one run per cell of a map)."""
 
     def __init__(self, campaign):
@@ -45,16 +40,12 @@ class BasinPlanner(Planner):
         if self.task.target_se is not None:
             first = min(self.task.batch, self.task.max_samples)
         self.target = [first] * len(self.points)  # samples wanted so far, per point
-        self.stop_reason: dict[int, str] = {}
         self.book.want((i, j) for i in range(len(self.points)) for j in range(first))
 
     # ---- samples ----------------------------------------------------------------------
     def sample_values(self, i: int, j: int) -> dict[str, float]:
         """The sampled initial-state values of sample j at point i."""
         return self.book.sample_values(i, j)
-
-    def config_for(self, i: int, request: SampleRequest):
-        return self.book.config_for(i, request)
 
     # ---- planner protocol -------------------------------------------------------------
     @property
@@ -70,40 +61,12 @@ class BasinPlanner(Planner):
         results = tuple(self.results.get(i) for i in range(len(self.points)))
         return BasinResults(self.campaign, tuple(self.points), results)
 
-    def requests(self) -> list[tuple[int, SampleRequest]]:
-        return self.book.requests()
-
-    def new_requests(self) -> list[tuple[int, SampleRequest]]:
-        """The samples asked for since the last call (each once), still wanted."""
-        return self.book.new_requests()
-
-    def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
-        self.book.remember_canonical(i, request, canonical)
-
-    def feed(self, i: int, request: SampleRequest, result: dict[str, Any]) -> None:
-        """Take a result; one the point no longer waits for is ignored."""
-        if self.book.take(i, request.index, result):
-            self._advance(i)
-
-    def jobs(self, sizing: Sizing | None = None) -> list[tuple[tuple[int, int], RunScenes]]:
-        """Requested samples not yet out, in the order asked (RunBook.jobs)."""
-        return self.book.jobs(sizing)
-
-    def complete(self, job, value) -> list[tuple[int, SampleRequest, dict[str, Any]]]:
-        """Take a finished job back; returns its runs, for the journal."""
-        made, points = self.book.complete(job, value)
-        for i in points:
-            self._advance(i)
-        return made
-
-    def fail(self, job, reason: str) -> None:
-        """A job that never came back: its samples are `undetermined` with that reason and
-        the point is marked failed (nothing is journaled, so a resume runs them again)."""
-        for i in self.book.fail(job, reason):
-            self._advance(i)
-
     # ---- stop rule --------------------------------------------------------------------
-    def _advance(self, i: int) -> None:
+    def _advance(self, points: list[int]) -> None:
+        for i in points:
+            self._advance_point(i)
+
+    def _advance_point(self, i: int) -> None:
         n = self.target[i]
         if i in self.results or self.book.busy(i):
             return

@@ -11,20 +11,15 @@ worker count, job size or the order results arrive in.
 
 from __future__ import annotations
 
-from typing import Any
-
-from frictiondisk.tasks.jobs import RunScenes, Sizing
 from frictiondisk.tasks.map.cells import CellRefinement
 from frictiondisk.tasks.map.motions import MapCellResult, leading_motion
 from frictiondisk.tasks.map.results import MapResults
-from frictiondisk.tasks.protocol import Planner
-from frictiondisk.tasks.sampling.run_book import RunBook
-from frictiondisk.tasks.sampling.runs import SampleRequest
+from frictiondisk.tasks.sampling.run_book import RunBook, RunBookPlanner
 
 JOB_RUNS = 1  # runs per job without the driver's sizing (tests, a direct use)
 
 
-class MapPlanner(Planner):
+class MapPlanner(RunBookPlanner):
     """map: a motion per cell of 1 or 2 keys, refined where neighbouring cells differ."""
 
     def __init__(self, campaign):
@@ -41,13 +36,6 @@ class MapPlanner(Planner):
     def _want(self, cells) -> None:
         points = sorted(self.cell_index[cell] for cell in cells)
         self.book.want((i, j) for i in points for j in range(self.task.runs_per_cell))
-
-    def start_values(self, i: int, j: int) -> dict[str, float]:
-        """The sampled initial state of run j of cell i ({} from the scene's own start)."""
-        return self.book.sample_values(i, j)
-
-    def config_for(self, i: int, request: SampleRequest):
-        return self.book.config_for(i, request)
 
     # ---- planner protocol -------------------------------------------------------------
     @property
@@ -67,36 +55,6 @@ class MapPlanner(Planner):
         if self.done:
             inferred = {self.cell_index[c]: m for c, m in self.cells.inferred().items()}
         return MapResults(self.campaign, tuple(self.points), results, inferred)
-
-    def requests(self) -> list[tuple[int, SampleRequest]]:
-        return self.book.requests()
-
-    def new_requests(self) -> list[tuple[int, SampleRequest]]:
-        """The runs asked for since the last call (each once), still wanted."""
-        return self.book.new_requests()
-
-    def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
-        self.book.remember_canonical(i, request, canonical)
-
-    def feed(self, i: int, request: SampleRequest, result: dict[str, Any]) -> None:
-        """Take a result; one the cell no longer waits for is ignored."""
-        if self.book.take(i, request.index, result):
-            self._advance([i])
-
-    def jobs(self, sizing: Sizing | None = None) -> list[tuple[tuple[int, int], RunScenes]]:
-        """Requested runs not yet out, in the order asked (RunBook.jobs)."""
-        return self.book.jobs(sizing)
-
-    def complete(self, job, value) -> list[tuple[int, SampleRequest, dict[str, Any]]]:
-        """Take a finished job back; returns its runs, for the journal."""
-        made, points = self.book.complete(job, value)
-        self._advance(points)
-        return made
-
-    def fail(self, job, reason: str) -> None:
-        """A job that never came back: its runs are `undetermined` with that reason and its
-        cells failed (nothing is journaled, so a resume runs them again)."""
-        self._advance(self.book.fail(job, reason))
 
     # ---- a cell's motion, and the refinement -------------------------------------------
     def _advance(self, points: list[int]) -> None:

@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from frictiondisk.tasks.jobs import RunScenes, Sizing
+from frictiondisk.tasks.protocol import Planner
 from frictiondisk.tasks.sampling.draws import sample_values
 from frictiondisk.tasks.sampling.runs import SampleRequest
 from frictiondisk.verdict.outcomes import UNDETERMINED
@@ -160,3 +161,47 @@ class RunBook:
             self.known[i][j] = {"outcome": UNDETERMINED, "reason": reason}
             self.failed[i] = reason
         return sorted({i for i, _ in items})
+
+
+class RunBookPlanner(Planner):
+    """A planner whose runs a `RunBook` keeps (self.book): the protocol's run side handed
+    to the book; a subclass says what finished runs mean in `_advance(points)`, called with
+    the points a result touched."""
+
+    book: RunBook
+
+    def config_for(self, i: int, request: SampleRequest):
+        return self.book.config_for(i, request)
+
+    def requests(self) -> list[tuple[int, SampleRequest]]:
+        return self.book.requests()
+
+    def new_requests(self) -> list[tuple[int, SampleRequest]]:
+        """The runs asked for since the last call (each once), still wanted."""
+        return self.book.new_requests()
+
+    def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
+        self.book.remember_canonical(i, request, canonical)
+
+    def feed(self, i: int, request: SampleRequest, result: dict[str, Any]) -> None:
+        """Take a result; one the point no longer waits for is ignored."""
+        if self.book.take(i, request.index, result):
+            self._advance([i])
+
+    def jobs(self, sizing: Sizing | None = None) -> list[tuple[Run, RunScenes]]:
+        """Requested runs not yet out, in the order asked (RunBook.jobs)."""
+        return self.book.jobs(sizing)
+
+    def complete(self, job: Run, value) -> list[tuple[int, SampleRequest, dict[str, Any]]]:
+        """Take a finished job back; returns its runs, for the journal."""
+        made, points = self.book.complete(job, value)
+        self._advance(points)
+        return made
+
+    def fail(self, job: Run, reason: str) -> None:
+        """A job that never came back: its runs are `undetermined` with that reason and
+        their points failed (nothing is journaled, so a resume runs them again)."""
+        self._advance(self.book.fail(job, reason))
+
+    def _advance(self, points: list[int]) -> None:
+        raise NotImplementedError
