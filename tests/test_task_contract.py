@@ -221,6 +221,21 @@ def test_a_job_that_keeps_failing_loses_no_run_and_invents_none(name, references
     assert_same_files(reference, tmp_path)
 
 
+def test_a_run_that_keeps_failing_fails_alone_in_its_batch(fake, tmp_path):
+    """A failed batch is cut in halves until the failing runs stand alone: only their
+    points fail (the fake claims 0.1 s a run, so the driver batches them by two or more)."""
+    fails = FAULTS["scan"]
+    fake(fails=fails)
+    run_campaign(campaign("scan"), tmp_path, workers=1, progress=False)
+    with xr.open_dataset(tmp_path / "results.nc") as results:
+        mu, x_ms = np.meshgrid(results["mu"], results["x_ms"], indexing="ij")
+        failed = np.char.find(results["reason"].values.astype(str), "worker failed") >= 0
+    expected = np.vectorize(lambda m, x: fails({"mu": m, "x_ms": x}, False))(mu, x_ms)
+    assert expected.sum() == 4
+    np.testing.assert_array_equal(failed, expected)
+    assert len(Journal(tmp_path)) == expected.size - expected.sum()
+
+
 def test_a_job_whose_worker_fails_now_and_then_is_retried(references, fake, tmp_path):
     """A job that fails (its worker died) is submitted again, up to MAX_WORKER_FAILURES
     times; one that then succeeds leaves the files of a run without failures."""

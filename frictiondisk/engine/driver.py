@@ -217,6 +217,12 @@ class Driver:
         if future.status != "finished" and self._draining:
             return  # not journaled: a resume computes it
         failure = (self.runs.index(run), job_id)
+        parts = failed_halves(run, job_id, job) if future.status != "finished" else None
+        if parts:
+            self.failures.pop(failure, None)
+            for part_id, part in parts:
+                self._submit(client, run, part_id, part)
+            return
         if future.status != "finished":  # a worker died or the job raised: bounded retries
             self.failures[failure] = self.failures.get(failure, 0) + 1
             if self.failures[failure] <= MAX_WORKER_FAILURES:
@@ -323,3 +329,12 @@ def no_worker_since(client, alone_since: float | None, worker_wait: float) -> fl
             "start workers and resume (the journal keeps every finished run)"
         )
     return alone_since
+
+
+def failed_halves(run: CampaignRun, job_id, job) -> list | None:
+    """A failed batch of several runs as the jobs of its halves (the planner's `split`),
+    so that a run whose worker keeps failing ends up alone and fails alone, after at most
+    log2(runs) more rounds; None: not a batch, or a planner that retries it whole."""
+    if not isinstance(job, RunScenes) or len(job.scenes) < 2:
+        return None
+    return run.planner.split(job_id, job)

@@ -6,7 +6,7 @@ executes them (on Dask or in this process) and returns what each job's docstring
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 
@@ -54,3 +54,15 @@ class RunRecorded:
 
 
 Job = RunScenes | RunSearch | RunRecorded
+
+
+def halves(items: Sequence[Any], job: RunScenes) -> list[tuple[list[Any], RunScenes]]:
+    """A batch of two or more runs cut in two: (its items, the batch of their scenes) for
+    each half; `items` (what a planner keeps of each run) are parallel to job.scenes."""
+    if len(items) != len(job.scenes) or len(items) < 2:
+        raise ValueError(f"cannot halve {len(items)} items of a batch of {len(job.scenes)}")
+    half = len(items) // 2
+    return [
+        (list(items[:half]), RunScenes(job.scenes[:half])),
+        (list(items[half:]), RunScenes(job.scenes[half:])),
+    ]

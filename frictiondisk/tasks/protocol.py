@@ -109,6 +109,12 @@ class Planner(Protocol):
         pass over every pending request after each finished job."""
         return None
 
+    def split(self, job: Hashable, work: Job) -> list[tuple[Hashable, Job]] | None:
+        """A failed batch of two or more runs (`work`, a RunScenes) as the jobs of its
+        halves, each under a new id, the old id forgotten; the driver submits them so that
+        a run that keeps failing fails alone (None: not split, the job is retried whole)."""
+        return None
+
     def remember_canonical(self, point: int, request: Hashable, canonical: dict) -> None:
         """A run's canonical scene the driver built for its key (a planner may keep it)."""
 

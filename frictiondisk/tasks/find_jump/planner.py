@@ -33,7 +33,7 @@ from typing import Any
 
 from frictiondisk.tasks.find_jump.results import FindJumpResults
 from frictiondisk.tasks.in_order import feed_in_order
-from frictiondisk.tasks.jobs import RunScenes, RunSearch, Sizing
+from frictiondisk.tasks.jobs import Job, RunScenes, RunSearch, Sizing, halves
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRequest, cold_run_count
 from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
@@ -186,6 +186,15 @@ class JumpPlanner(Planner):
             self.feed(i, request, result)
             made.append((i, request, result))
         return made
+
+    def split(self, job: int, work: Job) -> list[tuple[int, RunScenes]] | None:
+        """A failed batch of runs in halves (a chain is retried whole: its runs go one
+        after the other, and it journals each as it goes)."""
+        kind, what = self._jobs[job]
+        if kind != "runs":
+            return None
+        del self._jobs[job]
+        return [(self._new_job("runs", units), half) for units, half in halves(what, work)]
 
     def fail(self, job: int, reason: str) -> None:
         """A job that never came back (its worker kept dying): its points fail with that

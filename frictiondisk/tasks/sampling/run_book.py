@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from frictiondisk.tasks.jobs import RunScenes, Sizing
+from frictiondisk.tasks.jobs import RunScenes, Sizing, halves
 from frictiondisk.tasks.protocol import Planner
 from frictiondisk.tasks.sampling.draws import sample_values
 from frictiondisk.tasks.sampling.runs import SampleRequest
@@ -150,6 +150,14 @@ class RunBook:
             made.append((i, SampleRequest(j), result))
         return made, sorted({i for i, _ in items})
 
+    def split(self, job: Run, work: RunScenes) -> list[tuple[Run, RunScenes]]:
+        """A failed batch in halves, each named by its first run (as `jobs` names one)."""
+        parts = []
+        for items, half in halves(self._jobs.pop(job), work):
+            self._jobs[items[0]] = items
+            parts.append((items[0], half))
+        return parts
+
     def fail(self, job: Run, reason: str) -> list[int]:
         """A job that never came back: its runs are `undetermined` with that reason and
         their points failed (nothing is journaled, so a resume runs them again); returns
@@ -197,6 +205,9 @@ class RunBookPlanner(Planner):
         made, points = self.book.complete(job, value)
         self._advance(points)
         return made
+
+    def split(self, job: Run, work: RunScenes) -> list[tuple[Run, RunScenes]]:
+        return self.book.split(job, work)
 
     def fail(self, job: Run, reason: str) -> None:
         """A job that never came back: its runs are `undetermined` with that reason and

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from frictiondisk.tasks.jobs import RunScenes, Sizing
+from frictiondisk.tasks.jobs import RunScenes, Sizing, halves
 from frictiondisk.tasks.jump_search.runs import RunRequest
 from frictiondisk.tasks.protocol import Planner
 from frictiondisk.tasks.scan.results import ScanResults
@@ -115,6 +115,14 @@ class ScanPlanner(Planner):
             self.results[i] = result
             made.append((i, self._request(i), result))
         return made
+
+    def split(self, job: int, work: RunScenes) -> list[tuple[int, RunScenes]]:
+        parts = []
+        for points, half in halves(self._jobs.pop(job), work):
+            new, self._next_job = self._next_job, self._next_job + 1
+            self._jobs[new] = tuple(points)
+            parts.append((new, half))
+        return parts
 
     def fail(self, job: int, reason: str) -> None:
         """Runs whose worker kept dying: reported `undetermined` with that reason (they are

@@ -21,7 +21,7 @@ import numpy as np
 
 from frictiondisk.model.varied import scene_value
 from frictiondisk.tasks.in_order import feed_in_order
-from frictiondisk.tasks.jobs import RunScenes, Sizing
+from frictiondisk.tasks.jobs import RunScenes, Sizing, halves
 from frictiondisk.tasks.jump_search.prescan import default_stride
 from frictiondisk.tasks.jump_search.requests import run_config
 from frictiondisk.tasks.protocol import Planner
@@ -145,6 +145,14 @@ class TracePlanner(Planner):
             self.feed(0, request, result)
             made.append((0, request, result))
         return made
+
+    def split(self, job: int, work: RunScenes) -> list[tuple[int, RunScenes]]:
+        parts = []
+        for batch, half in halves(self._jobs.pop(job), work):
+            new, self._next_job = self._next_job, self._next_job + 1
+            self._jobs[new] = batch
+            parts.append((new, half))
+        return parts
 
     def fail(self, job: int, reason: str) -> None:
         """A job that never came back (its worker kept dying): the trace ends with what
