@@ -2,12 +2,15 @@
 each time, and check what the kills cost and that the results are those of an
 uninterrupted run.
 
-One reference run of the scan (uninterrupted) first. Then `run` into a fresh folder, and
-SIGKILL the process a random delay after it starts computing (status.json written); `resume`, SIGKILL again, ...; once a resume
-finishes, its results.nc and runs.nc are compared with the reference
+One reference run of the scan (uninterrupted) first; it measures how long the workers
+compute (from the first job's end to the last's). Then `run` into a fresh folder, and
+SIGKILL the process a random delay after its first job ended, drawn within the computing
+left (the share of points not yet journaled times the reference's), so that kills land
+while jobs are in flight (the side file below counts them); `resume`, SIGKILL again, ...;
+once a resume finishes, its results.nc and runs.nc are compared with the reference
 (frictiondisk.studies.identical, timings left out) and the next round starts in a new
-folder, until `--trials` kills are done. Every fourth stop is a graceful one (SIGINT,
-Ctrl-C), which must lose nothing. Each kill checks:
+folder, until `--trials` SIGKILLs are done. After every third kill comes a graceful stop
+(SIGINT, Ctrl-C), which must lose nothing. Each kill checks:
 
 * runs finished on a worker but not journaled (computed again by the resume) are at most
   the runs of the last TASKS_PER_WORKER x workers jobs the workers finished: the batches
@@ -47,15 +50,17 @@ scan:
   mode: decide
 """
 
-# The child: the CLI, with each finished job's run count appended to a side file.
+# The child: the CLI, with a line in a side file as each job starts on a worker ("-1 t")
+# and as it ends (its run count and time, "n t").
 CHILD = """
-import os, runpy, sys
+import os, runpy, sys, time
 import frictiondisk.engine.worker as worker
 side = os.open(sys.argv[1], os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
 run_job = worker.run_job
 def counted(job, campaign_dir):
+    os.write(side, f"-1 {time.time()}\\n".encode())
     value = run_job(job, campaign_dir)
-    os.write(side, f"{len(value) if isinstance(value, list) else 0}\\n".encode())
+    os.write(side, f"{len(value) if isinstance(value, list) else 0} {time.time()}\\n".encode())
     return value
 worker.run_job = counted
 sys.argv = ["frictiondisk", *sys.argv[2:]]
@@ -72,57 +77,68 @@ def start(side: Path, args: list[str]) -> subprocess.Popen:
     )
 
 
-def computing(folder: Path, child: subprocess.Popen, since: float) -> None:
-    """Wait until the child computes (its status.json rewritten after `since`) or ends."""
-    status = folder / "status.json"
+def computing(side: Path, child: subprocess.Popen) -> None:
+    """Wait until the child's workers compute (a first job ended) or the child ends."""
     while child.poll() is None:
-        try:
-            if status.stat().st_mtime >= since:
-                return
-        except FileNotFoundError:
-            pass
-        time.sleep(0.02)
+        if job_ends(side):
+            return
+        time.sleep(0.005)
 
 
-def job_sizes(side: Path) -> list[int]:
+def side_lines(side: Path) -> list[tuple[int, float]]:
+    """(runs, time) of each line: runs -1 for a job's start, else the runs it ended with."""
     try:
-        return [int(line) for line in side.read_text().split()]
+        rows = [line.split() for line in side.read_text().splitlines()]
     except FileNotFoundError:
         return []
+    return [(int(runs), float(at)) for runs, at in rows]
 
 
-def one_stop(folder: Path, campaign: Path, delay: float, graceful: bool) -> tuple[bool, str]:
-    """Start (or resume) the scan in `folder`, stop it after `delay` s; (ended by itself,
-    a line on what the stop cost; 'FAIL' in it if a check failed)."""
+def job_ends(side: Path) -> list[tuple[int, float]]:
+    return [(runs, at) for runs, at in side_lines(side) if runs >= 0]
+
+
+def in_flight(side: Path) -> int:
+    """Jobs started on a worker and not ended."""
+    lines = side_lines(side)
+    return sum(runs < 0 for runs, _ in lines) - sum(runs >= 0 for runs, _ in lines)
+
+
+def one_stop(folder: Path, campaign: Path, delay_of, graceful: bool) -> tuple[bool, str, int]:
+    """Start (or resume) the scan in `folder`, stop it `delay_of(journaled runs)` s after
+    its first job ended; (ended by itself, a line on what the stop cost ('FAIL' in it if
+    a check failed), the jobs in flight when it was stopped)."""
     side = Path(tempfile.mkstemp(prefix="kill-side-")[1])
     before = Journal.count(folder) if folder.exists() else 0
     if (folder / "campaign.yaml").exists():
         args = ["resume", str(folder)]
     else:  # a run killed before it wrote its folder starts again
         args = ["run", str(campaign), "-o", str(folder)]
-    started = time.time()
     child = start(side, args)
-    computing(folder, child, started)
+    computing(side, child)
+    delay = delay_of(before)
     try:
         child.wait(timeout=delay)
-        finished = True
+        finished, flying = True, 0
     except subprocess.TimeoutExpired:
+        flying = in_flight(side)
         child.send_signal(signal.SIGINT if graceful else signal.SIGKILL)
         child.wait()
         finished = False
-    sizes = job_sizes(side)
+    sizes = [runs for runs, _ in job_ends(side)]
     side.unlink()
     after = Journal.count(folder) if folder.exists() else 0
     lost = before + sum(sizes) - after  # finished on a worker, not journaled
     bound = 0 if graceful else sum(sizes[-TASKS_PER_WORKER * WORKERS :])
     ok = 0 <= lost <= bound and (not finished or child.returncode == 0)
     how = f"exit {child.returncode}" if finished else ("SIGINT" if graceful else "SIGKILL")
+    flight = "" if finished else f", {flying} jobs in flight"
     line = (
-        f"{how:8s} {delay:5.2f} s in: journal {before} -> {after}, {len(sizes)} jobs "
+        f"{how:8s} {delay:5.2f} s in{flight}: journal {before} -> {after}, {len(sizes)} jobs "
         f"({sum(sizes)} runs) ended on workers, {lost} of them not journaled "
         f"(bound {bound}){'' if ok else '  FAIL'}"
     )
-    return finished, line
+    return finished, line, flying
 
 
 def check_round(folder: Path, reference: Path, runs: int) -> list[str]:
@@ -137,10 +153,7 @@ def check_round(folder: Path, reference: Path, runs: int) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=4000, help="points of the scan")
-    parser.add_argument("--trials", type=int, default=20, help="stops in all")
-    parser.add_argument(
-        "--max-delay", type=float, default=6.0, help="[s] latest stop, after computing starts"
-    )
+    parser.add_argument("--trials", type=int, default=20, help="SIGKILLs in all")
     parser.add_argument("--seed", type=int, default=1)
     args = parser.parse_args(argv)
     rng = random.Random(args.seed)
@@ -150,30 +163,34 @@ def main(argv: list[str] | None = None) -> int:
         campaign = root / "kill_scan.yaml"
         campaign.write_text(SCAN.format(runs=args.runs))
         reference = root / "reference"
+        side = Path(tempfile.mkstemp(prefix="kill-side-")[1])
         t0 = time.perf_counter()
-        subprocess.run(
-            [
-                sys.executable,
-                "-m",
-                "frictiondisk.cli",
-                "run",
-                str(campaign),
-                "-o",
-                str(reference),
-            ],
-            check=True,
-            stdout=subprocess.DEVNULL,
+        child = start(side, ["run", str(campaign), "-o", str(reference)])
+        if child.wait() != 0:
+            raise SystemExit(f"the reference run failed (exit {child.returncode})")
+        ends = [at for _, at in job_ends(side)]
+        compute_s = max(ends) - min(ends)  # from the first job's end to the last's
+        side.unlink()
+        print(
+            f"reference: {args.runs} runs in {time.perf_counter() - t0:.1f} s, "
+            f"{compute_s:.1f} s from the first job's end to the last's",
+            flush=True,
         )
-        print(f"reference: {args.runs} runs in {time.perf_counter() - t0:.1f} s", flush=True)
+
+        def delay_of(journaled: int) -> float:
+            return rng.uniform(0.0, compute_s * (1.0 - journaled / args.runs))
+
         stops, round_no = 0, 0
+        landed = {True: 0, False: 0}  # graceful or not: stops with jobs in flight
         folder = root / f"round-{round_no}"
-        while stops < args.trials:
+        while stops - stops // 4 < args.trials:
             graceful = stops % 4 == 3
-            done, line = one_stop(folder, campaign, rng.uniform(0.0, args.max_delay), graceful)
+            done, line, flying = one_stop(folder, campaign, delay_of, graceful)
             print(f"round {round_no} {line}", flush=True)
             failures += "FAIL" in line
             if not done:
                 stops += 1
+                landed[graceful] += flying > 0
                 continue
             problems = check_round(folder, reference, args.runs)
             print(
@@ -185,7 +202,7 @@ def main(argv: list[str] | None = None) -> int:
             round_no += 1
             folder = root / f"round-{round_no}"
         while folder.exists():  # finish the last round
-            done, line = one_stop(folder, campaign, 3600.0, False)
+            done, line, _ = one_stop(folder, campaign, lambda _: 3600.0, False)
             problems = check_round(folder, reference, args.runs)
             print(
                 f"round {round_no} {line}; complete: "
@@ -194,7 +211,11 @@ def main(argv: list[str] | None = None) -> int:
             )
             failures += bool(problems) + ("FAIL" in line)
             break
-    print(f"{args.trials} stops, {failures} failed checks (load {os.getloadavg()[0]:.1f})")
+    print(
+        f"{args.trials} SIGKILLs ({landed[False]} with jobs in flight) and {stops // 4} SIGINTs "
+        f"({landed[True]} with jobs in flight), {failures} failed checks "
+        f"(load {os.getloadavg()[0]:.1f})"
+    )
     return 1 if failures else 0
 
 

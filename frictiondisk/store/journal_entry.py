@@ -195,8 +195,8 @@ def verify(key: str, raw: bytes) -> tuple[Any, str | None]:
 
 
 def encode(key: str, inputs: dict[str, Any], result: dict[str, Any]) -> bytes:
-    """The entry of run `key` as the bytes of its file: `{"version": 1, "key", "inputs",
-    "result", "sha256"}` as compact JSON and a newline.
+    """The entry of run `key` as the bytes of its file: `{"inputs", "key", "result",
+    "sha256", "version": 1}` as compact, key-sorted JSON and a newline.
 
     `inputs` and `result` must be JSON-serializable dicts without NaN or infinity (pass
     None for a missing number): ValueError names the offending field, TypeError a value
@@ -206,9 +206,7 @@ def encode(key: str, inputs: dict[str, Any], result: dict[str, Any]) -> bytes:
         if not isinstance(value, dict):
             raise TypeError(f"journal entry {key}: {name} must be a dict, got {value!r}")
     try:
-        # Round-trip through JSON first, so the digest is computed on exactly what a
-        # reader will load (tuples become lists, etc.).
-        inputs, result = json.loads(canonical_json([inputs, result]))
+        texts = [_as_read(value) for value in (inputs, result)]
     except ValueError as err:  # NaN or infinity: walk the values only now, to name it
         for name, value in (("inputs", inputs), ("result", result)):
             bad = non_finite_path(value, name)
@@ -220,12 +218,18 @@ def encode(key: str, inputs: dict[str, Any], result: dict[str, Any]) -> bytes:
         raise ValueError(f"journal entry {key}: {err}; pass None for NaN") from None
     except TypeError as err:
         raise TypeError(f"journal entry {key}: {err}") from None
-    entry = {
-        "version": ENTRY_VERSION,
-        "key": key,
-        "inputs": inputs,
-        "result": result,
-        "sha256": entry_digest(key, inputs, result),
-    }
-    # compact: indent would switch json to its pure-Python encoder (3x slower here)
-    return (json.dumps(entry, sort_keys=True, allow_nan=False) + "\n").encode()
+    # canonical_json of {"key", "inputs", "result"} (entry_digest), and of the entry, put
+    # together from the parts' texts: each dict is written once
+    inputs_text, result_text = texts
+    body = f'"inputs":{inputs_text},"key":{json.dumps(key)},"result":{result_text}'
+    digest = hashlib.sha256(f"{{{body}}}".encode()).hexdigest()
+    return f'{{{body},"sha256":"{digest}","version":{ENTRY_VERSION}}}\n'.encode()
+
+
+def _as_read(value: dict[str, Any]) -> str:
+    """canonical_json of `value` as a reader loads it back: the digest must be computed on
+    exactly that (tuples become lists, keys strings); equal to canonical_json(value) for
+    the plain JSON values runs are made of, written a second time only otherwise."""
+    text = canonical_json(value)
+    loaded = json.loads(text)
+    return text if loaded == value else canonical_json(loaded)
