@@ -18,7 +18,7 @@ from frictiondisk.model.scene import describe_key
 from frictiondisk.model.yamlio import dump_yaml
 from frictiondisk.store import cf
 from frictiondisk.store.journal_entry import kernel_version
-from frictiondisk.store.measures import RUN_MEASURES, num
+from frictiondisk.store.measures import RUN_MEASURES, measure_columns, num
 from frictiondisk.version import __version__
 
 
@@ -97,9 +97,9 @@ def run_columns(campaign, points, run_points, results, keys) -> dict[str, Any]:
             continue
         values = [points[i].coords[key] for i in run_points]
         columns[names[key]] = ("run", np.asarray(values, float), key_attrs(key))
+    measures = measure_columns(results)
     for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([num(r.get(name)) for r in results])
-        columns[name] = ("run", values, {"units": units, "long_name": long_name})
+        columns[name] = ("run", measures[name], {"units": units, "long_name": long_name})
     return columns
 
 

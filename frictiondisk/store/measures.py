@@ -4,6 +4,10 @@ conversion every dataset builder shares."""
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
 
 RUN_MEASURES = {  # summary field -> (units, long name)
     "R1": ("m", "first sticking radius |r|"),
@@ -49,3 +53,12 @@ RUN_MEASURES = {  # summary field -> (units, long name)
 
 def num(value) -> float:
     return math.nan if value is None else float(value)
+
+
+def measure_columns(results: Sequence[Mapping[str, Any]]) -> dict[str, np.ndarray]:
+    """Each of RUN_MEASURES as a float column over `results` (result summaries; NaN where
+    a measure is missing or None, as `num` gives), read in one pass over the rows."""
+    names = tuple(RUN_MEASURES)
+    rows = [[result.get(name) for name in names] for result in results]
+    table = np.array(rows, dtype=float).reshape(len(rows), len(names))
+    return {name: table[:, k] for k, name in enumerate(names)}

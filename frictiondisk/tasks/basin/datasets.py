@@ -20,7 +20,7 @@ import xarray as xr
 
 from frictiondisk.store import cf
 from frictiondisk.store.campaign_datasets import campaign_attrs, coords, dim_names
-from frictiondisk.store.measures import RUN_MEASURES, num
+from frictiondisk.store.measures import RUN_MEASURES, measure_columns
 from frictiondisk.store.partial import PENDING, PENDING_REASON
 from frictiondisk.tasks.basin import stats as basin_stats
 from frictiondisk.tasks.basin.sampling import BasinPointResult, not_stick_outcomes
@@ -154,8 +154,9 @@ def _map_results(campaign, results, outcomes: tuple[str, ...]) -> xr.Dataset:
         ),
         "n_samples": ((), np.int64(cells.size), {"long_name": "grid cells (one run each)"}),
     }
+    measures = measure_columns(runs)
     for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([num(r.get(name)) for r in runs]).reshape(shape)
+        values = measures[name].reshape(shape)
         data_vars[name] = (dims, values, {"units": units, "long_name": long_name})
     grid = {**coords(campaign), "outcome": ("outcome", np.asarray(outcomes, dtype=str))}
     return xr.Dataset(data_vars, coords=grid, attrs=_basin_attrs(campaign, outcomes))

@@ -14,7 +14,7 @@ from frictiondisk.store.campaign_datasets import (
     dim_names,
     request_runs_dataset,
 )
-from frictiondisk.store.measures import RUN_MEASURES, num
+from frictiondisk.store.measures import RUN_MEASURES, measure_columns
 from frictiondisk.store.partial import PENDING_REASON
 from frictiondisk.tasks.jump_search.runs import RunRequest
 from frictiondisk.verdict.outcomes import OUTCOMES
@@ -57,8 +57,9 @@ def _scan_results(snapshot) -> xr.Dataset:
             {"long_name": "1 if the limit cycle converged"},
         ),
     }
+    measures = measure_columns(results)
     for name, (units, long_name) in RUN_MEASURES.items():
-        values = np.asarray([num(r.get(name)) for r in results]).reshape(shape)
+        values = measures[name].reshape(shape)
         data_vars[name] = (dims, values, {"units": units, "long_name": long_name})
     return xr.Dataset(data_vars, coords=coords(campaign), attrs=campaign_attrs(campaign))
 
