@@ -79,6 +79,10 @@ class CampaignRun:
         fresh = self.planner.new_requests()
         if fresh is None:
             return self._replay_all()
+        if not self._present:
+            # an empty journal answers nothing: the keys wait until the runs are journaled
+            # (complete), computed beside the workers instead of before the first job
+            return
         while fresh and not self.planner.done:
             for point, request in fresh:
                 key = self.key(point, request)
