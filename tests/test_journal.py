@@ -77,27 +77,22 @@ def test_kernel_version_follows_the_numerics_version_not_the_sources(monkeypatch
 
 
 def test_a_run_key_names_the_last_version_that_changed_its_scene():
-    """A version that changes only braked disks on layouts of unequal weight (11: the
-    shakedown bound reads the weights) changes their keys alone; every other scene keeps the
-    key of UNCHANGED_SINCE (12 changed every run: the two agree)."""
+    """A version that changes only Coulomb pins above the spring's critical speed (13: the
+    grazing departure) changes their keys alone; every other scene keeps the key of
+    UNCHANGED_SINCE."""
     from frictiondisk.store.journal_entry import key_version
     from frictiondisk.version import NUMERICS_VERSION, UNCHANGED_SINCE
 
     annulus = {"layout": "annulus", "inner_radius": 0.03, "outer_radius": 0.08, "points": 16}
+    stribeck = {"stribeck": {"r": 0.5, "v_s": 0.01, "delta": 1.0}}
     cases = {
-        "pin": ({"scene": "pin"}, UNCHANGED_SINCE),
+        "pin above the critical speed": ({"scene": "pin"}, NUMERICS_VERSION),
+        "pin below it": ({"scene": "pin", "params": {"omega_m": 0.9}}, UNCHANGED_SINCE),
+        "Stribeck pin": ({"scene": "pin", "contact": stribeck}, UNCHANGED_SINCE),
         "braked ring": ({"scene": "disk", "params": {"beta_b": 0.005}}, UNCHANGED_SINCE),
         "unbraked annulus": ({"scene": "disk", "contact": annulus}, UNCHANGED_SINCE),
         "braked annulus": (
             {"scene": "disk", "params": {"beta_b": 0.005}, "contact": annulus},
-            NUMERICS_VERSION,
-        ),
-        "braked, equal points": (
-            {
-                "scene": "disk",
-                "params": {"beta_b": 0.005},
-                "contact": {"layout": "points", "positions": [[0.05, 0], [-0.05, 0]]},
-            },
             UNCHANGED_SINCE,
         ),
     }

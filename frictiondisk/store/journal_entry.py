@@ -13,9 +13,6 @@ import re
 from importlib import metadata
 from typing import Any
 
-import numpy as np
-
-from frictiondisk.model import layouts
 from frictiondisk.version import NUMERICS_VERSION, UNCHANGED_SINCE
 
 __all__ = [
@@ -58,31 +55,21 @@ def kernel_version(version: int | None = None) -> str:
     return f"numerics {version}, {libraries}"
 
 
-def _unequal_weights(contact: dict[str, Any]) -> bool:
-    """Whether a disk's canonical `contact` spreads its normal force unequally."""
-    kind = contact.get("layout", "ring")
-    if kind == "ring":
+def _grazing_pin(scene: dict[str, Any]) -> bool:
+    """Whether a canonical scene is a Coulomb pin above the spring's critical speed,
+    m_s omega_m^2 > c_s: the scenes whose runs the grazing departure (verdict/grazing.py,
+    numerics 13) can decide."""
+    if scene.get("scene") != "pin" or scene["contact"]["stribeck"]["r"] < 1.0:
         return False
-    shares = layouts.layout(
-        kind,
-        contact["points"],
-        inner_radius=contact.get("inner_radius"),
-        outer_radius=contact.get("outer_radius"),
-        positions=contact.get("positions"),
-        weights=contact.get("weights"),
-    )[1]
-    weights = layouts.relative_weights(shares)
-    return not bool(np.all(weights == weights[0]))
+    params = scene["params"]
+    return params["m_s"] * params["omega_m"] ** 2 > params["c_s"]
 
 
 def key_version(scene: dict[str, Any]) -> int:
     """The numerics version in a run's key: the newest version that changed what this
     canonical scene computes (frictiondisk/version.py UNCHANGED_SINCE): NUMERICS_VERSION for
-    a braked disk on a layout of unequal weight, UNCHANGED_SINCE for every other scene."""
-    braked = scene.get("scene") == "disk" and scene.get("params", {}).get("beta_b", 0.0) > 0.0
-    if braked and _unequal_weights(scene.get("contact", {})):
-        return NUMERICS_VERSION
-    return UNCHANGED_SINCE
+    a Coulomb pin above the spring's critical speed, UNCHANGED_SINCE for every other scene."""
+    return NUMERICS_VERSION if _grazing_pin(scene) else UNCHANGED_SINCE
 
 
 def run_key(config: Any) -> str:

@@ -21,6 +21,7 @@ EVIDENCE_RULES = {
     rc.EV_SHAKEDOWN: "shakedown",
     rc.EV_CANNOT: "cannot",
     rc.EV_SLIDING: "sliding",
+    rc.EV_GRAZE: "graze",
 }
 # the rules that read a trend or a section ahead to where it ends (docs/model.md section 7)
 EXTRAPOLATED = frozenset(
@@ -30,6 +31,7 @@ EXTRAPOLATED = frozenset(
         "depart",
         "shakedown",
         "sliding",
+        "graze",
         "corotation_limit",
         "creep_limit",
         "envelope_trend",

@@ -14,6 +14,7 @@ from .records import (
     EV_CANNOT,
     EV_CONTRACT,
     EV_DEPART,
+    EV_GRAZE,
     EV_REPEAT,
     EV_SHAKEDOWN,
     EV_SLIDING,
@@ -94,6 +95,13 @@ class Evidence:
                 "revolution not falling revolution after revolution and its lowest over the "
                 f"newest {self.envelope_revs} revolutions not below the lowest of the "
                 f"{self.envelope_revs} before (no approach to sticking)"
+            )
+        if kind == EV_GRAZE:
+            return (
+                f"it leaves sticking for a moment in each of its last {self.points} "
+                f"revolutions (newest slip {self.distance:.3g} m), each slip carrying it "
+                f"outward ({self.ratio:.3g} of the slip's direction, m_s omega_m^2 > c_s): "
+                "onto a circle that demands more, so it cannot shake down (a grazing departure)"
             )
         if kind == EV_CANNOT:
             return (

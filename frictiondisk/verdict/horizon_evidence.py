@@ -9,8 +9,10 @@ from frictiondisk.kernel.jit import kernel_jit
 from frictiondisk.kernel.monitor import newest_revolution as _row
 
 from .corotation import on_orbit, still_settling
+from .grazing import grazes_outward
 from .records import (
     EV_CANNOT,
+    EV_GRAZE,
     EV_NONE,
     EV_REPEAT,
     EV_SHAKEDOWN,
@@ -80,7 +82,9 @@ def horizon_evidence(vp, rules, motion, vs, phases, revs, omega, seq):
     the section of its recent whole-body sticking onsets or of its revolutions shows a
     cycle reached, a geometric approach to one or a departure from sticking (a sliding
     slave's revolutions are its section: a steady sliding state repeats or is approached
-    geometrically), or it slides on without approaching sticking (EV_SLIDING). EV_NONE: it
+    geometrically), a Coulomb pin leaves its sticking circle outward every revolution
+    (EV_GRAZE, verdict/grazing.py), or it slides on without approaching sticking
+    (EV_SLIDING). EV_NONE: it
     must go on (or end undetermined). A shakedown found here is EV_SHAKEDOWN (stick).
     Sets the evidence fields of vs."""
     best = EV_NONE
@@ -90,6 +94,9 @@ def horizon_evidence(vp, rules, motion, vs, phases, revs, omega, seq):
             best = ev
             vs.ev_source = source
             break
+    if best == EV_NONE and not rules.observe and grazes_outward(vp, rules, motion, vs, revs):
+        best = EV_GRAZE
+        vs.ev_source = SOURCE_REVOLUTIONS
     if best == EV_NONE and not rules.observe and steady_sliding(vp, rules, motion, vs, revs):
         best = EV_SLIDING
         vs.ev_source = SOURCE_REVOLUTIONS

@@ -27,6 +27,7 @@ from frictiondisk.kernel.monitor import stuck_for
 
 from .budget import may_extend
 from .corotation import corotation_verdict, still
+from .grazing import outward_share
 from .horizon_evidence import cannot_corotate, evidence_at_horizon, shaken_down
 from .records import (
     AT_HORIZON,
@@ -63,6 +64,7 @@ def begin(vp, rules, p, pts, motion, vs):
     # made the braked disk's mu* move with atol (docs/model.md 6).
     vs.slip_tol = p.eps * rules.hold
     vs.cannot_stick = cannot_corotate(vp, p, pts, motion.arm, rules.bound)
+    vs.graze_outward = outward_share(p)
     vs.decay = math.nan
     vs.decay_se = math.nan
     vs.remaining = math.nan

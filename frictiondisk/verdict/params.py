@@ -297,6 +297,29 @@ class VerdictParams:
         allowed=NON_NEGATIVE,
     )
 
+    # --- a Coulomb pin grazing its sticking circle (verdict/grazing.py) --------------------
+    graze_revs: int = threshold(
+        8,
+        "revolutions",
+        "newest revolutions in each of which the pin must leave sticking for a moment "
+        "behind a grazing departure (as slide_revs)",
+        allowed=count_range(2, REV_RING),
+    )
+    graze_share: float = threshold(
+        0.99,
+        "1",
+        "least share of each of those revolutions stuck as a whole: the slip is a short "
+        "break at the circle's largest demand, where its direction is known",
+        allowed=SHARE,
+    )
+    graze_outward: float = threshold(
+        0.1,
+        "1",
+        "least outward share of the slip direction there, (m_s omega_m^2 - c_s) / g: the "
+        "direction turns by at most about pi (1 - graze_share) rad around the largest demand",
+        allowed=SHARE,
+    )
+
     # --- the motion's own section: the pure-sliding motions (verdict/motion_evidence.py) --
     own_slide_steps: int = threshold(
         3,

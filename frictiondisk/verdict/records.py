@@ -43,6 +43,7 @@ EV_DEPART = 3  # slip grows and sticking time shrinks step after step (not stick
 EV_SHAKEDOWN = 4  # slip per step falls to an extrapolated limit <= tolerance (stick)
 EV_CANNOT = 5  # no co-rotating state can be held: mu F_n below the spring's or brake's pull
 EV_SLIDING = 6  # slides as a whole, its slip per revolution and its lowest value not falling
+EV_GRAZE = 7  # leaves sticking briefly every revolution, each slip carrying it outward (not stick)
 SOURCE_CYCLES = 1  # the section of the onsets of whole-body sticking phases
 SOURCE_REVOLUTIONS = 2  # the section of the state at every whole master revolution
 
@@ -73,6 +74,8 @@ VERDICT = np.dtype(
         ("agree", np.int64),  # consecutive agreeing section points (mode converge)
         ("stribeck", np.bool_),  # the friction law falls with the slip speed (r < 1)
         ("cannot_stick", np.bool_),  # no co-rotation can be held (horizon_evidence.cannot_corotate)
+        # outward share of a grazing slip's direction (verdict/grazing.py; NaN: not a Coulomb pin)
+        ("graze_outward", np.float64),
         ("slip_tol", np.float64),  # slip per revolution that counts as none, eps T [m]
         # the co-rotation rule's measures of the last revolution verdict
         ("decay", np.float64),  # mean log ratio of successive slips per revolution [1/rev]
