@@ -105,9 +105,10 @@ def test_the_tol_1e8_line_s_grazing_ends_are_certified(tmp_path):
     bracket holding the reference mu* at the budget of 8 runs a point."""
     text = (ROOT / "benchmarks/lines/pin_line_tol1e-8.yaml").read_text()
     run_campaign(campaign_from_text(text), tmp_path, workers=2, progress=False)
-    with xr.open_dataset(tmp_path / "results.nc") as res, xr.open_dataset(
-        tmp_path / "runs.nc"
-    ) as runs:
+    with (
+        xr.open_dataset(tmp_path / "results.nc") as res,
+        xr.open_dataset(tmp_path / "runs.nc") as runs,
+    ):
         flags = flag_meanings(res["certification"])
         assert {flags[int(v)] for v in res["certification"].values.ravel()} == {"certified"}
         assert float(res["n_runs"].mean()) <= 8.0
