@@ -12,6 +12,6 @@ NUMERICS_VERSION = 13
 # Where a version changed only some scenes, a run of any other scene computes as in the
 # version before, and its journal key keeps that one (store/journal_entry.py `key_version`),
 # so that journals stay valid where nothing changed. 12 changed every run (the own section's
-# rows and the names of not-stick motions); 13 changed Coulomb pins above the spring's
-# critical speed alone (the grazing departure, verdict/grazing.py).
+# rows and the names of not-stick motions); 13 changed Coulomb pins alone (the grazing
+# rules, verdict/grazing.py).
 UNCHANGED_SINCE = 12

@@ -5,7 +5,9 @@ g R + c_s |x_ms|, g = |c_s - m_s omega_m^2 + i beta_s omega_m|. Where that excee
 by a little, the pin leaves sticking there for a moment, and its slip has the outward
 share (m_s omega_m^2 - c_s) / g. The pin of these tests (x_ms 0.1 m, omega_m 1.1 rad/s,
 c_s 1 N/m, m_s 1 kg: 0.886 outward) is watched long enough to see where that leads, and
-the rule that reads it decides the tol 1e-8 line's grazing ends, which no trend can.
+the rule that reads it decides the tol 1e-8 line's grazing ends, which no trend can. A pin
+below its critical speed (seed 11's scene 42 of the well-posedness study) creeps inward
+onto the rim of its sticking disc, just above Melan's bound c_s |x_ms| / F_n.
 """
 
 from __future__ import annotations
@@ -120,3 +122,33 @@ def test_the_tol_1e8_line_s_grazing_ends_are_certified(tmp_path):
         graze = checks.where(checks["decided_by"] == "graze", drop=True)
         assert graze.sizes[next(iter(graze.sizes))] == len(x_ms)
         assert set(graze["outcome"].values) == {"stick_slip"}
+
+
+def test_a_pin_below_its_critical_speed_creeps_onto_its_rim_and_its_jump_is_melan_s(tmp_path):
+    """Seed 11's scene 42 (m_s omega_m^2 = 0.803 < c_s): just above c_s |x_ms| / F_n each
+    slip carries the pin inward, onto its 0.17 mm sticking disc, its slip falling
+    algebraically; its check names that `stick` (rule `rim`, where the every-step
+    shakedown test reads nothing in the scattered slips at rtol 1e-6), and the jump is
+    certified with its bracket holding the bound."""
+    text = """\
+name: seed11_scene42
+scene: pin
+params: {x_ms: 0.12535, m_s: 1.3717, omega_m: 0.7652, x0: -0.00293}
+find_jump:
+  bracket: [0.05, 0.5]
+  tol: 1.0e-4
+  along: {params.x0: [-0.00293]}
+"""
+    run_campaign(campaign_from_text(text), tmp_path, workers=2, progress=False)
+    with (
+        xr.open_dataset(tmp_path / "results.nc") as res,
+        xr.open_dataset(tmp_path / "runs.nc") as runs,
+    ):
+        flags = flag_meanings(res["certification"])
+        assert flags[int(res["certification"].values.ravel()[0])] == "certified"
+        lo, hi = float(res["mu_lo"].values.ravel()[0]), float(res["mu_hi"].values.ravel()[0])
+        assert lo <= 1.0 * 0.12535 / 1.0 <= hi and hi - lo <= 1e-4 * (1 + 1e-9)
+        checks = runs.where(runs["role"] == "certification", drop=True)
+        hi_check = checks.where(checks["mu"] == hi, drop=True)
+        assert list(hi_check["decided_by"].values) == ["rim"]
+        assert list(hi_check["outcome"].values) == ["stick"]

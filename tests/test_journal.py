@@ -77,9 +77,8 @@ def test_kernel_version_follows_the_numerics_version_not_the_sources(monkeypatch
 
 
 def test_a_run_key_names_the_last_version_that_changed_its_scene():
-    """A version that changes only Coulomb pins above the spring's critical speed (13: the
-    grazing departure) changes their keys alone; every other scene keeps the key of
-    UNCHANGED_SINCE."""
+    """A version that changes only Coulomb pins (13: the grazing rules) changes their keys
+    alone; every other scene keeps the key of UNCHANGED_SINCE."""
     from frictiondisk.store.journal_entry import key_version
     from frictiondisk.version import NUMERICS_VERSION, UNCHANGED_SINCE
 
@@ -87,7 +86,7 @@ def test_a_run_key_names_the_last_version_that_changed_its_scene():
     stribeck = {"stribeck": {"r": 0.5, "v_s": 0.01, "delta": 1.0}}
     cases = {
         "pin above the critical speed": ({"scene": "pin"}, NUMERICS_VERSION),
-        "pin below it": ({"scene": "pin", "params": {"omega_m": 0.9}}, UNCHANGED_SINCE),
+        "pin below it": ({"scene": "pin", "params": {"omega_m": 0.9}}, NUMERICS_VERSION),
         "Stribeck pin": ({"scene": "pin", "contact": stribeck}, UNCHANGED_SINCE),
         "braked ring": ({"scene": "disk", "params": {"beta_b": 0.005}}, UNCHANGED_SINCE),
         "unbraked annulus": ({"scene": "disk", "contact": annulus}, UNCHANGED_SINCE),

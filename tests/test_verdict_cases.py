@@ -112,28 +112,33 @@ CASES = (
     Case(
         "study seed 2 scene 24, mu = 0.105",
         at(SEED_2_SCENE_24, 0.105),
-        "section_evidence._repeats, steady_slip.steady",
-        "steady_fall",
-        "undetermined",
-        "without evidence that it will not stick",
+        "grazing.grazes_inward",
+        "graze_margin",
+        "stick",
+        "creeps onto the rim of its sticking disc",
         "a pin creeping onto its sticking disc, its slip per revolution falling from 1.4e-5 "
         "to 1.8e-8 m over 2 400 s, was read as a cycle within cycle_tol 1e-6 m; watched on, "
-        "it sticks at 4 771 s. A repeat within the tolerance now needs its slip per period "
-        "shown steady (a period-2 creep alternates steps of 1.2e-8 and 2.2e-13 m)",
+        "it sticks at 4 771 s. A repeat within the tolerance needs its slip per period shown "
+        "steady (steady_fall), so it stayed undetermined; each of its slips carries it inward "
+        "(m_s omega_m^2 = 0.667 < c_s), and the rim rule names it stick at 118 s",
+        loosened=(("graze_margin", 1.5),),
+        loosened_outcome="undetermined",
+        loosened_says="without evidence that it will not stick",
     ),
     Case(
         "study seed 2 scene 24, mu = 0.103125",
         at(SEED_2_SCENE_24, 0.103125),
-        "section_evidence._departs",
-        "depart_steps",
-        "undetermined",
-        "without evidence that it will not stick",
+        "grazing.grazes_inward",
+        "graze_slip",
+        "stick",
+        "creeps onto the rim of its sticking disc",
         "a pin on the rim of its sticking disc slips about 5e-11 m a cycle, at the friction "
         "law's floor: a slip that does not fall there was read as a departure from sticking, "
-        "and the point's certified mu* lay 1.3 tol above the jump. No departure below s0",
-        loosened=(("depart_steps", 2),),
-        loosened_outcome="stick",
-        loosened_says="shakes down",
+        "and the point's certified mu* lay 1.3 tol above the jump. No departure below s0 "
+        "(depart_steps), and each slip, short beside its circle, carries it inward",
+        loosened=(("graze_slip", 1e-12),),
+        loosened_outcome="undetermined",
+        loosened_says="without evidence that it will not stick",
     ),
     Case(
         "study seed 6 scene 32, mu = 0.07647",
@@ -178,13 +183,17 @@ CASES = (
     Case(
         "study seed 6 scene 32, mu = 0.0765753",
         at(SEED_6_SCENE_32, 0.0765753),
-        "section_evidence._approaching",
-        "approach_steps",
-        "undetermined",
-        "without evidence that it will not stick",
+        "grazing.grazes_inward",
+        "graze_revs",
+        "stick",
+        "creeps onto the rim of its sticking disc",
         "every fifth revolution of its creep sticks whole (slip 4e-14 m); read step against "
         "step eight back such a revolution hid the trend and the old rule called a cycle. "
-        "The approach is judged half against half over approach_steps",
+        "The approach is judged half against half over approach_steps (undetermined); 8 "
+        "revolutions in a row that each slip a little inward are the rim rule's stick at 191 s",
+        loosened=(("graze_margin", 1.5),),
+        loosened_outcome="undetermined",
+        loosened_says="without evidence that it will not stick",
     ),
     Case(
         "study seed 0 scene 0, mu = 0.085",

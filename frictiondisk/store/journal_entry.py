@@ -55,21 +55,17 @@ def kernel_version(version: int | None = None) -> str:
     return f"numerics {version}, {libraries}"
 
 
-def _grazing_pin(scene: dict[str, Any]) -> bool:
-    """Whether a canonical scene is a Coulomb pin above the spring's critical speed,
-    m_s omega_m^2 > c_s: the scenes whose runs the grazing departure (verdict/grazing.py,
-    numerics 13) can decide."""
-    if scene.get("scene") != "pin" or scene["contact"]["stribeck"]["r"] < 1.0:
-        return False
-    params = scene["params"]
-    return params["m_s"] * params["omega_m"] ** 2 > params["c_s"]
+def _coulomb_pin(scene: dict[str, Any]) -> bool:
+    """Whether a canonical scene is a Coulomb pin: the scenes whose runs the grazing rules
+    (verdict/grazing.py, numerics 13) can decide."""
+    return scene.get("scene") == "pin" and scene["contact"]["stribeck"]["r"] >= 1.0
 
 
 def key_version(scene: dict[str, Any]) -> int:
     """The numerics version in a run's key: the newest version that changed what this
     canonical scene computes (frictiondisk/version.py UNCHANGED_SINCE): NUMERICS_VERSION for
-    a Coulomb pin above the spring's critical speed, UNCHANGED_SINCE for every other scene."""
-    return NUMERICS_VERSION if _grazing_pin(scene) else UNCHANGED_SINCE
+    a Coulomb pin, UNCHANGED_SINCE for every other scene."""
+    return NUMERICS_VERSION if _coulomb_pin(scene) else UNCHANGED_SINCE
 
 
 def run_key(config: Any) -> str:

@@ -32,6 +32,7 @@ EXTRAPOLATED = frozenset(
         "shakedown",
         "sliding",
         "graze",
+        "rim",
         "corotation_limit",
         "creep_limit",
         "envelope_trend",
@@ -48,6 +49,7 @@ DECIDING_RULES = (
     "contacts",  # every contact stuck for one revolution (stick_rule contacts)
     "cycle",  # mode converge: the cycle's section points agreed
     "bound",  # Melan's or Koiter's bound (a braked disk)
+    "rim",  # a Coulomb pin's slips carry it inward, onto its sticking disc (verdict/grazing.py)
     *EVIDENCE_RULES.values(),  # the section evidence at the horizon (verdict/horizon_evidence.py)
     "window",  # the final window without section evidence (stick_rule contacts)
     "envelope_trend",  # a pure-sliding motion named by its envelope's trend read ahead
@@ -64,7 +66,8 @@ def deciding_rule(facts: RunFacts) -> str:
     if status == rc.COROTATING:
         return "corotation" if revs.remaining == 0.0 else "corotation_limit"
     if status == rc.SHAKEN_DOWN:
-        return "shakedown"
+        on_rim = facts.evidence is not None and facts.evidence.kind == rc.EV_RIM
+        return "rim" if on_rim else "shakedown"
     if status == rc.CREEPING:
         return CREEP if math.isnan(revs.limit) else "creep_limit"
     if status == rc.BOUND_DECIDED:

@@ -16,6 +16,7 @@ from .records import (
     EV_DEPART,
     EV_GRAZE,
     EV_REPEAT,
+    EV_RIM,
     EV_SHAKEDOWN,
     EV_SLIDING,
     SOURCE_CYCLES,
@@ -102,6 +103,13 @@ class Evidence:
                 f"revolutions (newest slip {self.distance:.3g} m), each slip carrying it "
                 f"outward ({self.ratio:.3g} of the slip's direction, m_s omega_m^2 > c_s): "
                 "onto a circle that demands more, so it cannot shake down (a grazing departure)"
+            )
+        if kind == EV_RIM:
+            return (
+                f"it leaves sticking for a moment in each of its last {self.points} "
+                f"revolutions (newest slip {self.distance:.3g} m), each slip carrying it "
+                f"inward ({-self.ratio:.3g} of the slip's direction, m_s omega_m^2 < c_s): onto "
+                "circles that demand less, so it creeps onto the rim of its sticking disc"
             )
         if kind == EV_CANNOT:
             return (

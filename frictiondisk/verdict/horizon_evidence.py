@@ -9,12 +9,13 @@ from frictiondisk.kernel.jit import kernel_jit
 from frictiondisk.kernel.monitor import newest_revolution as _row
 
 from .corotation import on_orbit, still_settling
-from .grazing import grazes_outward
+from .grazing import grazes_inward, grazes_outward
 from .records import (
     EV_CANNOT,
     EV_GRAZE,
     EV_NONE,
     EV_REPEAT,
+    EV_RIM,
     EV_SHAKEDOWN,
     EV_SLIDING,
     SOURCE_CYCLES,
@@ -84,7 +85,8 @@ def horizon_evidence(vp, rules, motion, vs, phases, revs, omega, seq):
     slave's revolutions are its section: a steady sliding state repeats or is approached
     geometrically), a Coulomb pin leaves its sticking circle outward every revolution
     (EV_GRAZE, verdict/grazing.py), or it slides on without approaching sticking
-    (EV_SLIDING). EV_NONE: it
+    (EV_SLIDING). One that leaves it inward every revolution sticks in the limit (EV_RIM,
+    stick_rule corotation). EV_NONE: it
     must go on (or end undetermined). A shakedown found here is EV_SHAKEDOWN (stick).
     Sets the evidence fields of vs."""
     best = EV_NONE
@@ -97,6 +99,10 @@ def horizon_evidence(vp, rules, motion, vs, phases, revs, omega, seq):
     if best == EV_NONE and not rules.observe and grazes_outward(vp, rules, motion, vs, revs):
         best = EV_GRAZE
         vs.ev_source = SOURCE_REVOLUTIONS
+    elif best == EV_NONE and rules.corotation and not rules.observe:
+        if grazes_inward(vp, rules, motion, vs, revs):
+            best = EV_RIM  # stick in the limit: co-rotation needs no revolution held
+            vs.ev_source = SOURCE_REVOLUTIONS
     if best == EV_NONE and not rules.observe and steady_sliding(vp, rules, motion, vs, revs):
         best = EV_SLIDING
         vs.ev_source = SOURCE_REVOLUTIONS
@@ -143,6 +149,8 @@ def evidence_at_horizon(vp, rules, motion, vs, phases, revs, omega, seq, held):
     if held:
         return EV_REPEAT
     evidence = horizon_evidence(vp, rules, motion, vs, phases, revs, omega, seq)
+    if evidence == EV_RIM:
+        return EV_SHAKEDOWN  # the machine stops it as shaken down; vs.evidence says how
     if evidence == EV_SHAKEDOWN and rules.corotation:
         if vs.ev_source == SOURCE_REVOLUTIONS and on_orbit(vp, motion, revs):
             return EV_NONE  # as in shaken_down: corotation_verdict decides this slip

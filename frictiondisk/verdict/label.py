@@ -139,6 +139,8 @@ def _by_corotation(facts: RunFacts) -> tuple[str, str] | None:
         )
     if facts.status == rc.SHAKEN_DOWN:
         ev = facts.evidence
+        if ev.kind == rc.EV_RIM:
+            return STICK, f"sticks in the limit, seen at t = {t:.6g} s: {ev.describe()}"
         return STICK, (
             f"shakes down to co-rotation at t = {t:.6g} s: {ev.describe()} <= "
             f"eps T = {revs.tol:.3g} m a revolution (last revolution {_rates(revs)})"

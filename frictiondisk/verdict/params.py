@@ -305,18 +305,19 @@ class VerdictParams:
         "behind a grazing departure (as slide_revs)",
         allowed=count_range(2, REV_RING),
     )
-    graze_share: float = threshold(
-        0.99,
-        "1",
-        "least share of each of those revolutions stuck as a whole: the slip is a short "
-        "break at the circle's largest demand, where its direction is known",
-        allowed=SHARE,
+    graze_margin: float = threshold(
+        0.2,
+        "rad",
+        "the slip's direction stays this far short of tangential over its whole arc: at most "
+        "2 pi (1 - stick share) of a revolution on one side of the largest demand, where it "
+        "is acos |(m_s omega_m^2 - c_s) / g| from radial",
+        allowed=Allowed(0.0, 1.5707963267948966),
     )
-    graze_outward: float = threshold(
-        0.1,
+    graze_slip: float = threshold(
+        0.01,
         "1",
-        "least outward share of the slip direction there, (m_s omega_m^2 - c_s) / g: the "
-        "direction turns by at most about pi (1 - graze_share) rad around the largest demand",
+        "each of those revolutions slips at most this share of the circle's radius: a slip "
+        "that short leaves the circle's geometry, and the slip's direction, as they were",
         allowed=SHARE,
     )
 

@@ -44,6 +44,7 @@ EV_SHAKEDOWN = 4  # slip per step falls to an extrapolated limit <= tolerance (s
 EV_CANNOT = 5  # no co-rotating state can be held: mu F_n below the spring's or brake's pull
 EV_SLIDING = 6  # slides as a whole, its slip per revolution and its lowest value not falling
 EV_GRAZE = 7  # leaves sticking briefly every revolution, each slip carrying it outward (not stick)
+EV_RIM = 8  # ... each slip carrying it inward, onto the rim of its sticking disc (stick)
 SOURCE_CYCLES = 1  # the section of the onsets of whole-body sticking phases
 SOURCE_REVOLUTIONS = 2  # the section of the state at every whole master revolution
 
