@@ -68,10 +68,16 @@ def packed(config) -> RunBuffers:
     p, pts = pack.pack_parameters(config)
     y0 = pack.initial_state(config)
     modes = pack.initial_modes(p, pts, y0)
-    run = RunBuffers.allocate(y0, modes, 1, p, pts, thresholds=DEFAULT_VERDICT)
-    pack.fill_options(run.options, config.numerics, False, 0.0, False)
-    pack.fill_rules(run.rules, config)
-    return run
+    if not hasattr(pack, "new_options"):  # an older tree: records filled in place
+        run = RunBuffers.allocate(y0, modes, 1, p, pts, thresholds=DEFAULT_VERDICT)
+        pack.fill_options(run.options, config.numerics, False, 0.0, False)
+        pack.fill_rules(run.rules, config)
+        return run
+    options = pack.new_options(config.numerics, False, 0.0, False)
+    rules = pack.new_rules(config)
+    return RunBuffers.allocate(
+        y0, modes, 1, p, pts, thresholds=DEFAULT_VERDICT, options=options, rules=rules
+    )
 
 
 def main(argv: list[str] | None = None) -> int:

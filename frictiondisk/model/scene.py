@@ -414,6 +414,11 @@ class SceneConfig(BaseModel):
         and beta. Exactly 1.0 for every point of a ring."""
         return layouts.relative_weights(self._layout()[1])
 
+    def contact_layout(self) -> tuple[np.ndarray, np.ndarray]:
+        """(`contact_positions()`, `contact_weights()`) from one layout."""
+        positions, shares = self._layout()
+        return positions, layouts.relative_weights(shares)
+
     def canonical(self) -> dict[str, Any]:
         """Plain JSON-able dict, every default filled in, `points` resolved, keys sorted.
 
