@@ -575,7 +575,9 @@ def _same(value: Any, current: Any) -> bool:
     return isinstance(value, _SCALARS) and value == current
 
 
-def _sorted(value: Any) -> Any:
-    if isinstance(value, dict):
-        return {key: _sorted(value[key]) for key in sorted(value)}
-    return value
+def _sorted(value: dict[str, Any]) -> dict[str, Any]:
+    """`value` with the keys of every dict in it sorted (lists are left as they are)."""
+    return {
+        key: _sorted(item) if isinstance(item := value[key], dict) else item
+        for key in sorted(value)
+    }

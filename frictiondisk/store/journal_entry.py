@@ -229,7 +229,26 @@ def encode(key: str, inputs: dict[str, Any], result: dict[str, Any]) -> bytes:
 def _as_read(value: dict[str, Any]) -> str:
     """canonical_json of `value` as a reader loads it back: the digest must be computed on
     exactly that (tuples become lists, keys strings); equal to canonical_json(value) for
-    the plain JSON values runs are made of, written a second time only otherwise."""
+    the plain JSON values runs are made of (`_plain`: no reading back needed), written a
+    second time only where reading it back changes it."""
     text = canonical_json(value)
+    if _plain(value):
+        return text
     loaded = json.loads(text)
     return text if loaded == value else canonical_json(loaded)
+
+
+_LEAVES = frozenset({str, int, float, bool, type(None)})
+
+
+def _plain(value: Any) -> bool:
+    """Whether `value` is made of JSON's own types only (dicts with str keys, lists, str,
+    int, float, bool, None; no subclass): JSON reads its text back as an equal value."""
+    kind = type(value)
+    if kind in _LEAVES:
+        return True
+    if kind is dict:
+        return all(type(key) is str and _plain(item) for key, item in value.items())
+    if kind is list:
+        return all(_plain(item) for item in value)
+    return False
