@@ -149,7 +149,7 @@ class CampaignRun:
     def key(self, point: int, request) -> str:
         cached = self.keys.get((point, request))
         if cached is None:
-            canonical = self.planner.config_for(point, request).canonical()
+            canonical = self.planner.canonical_for(point, request)
             cached = run_key(_Canonical(canonical))  # canonical() once: it costs ~0.4 ms
             self.keys[(point, request)] = cached
             self.inputs[cached] = canonical

@@ -245,10 +245,14 @@ def _plain(value: Any) -> bool:
     """Whether `value` is made of JSON's own types only (dicts with str keys, lists, str,
     int, float, bool, None; no subclass): JSON reads its text back as an equal value."""
     kind = type(value)
-    if kind in _LEAVES:
-        return True
     if kind is dict:
-        return all(type(key) is str and _plain(item) for key, item in value.items())
+        for key, item in value.items():
+            if type(key) is not str or (type(item) not in _LEAVES and not _plain(item)):
+                return False
+        return True
     if kind is list:
-        return all(_plain(item) for item in value)
-    return False
+        for item in value:
+            if type(item) not in _LEAVES and not _plain(item):
+                return False
+        return True
+    return kind in _LEAVES
