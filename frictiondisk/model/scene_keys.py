@@ -50,6 +50,7 @@ _DISK_UNUSED: dict[str, Mapping[str, str]] = {
     for layout in LAYOUT_KEYS
 }
 _NONE: Mapping[str, str] = MappingProxyType({})
+_PARTS = {key: tuple(key.split(".")) for key in _PIN_UNUSED}  # (section, name) of each
 
 
 def unused_keys(scene: Any, layout: Any) -> Mapping[str, str]:
@@ -90,9 +91,10 @@ def without_unused(
         )
         data = _without(data, "contact.layout")
     for key, why in unused_keys(scene, layout).items():
-        section, name = key.split(".")
+        section, name = _PARTS[key]
         given = data.get(section)
-        if isinstance(given, Mapping) and given.get(name) is not None:
+        # a dict first: the Mapping check alone costs more than the rest of the loop
+        if (type(given) is dict or isinstance(given, Mapping)) and given.get(name) is not None:
             problems.append(((section, name), _error(key, given[name], scene, why)))
             data = _without(data, key)
     return data, problems
@@ -101,7 +103,7 @@ def without_unused(
 def drop_unused(data: dict[str, Any], scene: Any, layout: Any) -> dict[str, Any]:
     """`data` (a full model dump) without the keys `scene` and `layout` do not use, in place."""
     for key in unused_keys(scene, layout):
-        section, name = key.split(".")
+        section, name = _PARTS[key]
         data[section].pop(name, None)
     return data
 
