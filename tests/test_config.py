@@ -592,6 +592,55 @@ def test_with_overrides(tmp_path):
     assert type(config.with_overrides({"params.mu": np.float64(0.2)}).params.mu) is float
 
 
+WHOLE_SCENES = (
+    {"scene": "pin", "params": {"mu": 0.2}},
+    {"scene": "disk", "contact": {"points": 4}},
+    {"scene": "disk", "contact": {"layout": "annulus", "inner_radius": 0.01, "outer_radius": 0.05}},
+    {"scene": "disk", "contact": {"layout": "points", "positions": [[0.0, 0.01], [0.02, 0.0]]}},
+)
+SECTION_OVERRIDES = (
+    {"params.mu": 0.3},
+    {"params.mu": 1},
+    {"params.mu": np.float64(0.13)},
+    {"params.x0": -0.0},
+    {"numerics.mode": "decide"},
+    {"numerics.mode": "converge", "params.mu": 0.5},
+    {"numerics.rtol": "auto", "numerics.atol": 1e-10},
+    {"numerics.cycle_count": 4},
+    {"contact.stiffness": 1.0e4},
+    {"contact.points": 2},
+    {"contact.stribeck": {"r": 0.5}},
+    {"params.J_s": 0.05},
+)
+
+
+def whole_overrides(config, overrides):
+    """with_overrides as every key was set before section-wise validation: the whole scene
+    dumped, the keys set, validated again."""
+    from frictiondisk.model.overrides import apply_overrides
+    from frictiondisk.model.scene_keys import drop_unused
+
+    data = drop_unused(config.model_dump(), config.scene, config.contact.layout)
+    return SceneConfig.model_validate(apply_overrides(data, overrides.items(), "<overrides>"))
+
+
+@pytest.mark.parametrize("scene", WHOLE_SCENES)
+@pytest.mark.parametrize("overrides", SECTION_OVERRIDES)
+def test_with_overrides_section_by_section_is_the_whole_validation(scene, overrides):
+    """Keys validated section by section give the scene (and canonical form) of the whole
+    validation, and refuse what it refuses, with the override named."""
+    config = scene_from_dict(scene)
+    try:
+        expected = whole_overrides(config, overrides)
+    except pydantic.ValidationError:
+        with pytest.raises(ConfigError, match="from override"):
+            config.with_overrides(overrides)
+        return
+    changed = config.with_overrides(overrides)
+    assert changed == expected
+    assert json.dumps(changed.canonical()) == json.dumps(expected.canonical())
+
+
 def test_with_overrides_can_change_scene(tmp_path):
     pin = load(tmp_path, "scene: disk\n").with_overrides({"scene": "pin"})
     assert pin.n_contacts == 1

@@ -472,3 +472,34 @@ def test_atomic_write_bytes_and_text(tmp_path):
     atomic_write_bytes(path, b"second\n")
     assert path.read_bytes() == b"second\n"
     assert sorted(p.name for p in path.parent.iterdir()) == ["b.txt"]
+
+
+@pytest.mark.parametrize(
+    "scene",
+    [
+        {"scene": "pin", "params": {"mu": 0.2, "x0": -0.0}},
+        {"scene": "disk", "contact": {"points": 3}, "params": {"beta_b": 0.1}},
+        {
+            "scene": "disk",
+            "params": {"beta_b": 0.1},
+            "contact": {"layout": "points", "positions": [[0.0, 0.01], [0.02, 0.0]]},
+        },
+    ],
+)
+def test_a_scene_written_once_gives_the_key_and_the_entry_of_run_key(scene):
+    """scene_key on canonical_json's text is run_key, and an entry encoded with that text
+    is byte for byte the one encoded from the inputs alone."""
+    config = scene_from_dict(scene)
+    canonical = config.canonical()
+    text = journal_module.canonical_json(canonical)
+    key = journal_module.scene_key(canonical, text)
+    assert key == run_key(config)
+    result = {"outcome": "stick", "R1": 0.01, "n_steps": 3, "a": None}
+    assert journal_module.encode(key, canonical, result, text) == journal_module.encode(
+        key, canonical, result
+    )
+    # inputs that are not JSON's own types are read back, whatever text comes with them
+    tupled = {**canonical, "extra": (1, 2)}
+    assert journal_module.encode(key, tupled, result, "{}") == journal_module.encode(
+        key, tupled, result
+    )

@@ -18,7 +18,7 @@ from typing import Any
 from frictiondisk.engine.directory import write_status
 from frictiondisk.store.files import atomic_write_netcdf
 from frictiondisk.store.journal import Journal
-from frictiondisk.store.journal_entry import run_key
+from frictiondisk.store.journal_entry import canonical_json, scene_key
 from frictiondisk.store.layout import RESULTS_FILE
 from frictiondisk.store.partial import mark_partial
 from frictiondisk.tasks.campaign import Campaign
@@ -51,6 +51,8 @@ class CampaignRun:
         self.journal = Journal(out_dir) if entry.journaled else None
         self.keys: dict[tuple[int, Any], str] = {}  # (point, request) -> run key
         self.inputs: dict[str, dict] = {}
+        # key -> its inputs' canonical JSON, written for the key, until journaled or found
+        self._texts: dict[str, str] = {}
         self.computed = 0
         # listed once: only this process writes the journal (it holds the lock), so a key
         # not in this set is not looked up on disk (on slow file systems a failed open of
@@ -91,6 +93,7 @@ class CampaignRun:
                     self._present.discard(key)  # a bad entry was moved aside
                     self._absent.setdefault(key, []).append((point, request))
                 else:
+                    self._texts.pop(key, None)
                     self._feed(point, request, cached)
             fresh = self.planner.new_requests()
 
@@ -112,6 +115,7 @@ class CampaignRun:
                     self._present.discard(key)  # a bad entry was moved aside
                     self._checked.add(key)
                 else:
+                    self._texts.pop(key, None)
                     self._feed(point, request, cached)
                     progressed = True
 
@@ -130,11 +134,12 @@ class CampaignRun:
             entries.append((key, self.inputs[key], result))
             self.computed += 1
             self.run_s_sum += float(result.get("wall_s") or 0.0)
+        texts = {key: self._texts.pop(key, None) for key, _, _ in entries}
         if batch:
-            self.journal.put_many(entries)
+            self.journal.put_many(entries, texts)
         else:
-            for entry in entries:
-                self.journal.put(*entry)
+            for key, inputs, result in entries:
+                self.journal.put(key, inputs, result, texts[key])
         for key, _, result in entries:
             self._present.add(key)
             self._checked.discard(key)  # another point may ask for the same run
@@ -149,10 +154,12 @@ class CampaignRun:
     def key(self, point: int, request) -> str:
         cached = self.keys.get((point, request))
         if cached is None:
-            canonical = self.planner.config_for(point, request).canonical()
-            cached = run_key(_Canonical(canonical))  # canonical() once: it costs ~0.4 ms
+            canonical = self.planner.canonical_for(point, request)
+            text = canonical_json(canonical)  # written once, for the key and the entry
+            cached = scene_key(canonical, text)
             self.keys[(point, request)] = cached
             self.inputs[cached] = canonical
+            self._texts[cached] = text
             self.planner.remember_canonical(point, request, canonical)
         return cached
 
@@ -241,13 +248,3 @@ def on_stderr(action, *args, **kwargs):
         return action(*args, **kwargs)
     except OSError:
         return None
-
-
-@dataclasses.dataclass(frozen=True)
-class _Canonical:
-    """A scene's canonical dict, as run_key takes it (anything with .canonical())."""
-
-    value: dict
-
-    def canonical(self) -> dict:
-        return self.value

@@ -209,3 +209,13 @@ OWN_STEP = np.dtype(
 def one(dtype: np.dtype):
     """A zeroed record of `dtype` (a view into a length-1 array: writes reach the array)."""
     return np.zeros(1, dtype=dtype)[0]
+
+
+def filled(dtype: np.dtype, **values):
+    """A record of `dtype` with every field given by name (a view into a length-1 array,
+    as `one`'s), made in one call instead of one write per field. KeyError names a field
+    not given, TypeError one that `dtype` lacks."""
+    extra = values.keys() - set(dtype.names)
+    if extra:
+        raise TypeError(f"no such fields in the record: {', '.join(sorted(extra))}")
+    return np.array([tuple(values[name] for name in dtype.names)], dtype=dtype)[0]

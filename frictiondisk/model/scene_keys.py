@@ -10,6 +10,7 @@ value counts as not given. Plain data in, plain data out: scene.py validates wit
 from __future__ import annotations
 
 from collections.abc import Mapping
+from types import MappingProxyType
 from typing import Any
 
 from pydantic_core import PydanticCustomError
@@ -31,21 +32,36 @@ _PIN_HAS_NO_LAYOUT = (
 _PIN_LAYOUT = "a pin has exactly one contact, at its centre; use layout 'ring'"
 
 
-def unused_keys(scene: Any, layout: Any) -> dict[str, str]:
-    """The dotted keys that scene `scene` with contact.layout `layout` does not use, each
-    with why; {} for an unknown scene, and no layout keys of a disk with an unknown layout
-    (field validation reports those)."""
-    if scene == "pin":
-        unused = dict.fromkeys(SPIN_KEYS, _PIN_HAS_NO_SPIN)
-        return unused | {key: _PIN_HAS_NO_LAYOUT for keys in LAYOUT_KEYS.values() for key in keys}
-    if scene == "disk" and layout in LAYOUT_KEYS:
-        return {
+# What unused_keys answers, made once (read-only): a scene's validation, its canonical form
+# and every override ask.
+_PIN_UNUSED: Mapping[str, str] = MappingProxyType(
+    dict.fromkeys(SPIN_KEYS, _PIN_HAS_NO_SPIN)
+    | {key: _PIN_HAS_NO_LAYOUT for keys in LAYOUT_KEYS.values() for key in keys}
+)
+_DISK_UNUSED: dict[str, Mapping[str, str]] = {
+    layout: MappingProxyType(
+        {
             key: f"only used by layout {owner!r}"
             for owner, keys in LAYOUT_KEYS.items()
             if owner != layout
             for key in keys
         }
-    return {}
+    )
+    for layout in LAYOUT_KEYS
+}
+_NONE: Mapping[str, str] = MappingProxyType({})
+_PARTS = {key: tuple(key.split(".")) for key in _PIN_UNUSED}  # (section, name) of each
+
+
+def unused_keys(scene: Any, layout: Any) -> Mapping[str, str]:
+    """The dotted keys that scene `scene` with contact.layout `layout` does not use, each
+    with why (read-only); none for an unknown scene, and no layout keys of a disk with an
+    unknown layout (field validation reports those)."""
+    if scene == "pin":
+        return _PIN_UNUSED
+    if scene == "disk":
+        return _DISK_UNUSED.get(layout, _NONE)
+    return _NONE
 
 
 def unused_key_problem(key: str, scene: Any, layout: Any) -> str | None:
@@ -75,9 +91,10 @@ def without_unused(
         )
         data = _without(data, "contact.layout")
     for key, why in unused_keys(scene, layout).items():
-        section, name = key.split(".")
+        section, name = _PARTS[key]
         given = data.get(section)
-        if isinstance(given, Mapping) and given.get(name) is not None:
+        # a dict first: the Mapping check alone costs more than the rest of the loop
+        if (type(given) is dict or isinstance(given, Mapping)) and given.get(name) is not None:
             problems.append(((section, name), _error(key, given[name], scene, why)))
             data = _without(data, key)
     return data, problems
@@ -86,7 +103,7 @@ def without_unused(
 def drop_unused(data: dict[str, Any], scene: Any, layout: Any) -> dict[str, Any]:
     """`data` (a full model dump) without the keys `scene` and `layout` do not use, in place."""
     for key in unused_keys(scene, layout):
-        section, name = key.split(".")
+        section, name = _PARTS[key]
         data[section].pop(name, None)
     return data
 

@@ -4,6 +4,7 @@ value by value, against the base scene (each value must give a valid scene)."""
 from __future__ import annotations
 
 import difflib
+import functools
 import math
 import types
 from typing import Any, Union, get_args, get_origin
@@ -62,9 +63,15 @@ def value_problems(base: SceneConfig, key: str, value: float) -> list[str]:
 
 def scene_value(key: str, value: float) -> float | int:
     """`value` as the scene field `key` takes it: a whole float becomes an int for int keys."""
-    if _field_types(_scene_field(key)) == {int} and float(value).is_integer():
+    if _int_key(key) and float(value).is_integer():
         return int(value)
     return value
+
+
+@functools.cache
+def _int_key(key: str) -> bool:
+    """Whether the scene field `key` takes integers only (the schema's: fixed)."""
+    return _field_types(_scene_field(key)) == {int}
 
 
 def initial_state_problem(key: str, base: SceneConfig | None) -> str | None:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 
@@ -47,6 +48,9 @@ RUN_STATE = np.dtype(
         ("verdict", VERDICT),
     ]
 )
+
+# (record, its field names) of RUN_STATE, in order: what `RunBuffers.values` zips
+STATE_FIELDS = tuple((name, RUN_STATE[name].names) for name in RUN_STATE.names)
 
 
 @dataclasses.dataclass(eq=False)
@@ -91,10 +95,13 @@ class RunBuffers:
         pts: np.ndarray | None = None,
         *,
         thresholds: VerdictParams | None = None,
+        options: np.void | None = None,
+        rules: np.void | None = None,
         revolutions: bool = True,
     ) -> RunBuffers:
         """Buffers for a run from state y0 in contact modes (both copied), with room for
-        `capacity` recorded rows (>= 1). Options, rules and counters start at 0."""
+        `capacity` recorded rows (>= 1). Options and rules: the records given (None: at 0,
+        as the counters start)."""
         y = np.array(y0, dtype=np.float64)
         n, ncon = y.shape[0], modes.shape[0]
         cap = max(1, int(capacity))
@@ -103,8 +110,8 @@ class RunBuffers:
             pts=pts,
             y=y,
             modes=np.array(modes, dtype=np.int8),
-            options=one(OPTIONS),
-            rules=one(RULES),
+            options=one(OPTIONS) if options is None else options,
+            rules=one(RULES) if rules is None else rules,
             thresholds=thresholds or VerdictParams(),
             state=one(RUN_STATE),
             revolutions=np.zeros(REV_RING, dtype=REVOLUTION) if revolutions else None,
@@ -212,6 +219,15 @@ class RunBuffers:
     def slip_total(self) -> float:
         """Net plastic slip of the mean contact up to t_end [m]; NaN without the ring."""
         return math.nan if self.revolutions is None else float(self.state["energy"]["slip"])
+
+    def values(self) -> dict[str, dict[str, Any]]:
+        """The state record's values as plain Python numbers, by record and field name
+        ({"motion": {"r1": ..., ...}, "verdict": ..., ...}): one read of the whole record
+        instead of one per field, a copy that later writes do not reach."""
+        return {
+            name: dict(zip(fields, record, strict=True))
+            for (name, fields), record in zip(STATE_FIELDS, self.state.item(), strict=True)
+        }
 
     def recorded_rows(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(t [s], y, modes) of the recorded rows (views into the buffers)."""

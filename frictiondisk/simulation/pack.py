@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from frictiondisk.kernel import model as km
-from frictiondisk.kernel.records import one
+from frictiondisk.kernel.records import OPTIONS, filled
 from frictiondisk.kernel.steppers import RODAS4, RODAS5
 from frictiondisk.model.limits import MAX_RECORD_ROWS
 from frictiondisk.verdict.horizon import horizon_of, revolution
@@ -29,27 +29,32 @@ def pack_parameters(config) -> tuple[np.void, np.ndarray]:
     par = config.params
     con = config.contact
     n = config.n_contacts
-    p = one(km.PARAMETERS)
-    p["mu"] = par.mu
-    p["omega_m"] = par.omega_m
-    p["c_s"] = par.c_s
-    p["beta_s"] = par.beta_s
-    p["m_s"] = par.m_s
-    p["J_s"] = par.J_s
-    p["beta_b"] = par.beta_b
-    p["x_ms"] = par.x_ms
     # Distributed contact: stiffness, damping and normal force spread over the points by
     # their weights (docs/model.md section 3); pts[:, 2] scales these means.
-    p["c_i"] = con.stiffness / n
-    p["beta_i"] = config.contact_damping / n
-    p["F_n_i"] = par.F_n / n
-    p["eps"] = con.eps
-    p["stribeck_r"] = con.stribeck.r
-    p["stribeck_v_s"] = con.stribeck.v_s
-    p["stribeck_delta"] = con.stribeck.delta
-    p["disk"] = config.scene == "disk"
-    pts = np.column_stack((config.contact_positions(), config.contact_weights()))
-    return p, np.ascontiguousarray(pts, dtype=np.float64)
+    p = filled(
+        km.PARAMETERS,
+        mu=par.mu,
+        omega_m=par.omega_m,
+        c_s=par.c_s,
+        beta_s=par.beta_s,
+        m_s=par.m_s,
+        J_s=par.J_s,
+        beta_b=par.beta_b,
+        x_ms=par.x_ms,
+        c_i=con.stiffness / n,
+        beta_i=config.contact_damping / n,
+        F_n_i=par.F_n / n,
+        eps=con.eps,
+        stribeck_r=con.stribeck.r,
+        stribeck_v_s=con.stribeck.v_s,
+        stribeck_delta=con.stribeck.delta,
+        disk=config.scene == "disk",
+    )
+    positions, weights = config.contact_layout()
+    pts = np.empty((n, 3))
+    pts[:, :2] = positions
+    pts[:, 2] = weights
+    return p, pts
 
 
 def initial_state(config) -> np.ndarray:
@@ -75,43 +80,42 @@ def initial_modes(p: np.void, pts: np.ndarray, y: np.ndarray) -> np.ndarray:
     return modes
 
 
-def fill_options(options: np.void, num, record: bool, dt_out: float, dense_lu: bool) -> None:
+def new_options(num, record: bool, dt_out: float, dense_lu: bool) -> np.void:
     """The integrator's options (kernel/records.py OPTIONS) from the scene's numerics."""
-    options["fixed_step"] = num.method == "rodas4-fixed"
-    options["stepper"] = RODAS5 if num.method == "rodas5" else RODAS4
-    options["dense_lu"] = dense_lu
-    options["record"] = record
-    options["rtol"] = num.rtol
-    options["atol"] = num.atol
-    options["dt"] = num.dt
-    options["h_max"] = num.h_max
-    options["dt_out"] = dt_out
-    options["max_steps"] = num.max_steps
-    options["max_events"] = num.max_events
-
-
-def fill_rules(rules: np.void, config) -> None:
-    """What the scene asks of the verdict (frictiondisk/verdict/records.py RULES)."""
-    num = config.numerics
-    horizon = horizon_of(config)
-    rules["corotation"] = num.stick_rule == "corotation"
-    rules["converge"] = num.mode == "converge"
-    rules["stop_on_stick"] = num.stop_on_stick
-    rules["observe"] = num.evidence == "observe" or num.observe_until > 0.0
-    rules["watch"] = num.observe_until if num.evidence == "extrapolate" else 0.0
-    rules["follow_until"] = num.follow_departures_until
-    rules["bound"] = bound_applies(config)
-    rules["hold"] = revolution(config.params.omega_m)
-    rules["horizon"] = horizon
-    rules["budget"] = horizon * num.horizon_budget
-    rules["cycle_tol"] = num.cycle_tol
-    rules["cycle_count"] = num.cycle_count
-    rules["rtol"] = num.rtol
-    rules["atol"] = num.atol
+    return filled(
+        OPTIONS,
+        fixed_step=num.method == "rodas4-fixed",
+        stepper=RODAS5 if num.method == "rodas5" else RODAS4,
+        dense_lu=dense_lu,
+        record=record,
+        rtol=num.rtol,
+        atol=num.atol,
+        dt=num.dt,
+        h_max=num.h_max,
+        dt_out=dt_out,
+        max_steps=num.max_steps,
+        max_events=num.max_events,
+    )
 
 
 def new_rules(config) -> np.void:
-    """A RULES record filled for `config` (fill_rules)."""
-    rules = one(RULES)
-    fill_rules(rules, config)
-    return rules
+    """What the scene asks of the verdict (frictiondisk/verdict/records.py RULES)."""
+    num = config.numerics
+    horizon = horizon_of(config)
+    return filled(
+        RULES,
+        corotation=num.stick_rule == "corotation",
+        converge=num.mode == "converge",
+        stop_on_stick=num.stop_on_stick,
+        observe=num.evidence == "observe" or num.observe_until > 0.0,
+        watch=num.observe_until if num.evidence == "extrapolate" else 0.0,
+        follow_until=num.follow_departures_until,
+        bound=bound_applies(config),
+        hold=revolution(config.params.omega_m),
+        horizon=horizon,
+        budget=horizon * num.horizon_budget,
+        cycle_tol=num.cycle_tol,
+        cycle_count=num.cycle_count,
+        rtol=num.rtol,
+        atol=num.atol,
+    )

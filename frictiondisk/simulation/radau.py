@@ -49,7 +49,7 @@ from frictiondisk.kernel import monitor
 from frictiondisk.kernel import status as st
 from frictiondisk.simulation.buffers import RunBuffers
 from frictiondisk.simulation.numpy_model import SLIDE, STICK, NumpyModel
-from frictiondisk.simulation.pack import fill_rules, initial_state
+from frictiondisk.simulation.pack import initial_state, new_rules
 from frictiondisk.simulation.result import SimulationResult, Trajectory
 from frictiondisk.simulation.result_builder import build_result
 from frictiondisk.verdict import machine, segment_rules
@@ -97,8 +97,9 @@ class _RadauRun:
         # contacts whose band was cleared at the last event: their s sits at 0 to round-off
         self.cleared = np.zeros(n, dtype=bool)
         # the motion, verdict and counters, in the step loop's records
-        self.out = RunBuffers.allocate(np.zeros(model.n_states), self.modes, revolutions=False)
-        fill_rules(self.out.rules, config)
+        self.out = RunBuffers.allocate(
+            np.zeros(model.n_states), self.modes, rules=new_rules(config), revolutions=False
+        )
         self.n_steps = 0
         self.n_events = 0
         self.n_refused = 0

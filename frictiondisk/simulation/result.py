@@ -129,11 +129,17 @@ class SimulationResult:
     def summary(self) -> dict[str, Any]:
         """JSON-friendly dict of everything but the trajectory (NaN becomes None)."""
         out: dict[str, Any] = {}
-        for field in dataclasses.fields(self):
-            if field.name in ("trajectory", "revolutions", "sections", "own_section"):
-                continue
-            value = getattr(self, field.name)
+        for name in SUMMARY_FIELDS:
+            value = getattr(self, name)
             if isinstance(value, float) and not math.isfinite(value):
                 value = None
-            out[field.name] = value
+            out[name] = value
         return out
+
+
+# the fields of SimulationResult.summary, in order: all but the trajectory and the records
+SUMMARY_FIELDS = tuple(
+    field.name
+    for field in dataclasses.fields(SimulationResult)
+    if field.name not in ("trajectory", "revolutions", "sections", "own_section")
+)

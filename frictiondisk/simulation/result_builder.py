@@ -8,6 +8,7 @@ It gathers the facts (verdict/facts.py) from the records and lets the label
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -40,9 +41,10 @@ def build_result(
     fields of `energy_balance`; None (an integrator without the diagnostic) leaves them
     NaN. verdict: the thresholds the run was judged by.
     """
-    facts = run_facts(config, run, verdict)
+    values = run.values()
+    facts = run_facts(config, run, verdict, values)
     named = label(facts, config, verdict)
-    motion = run.motion
+    motion, counters = values["motion"], values["counters"]
     R1 = float(motion["r1"])
     return SimulationResult(
         outcome=named.outcome,
@@ -54,9 +56,9 @@ def build_result(
         n_transitions=int(motion["switches"]),
         stick_fraction=float(facts.frac_all),
         t_end=run.t_end,
-        n_steps=run.steps,
-        n_rejected=run.rejected,
-        n_refused=run.refused,
+        n_steps=counters["steps"],
+        n_rejected=counters["rejected"],
+        n_refused=counters["refused"],
         cycle_converged=named.converged,
         wall_s=wall,
         method=config.numerics.method,
@@ -73,22 +75,29 @@ def build_result(
     )
 
 
-def run_facts(config, run: RunBuffers, verdict: VerdictParams) -> RunFacts:
-    """What the label reads of a finished run (verdict/facts.py)."""
+def run_facts(
+    config, run: RunBuffers, verdict: VerdictParams, values: Mapping | None = None
+) -> RunFacts:
+    """What the label reads of a finished run (verdict/facts.py); values: run.values(),
+    if already read."""
+    values = run.values() if values is None else values
     num = config.numerics
     rev = revolution(config.params.omega_m)
     window = num.window_revs * rev
     t_end = run.t_end
-    motion, vs = run.motion, run.verdict
-    frac_all, frac_any = monitor.window_fractions(motion, run.phases, run.intervals, t_end, window)
+    motion, vs = values["motion"], values["verdict"]
+    frac_all, frac_any = monitor.window_fractions(
+        run.motion, run.phases, run.intervals, t_end, window
+    )
     ring = run.revolutions is not None
+    own = run.own_steps is not None
     floor = math.nan
     if run.status in BOUND_RECONSIDERS:
         floor = float(floor_reserve(run.p, run.pts)) if run.p is not None else math.nan
     return RunFacts(
         status=run.status,
         t_end=t_end,
-        stuck_for=float(monitor.stuck_for(motion, t_end)),
+        stuck_for=float(monitor.stuck_for(run.motion, t_end)),
         hold=rev,
         window=(max(0.0, t_end - window), t_end),
         frac_all=float(frac_all),
@@ -97,28 +106,29 @@ def run_facts(config, run: RunBuffers, verdict: VerdictParams) -> RunFacts:
         max_steps=num.max_steps,
         max_events=num.max_events,
         stick_rule=num.stick_rule,
-        revs=_revolutions(config, run) if ring else None,
+        revs=_revolutions(config, run, values) if ring else None,
         evidence=evidence_of(vs) if ring else None,
-        steps=run.steps,
+        steps=values["counters"]["steps"],
         revolution_log=revolution_log(run.revolutions, motion) if ring else None,
         floor=floor,
         radius_end=math.hypot(run.y[0], run.y[1]),
         cycle_converged=bool(vs["agree"] >= num.cycle_count),
         cycle_size=float(motion["size"]),
         cycle_excess=float(motion["a"]),
-        own_rows=own_log(run.own_steps, run.own) if run.own_steps is not None else None,
-        own_scene=own_scene(config, run) if run.own_steps is not None else None,
+        own_rows=own_log(run.own_steps, values["own"]) if own else None,
+        own_scene=own_scene(config, run, motion) if own else None,
     )
 
 
-def own_scene(config, run: RunBuffers) -> OwnScene:
-    """What the own section's evidence needs of the scene (verdict/motion_evidence.py)."""
+def own_scene(config, run: RunBuffers, motion: Mapping | np.void) -> OwnScene:
+    """What the own section's evidence needs of the scene (verdict/motion_evidence.py);
+    motion: the MOTION record or its values."""
     p = config.params
     rules = run.rules
     omega0 = math.sqrt(p.c_s / p.m_s) if p.c_s > 0.0 else abs(p.omega_m)
     return OwnScene(
         omega0=omega0 if omega0 > 0.0 else 1.0,
-        arm=float(run.motion["arm"]),
+        arm=float(motion["arm"]),
         eps=config.contact.eps,
         n_contacts=int(run.modes.shape[0]),
         cycle_tol=float(rules["cycle_tol"]),
@@ -150,11 +160,12 @@ def _motion_measures(motion: MotionEvidence | None) -> dict[str, float]:
     return {name: getattr(motion, name) if motion else math.nan for name in MOTION_MEASURES}
 
 
-def _revolutions(config, run: RunBuffers) -> Revolutions:
-    """The label's view of the revolution ring (NaN measures before one revolution)."""
-    motion, vs, revs = run.motion, run.verdict, run.revolutions
+def _revolutions(config, run: RunBuffers, values: Mapping) -> Revolutions:
+    """The label's view of the revolution ring (NaN measures before one revolution);
+    values: run.values()."""
+    motion, vs = values["motion"], values["verdict"]
     n = int(motion["n_rev"])
-    last = revs[(n - 1) % REV_RING] if n > 0 else None
+    last = run.revolutions[(n - 1) % REV_RING] if n > 0 else None
     nan = math.nan
     return Revolutions(
         count=n,
@@ -167,13 +178,14 @@ def _revolutions(config, run: RunBuffers) -> Revolutions:
         limit=float(vs["limit"]),
         limit_spread=float(vs["limit_spread"]),
         on_orbit=bool(n > 0 and last["any_stuck"]),
-        settling=run.budget_spent,
+        settling=bool(vs["budget_spent"]),
         tol=float(vs["slip_tol"]),
     )
 
 
-def evidence_of(vs: np.void) -> Evidence:
-    """The section evidence of the run's last check (verdict/section_evidence.py)."""
+def evidence_of(vs: Mapping | np.void) -> Evidence:
+    """The section evidence of the run's last check (verdict/section_evidence.py); vs: the
+    VERDICT record or its values."""
     return Evidence(
         kind=int(vs["evidence"]),
         source=int(vs["ev_source"]),
@@ -208,21 +220,29 @@ def ring_rows(ring: np.ndarray, written: int, keep: int) -> np.ndarray:
     keep = min(written, keep, size)
     start = (written - keep) % size
     if start + keep <= size:
-        return ring[start : start + keep].copy()
+        return copy_rows(ring[start : start + keep])
     return np.concatenate((ring[start:], ring[: start + keep - size]))
 
 
-def revolution_log(revs: np.ndarray, motion: np.void) -> np.ndarray:
+def copy_rows(rows: np.ndarray) -> np.ndarray:
+    """A copy of contiguous record rows, made as one copy of their bytes (numpy copies a
+    record array field by field: 3 us for a few rows, against under 2 us)."""
+    out = np.empty(rows.shape[0], dtype=rows.dtype)
+    out.view(np.uint8)[:] = rows.view(np.uint8)
+    return out
+
+
+def revolution_log(revs: np.ndarray, motion: Mapping | np.void) -> np.ndarray:
     """The kept rows of the revolution ring (kernel/records.py REVOLUTION), oldest first."""
     return ring_rows(revs, int(motion["n_rev"]), REV_RING)
 
 
-def own_log(steps: np.ndarray, own: np.void) -> np.ndarray:
+def own_log(steps: np.ndarray, own: Mapping | np.void) -> np.ndarray:
     """The kept rows of the own section (kernel/records.py OWN_STEP), oldest first."""
     return ring_rows(steps, int(own["n"]), OWN_RING)
 
 
-def section_log(phases: np.ndarray, motion: np.void, keep: int = 256) -> np.ndarray:
+def section_log(phases: np.ndarray, motion: Mapping | np.void, keep: int = 256) -> np.ndarray:
     """The last `keep` completed whole-body sticking phases (kernel/records.py PHASE),
     oldest first."""
     return ring_rows(phases, int(motion["n_phases"]), keep)

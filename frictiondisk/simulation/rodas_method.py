@@ -10,10 +10,10 @@ from frictiondisk.kernel import energy as ken
 from frictiondisk.model.limits import record_rows_limit
 from frictiondisk.simulation.buffers import RunBuffers
 from frictiondisk.simulation.pack import (
-    fill_options,
-    fill_rules,
     initial_modes,
     initial_state,
+    new_options,
+    new_rules,
     pack_parameters,
     record_capacity,
 )
@@ -42,9 +42,11 @@ def simulate_rodas(
     limit = record_rows_limit(y0.shape[0], pts.shape[0])
     span = horizon_of(config) + revolution(config.params.omega_m)
     cap = record_capacity(span, dt_out, limit) if record else 1
-    run = RunBuffers.allocate(y0, modes, cap, p, pts, thresholds=verdict)
-    fill_options(run.options, config.numerics, record, dt_out, dense_lu)
-    fill_rules(run.rules, config)
+    options = new_options(config.numerics, record, dt_out, dense_lu)
+    rules = new_rules(config)
+    run = RunBuffers.allocate(
+        y0, modes, cap, p, pts, thresholds=verdict, options=options, rules=rules
+    )
 
     energy_0 = float(ken.stored_energy(p, pts, y0))
     wall0 = time.perf_counter()

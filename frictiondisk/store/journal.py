@@ -28,6 +28,7 @@ from __future__ import annotations
 import collections
 import contextlib
 import os
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -260,7 +261,13 @@ class Journal:
 
     # writing ------------------------------------------------------------------------------
 
-    def put(self, key: str, inputs: dict[str, Any], result: dict[str, Any]) -> None:
+    def put(
+        self,
+        key: str,
+        inputs: dict[str, Any],
+        result: dict[str, Any],
+        inputs_text: str | None = None,
+    ) -> None:
         """Commit run `key` at once, then log it in `computed.log`.
 
         The entry `{"version": 1, "key", "inputs", "result", "sha256"}` is written as JSON
@@ -274,9 +281,10 @@ class Journal:
         tear the latest ones, and a torn entry fails its sha256 in `get` and is computed
         again, which is the journal's contract anyway.
 
-        `inputs` and `result`: as journal_entry.encode takes them (ValueError, TypeError).
+        `inputs`, `result` and `inputs_text`: as journal_entry.encode takes them
+        (ValueError, TypeError).
         """
-        data = encode(key, inputs, result)
+        data = encode(key, inputs, result, inputs_text)
 
         path = self.entry_path(key)
         if key[:2] not in self._shards:
@@ -290,14 +298,22 @@ class Journal:
         atomic_write_bytes(path, data, durable=False, make_parents=False)
         self._log(key)
 
-    def put_many(self, entries: list[tuple[str, dict[str, Any], dict[str, Any]]]) -> None:
+    def put_many(
+        self,
+        entries: list[tuple[str, dict[str, Any], dict[str, Any]]],
+        inputs_texts: Mapping[str, str] | None = None,
+    ) -> None:
         """Commit the runs (key, inputs, result) of one batch at once, as one pack
         (store/journal_packs.py): a temporary file renamed, so a killed process leaves
         all of them or none; then their keys in computed.log, in one write. Same entries,
-        same checks and the same promise as `put`, at one file per batch."""
+        same checks and the same promise as `put`, at one file per batch. inputs_texts:
+        key -> canonical_json of its inputs, where already written (encode)."""
         if not entries:
             return
-        data = pack_bytes([(key, encode(key, inputs, result)) for key, inputs, result in entries])
+        texts = inputs_texts or {}
+        data = pack_bytes(
+            [(key, encode(key, inputs, result, texts.get(key))) for key, inputs, result in entries]
+        )
         index = self._pack_index()
         folder = refuse_symlink(self.path / PACKS)
         if PACKS not in self._shards:

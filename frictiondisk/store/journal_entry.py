@@ -23,6 +23,7 @@ __all__ = [
     "key_of_inputs",
     "key_version",
     "run_key",
+    "scene_key",
     "verify",
 ]
 
@@ -76,12 +77,15 @@ def run_key(config: Any) -> str:
     key-sorted JSON, v = `key_version` of the scene.
     """
     scene = config.canonical()
-    text = json.dumps(
-        {"scene": scene, "kernel": kernel_version(key_version(scene))},
-        sort_keys=True,
-        separators=(",", ":"),
-    )
-    return hashlib.sha256(text.encode()).hexdigest()
+    return scene_key(scene, json.dumps(scene, sort_keys=True, separators=(",", ":")))
+
+
+def scene_key(scene: dict[str, Any], text: str) -> str:
+    """`run_key` of the canonical scene `scene` given its compact, key-sorted JSON `text`
+    (canonical_json(scene)), so that a scene journaled is written once, for its key and
+    its entry: the key's JSON is that text under "scene" after "kernel"."""
+    kernel = json.dumps(kernel_version(key_version(scene)))
+    return hashlib.sha256(f'{{"kernel":{kernel},"scene":{text}}}'.encode()).hexdigest()
 
 
 class _Inputs:
@@ -177,19 +181,23 @@ def verify(key: str, raw: bytes) -> tuple[Any, str | None]:
     return entry, None
 
 
-def encode(key: str, inputs: dict[str, Any], result: dict[str, Any]) -> bytes:
+def encode(
+    key: str, inputs: dict[str, Any], result: dict[str, Any], inputs_text: str | None = None
+) -> bytes:
     """The entry of run `key` as the bytes of its file: `{"inputs", "key", "result",
     "sha256", "version": 1}` as compact, key-sorted JSON and a newline.
 
     `inputs` and `result` must be JSON-serializable dicts without NaN or infinity (pass
     None for a missing number): ValueError names the offending field, TypeError a value
-    JSON cannot store."""
+    JSON cannot store. inputs_text: canonical_json(inputs) where already written (taken
+    for inputs made of JSON's own types only)."""
     check_key(key)
     for name, value in (("inputs", inputs), ("result", result)):
         if not isinstance(value, dict):
             raise TypeError(f"journal entry {key}: {name} must be a dict, got {value!r}")
     try:
-        texts = [_as_read(value) for value in (inputs, result)]
+        reuse = inputs_text is not None and _plain(inputs)
+        texts = [inputs_text if reuse else _as_read(inputs), _as_read(result)]
     except ValueError as err:  # NaN or infinity: walk the values only now, to name it
         for name, value in (("inputs", inputs), ("result", result)):
             bad = non_finite_path(value, name)
@@ -212,7 +220,30 @@ def encode(key: str, inputs: dict[str, Any], result: dict[str, Any]) -> bytes:
 def _as_read(value: dict[str, Any]) -> str:
     """canonical_json of `value` as a reader loads it back: the digest must be computed on
     exactly that (tuples become lists, keys strings); equal to canonical_json(value) for
-    the plain JSON values runs are made of, written a second time only otherwise."""
+    the plain JSON values runs are made of (`_plain`: no reading back needed), written a
+    second time only where reading it back changes it."""
     text = canonical_json(value)
+    if _plain(value):
+        return text
     loaded = json.loads(text)
     return text if loaded == value else canonical_json(loaded)
+
+
+_LEAVES = frozenset({str, int, float, bool, type(None)})
+
+
+def _plain(value: Any) -> bool:
+    """Whether `value` is made of JSON's own types only (dicts with str keys, lists, str,
+    int, float, bool, None; no subclass): JSON reads its text back as an equal value."""
+    kind = type(value)
+    if kind is dict:
+        for key, item in value.items():
+            if type(key) is not str or (type(item) not in _LEAVES and not _plain(item)):
+                return False
+        return True
+    if kind is list:
+        for item in value:
+            if type(item) not in _LEAVES and not _plain(item):
+                return False
+        return True
+    return kind in _LEAVES

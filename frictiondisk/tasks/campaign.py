@@ -132,9 +132,10 @@ class Campaign:
         axes = self._axes()
         fixed = self.task.point_overrides()
         points = []
+        values = {dim: [scene_value(dim, value) for value in axes[dim]] for dim in axes}
         for index in itertools.product(*(range(len(values)) for values in axes.values())):
             coords = {dim: axes[dim][i] for dim, i in zip(axes, index, strict=True)}
-            overrides = {dim: scene_value(dim, value) for dim, value in coords.items()}
+            overrides = {dim: values[dim][i] for dim, i in zip(axes, index, strict=True)}
             config = self.base.with_overrides({**overrides, **fixed})
             points.append(Point(index=index, coords=coords, config=config))
         return points

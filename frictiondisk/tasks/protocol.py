@@ -118,5 +118,11 @@ class Planner(Protocol):
     def remember_canonical(self, point: int, request: Hashable, canonical: dict) -> None:
         """A run's canonical scene the driver built for its key (a planner may keep it)."""
 
+    def canonical_for(self, point: int, request: Hashable) -> dict:
+        """A requested run's canonical scene (`config_for(...).canonical()`), which the
+        driver keys and journals; a planner that made it for the run's job hands that
+        one over (each run's scene is made once)."""
+        return self.config_for(point, request).canonical()
+
     def already_written(self) -> None:
         """A task without a journal: its files are current, nothing to run."""

@@ -44,6 +44,7 @@ class RunBook:
         self._queue: collections.deque[Run] = collections.deque()  # wanted, in the order asked
         self._fresh: list[Run] = []  # wanted, not yet named by new_requests
         self._canonicals: dict[Run, dict] = {}  # until sent to a worker
+        self._sent: dict[Run, dict] = {}  # made for a job, until keyed (canonical_for)
         self.open_runs = 0  # runs wanted and not yet known (out on a worker or not)
 
     # ---- what is wanted -----------------------------------------------------------------
@@ -69,6 +70,7 @@ class RunBook:
         for j in range(n):
             self._configs.pop((i, j), None)
             self._canonicals.pop((i, j), None)
+            self._sent.pop((i, j), None)
         self._blocks.pop(i, None)
 
     # ---- a run's scene --------------------------------------------------------------------
@@ -99,6 +101,18 @@ class RunBook:
     def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
         if request.index in self.todo[i]:
             self._canonicals[(i, request.index)] = canonical
+
+    def canonical_for(self, i: int, request: SampleRequest) -> dict:
+        canonical = self._sent.pop((i, request.index), None)
+        return self.config_for(i, request).canonical() if canonical is None else canonical
+
+    def _scene(self, i: int, j: int) -> dict:
+        """Run j of point i's canonical scene for its job: the driver's, or made now and
+        kept for its key."""
+        canonical = self._canonicals.pop((i, j), None)
+        if canonical is None:
+            canonical = self._sent[(i, j)] = self.config_for(i, SampleRequest(j)).canonical()
+        return canonical
 
     def take(self, i: int, j: int, result: dict[str, Any]) -> bool:
         """Take a result from the journal; False (ignored) where the run is not wanted."""
@@ -131,11 +145,7 @@ class RunBook:
             for i, j in items:
                 self.todo[i].discard(j)
                 self.out[i] += 1
-            scenes = [
-                self._canonicals.pop((i, j), None)
-                or self.config_for(i, SampleRequest(j)).canonical()
-                for i, j in items
-            ]
+            scenes = [self._scene(i, j) for i, j in items]
             out.append((job, RunScenes(tuple(scenes))))
         return out
 
@@ -166,6 +176,7 @@ class RunBook:
         self.open_runs -= len(items)
         for i, j in items:
             self.out[i] -= 1
+            self._sent.pop((i, j), None)  # not journaled: never keyed
             self.known[i][j] = {"outcome": UNDETERMINED, "reason": reason}
             self.failed[i] = reason
         return sorted({i for i, _ in items})
@@ -190,6 +201,9 @@ class RunBookPlanner(Planner):
 
     def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
         self.book.remember_canonical(i, request, canonical)
+
+    def canonical_for(self, i: int, request: SampleRequest) -> dict:
+        return self.book.canonical_for(i, request)
 
     def feed(self, i: int, request: SampleRequest, result: dict[str, Any]) -> None:
         """Take a result; one the point no longer waits for is ignored."""

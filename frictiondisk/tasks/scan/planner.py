@@ -30,6 +30,7 @@ class ScanPlanner(Planner):
         self._next_job = 0
         self._listed = False  # new_requests has named every point
         self._canonicals: dict[int, dict] = {}  # point -> its canonical scene, until sent
+        self._sent: dict[int, dict] = {}  # ... made for a job, until keyed (canonical_for)
 
     def config_for(self, i: int, request: RunRequest):
         return self.points[i].config
@@ -69,6 +70,18 @@ class ScanPlanner(Planner):
         if i not in self.results:
             self._canonicals[i] = canonical
 
+    def canonical_for(self, i: int, request: RunRequest) -> dict:
+        canonical = self._sent.pop(i, None)
+        return self.points[i].config.canonical() if canonical is None else canonical
+
+    def _scene(self, i: int) -> dict:
+        """Point i's canonical scene for its job: the driver's, or made now and kept for
+        its key."""
+        canonical = self._canonicals.pop(i, None)
+        if canonical is None:
+            canonical = self._sent[i] = self.points[i].config.canonical()
+        return canonical
+
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
         self.results.setdefault(i, result)
         self._canonicals.pop(i, None)
@@ -98,9 +111,7 @@ class ScanPlanner(Planner):
             job, self._next_job = self._next_job, self._next_job + 1
             self._jobs[job] = tuple(batch)
             self.busy.update(batch)
-            scenes = tuple(
-                self._canonicals.pop(i, None) or self.points[i].config.canonical() for i in batch
-            )
+            scenes = tuple(self._scene(i) for i in batch)
             out.append((job, RunScenes(scenes)))
         return out
 
@@ -129,4 +140,5 @@ class ScanPlanner(Planner):
         not journaled, so a resume tries again)."""
         for i in self._jobs.pop(job):
             self.busy.discard(i)
+            self._sent.pop(i, None)  # not journaled: never keyed
             self.results[i] = {"outcome": UNDETERMINED, "reason": reason}
