@@ -85,10 +85,10 @@ def horizon_evidence(vp, rules, motion, vs, phases, revs, omega, seq):
     slave's revolutions are its section: a steady sliding state repeats or is approached
     geometrically), a Coulomb pin leaves its sticking circle outward every revolution
     (EV_GRAZE, verdict/grazing.py), or it slides on without approaching sticking
-    (EV_SLIDING). One that leaves it inward every revolution sticks in the limit (EV_RIM,
-    stick_rule corotation). EV_NONE: it
-    must go on (or end undetermined). A shakedown found here is EV_SHAKEDOWN (stick).
-    Sets the evidence fields of vs."""
+    (EV_SLIDING). EV_NONE: it must go on (or end undetermined). A shakedown found here is
+    EV_SHAKEDOWN (stick), and so is a Coulomb pin that leaves its circle inward every
+    revolution (EV_RIM, stick_rule corotation: it sticks in the limit). Sets the evidence
+    fields of vs."""
     best = EV_NONE
     for source in (SOURCE_CYCLES, SOURCE_REVOLUTIONS):
         ev = _section(vp, rules, motion, vs, phases, revs, omega, seq, source)
