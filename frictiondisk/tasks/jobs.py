@@ -66,3 +66,30 @@ def halves(items: Sequence[Any], job: RunScenes) -> list[tuple[list[Any], RunSce
         (list(items[:half]), RunScenes(job.scenes[:half])),
         (list(items[half:]), RunScenes(job.scenes[half:])),
     ]
+
+
+class JobTable:
+    """The jobs a planner has out: job id -> what it keeps of each job (its points, its
+    requests), ids counted up from 0 in the order the jobs are made."""
+
+    def __init__(self) -> None:
+        self._kept: dict[int, Any] = {}
+        self._next = 0
+
+    def add(self, kept: Any) -> int:
+        """A new job keeping `kept`; its id."""
+        job, self._next = self._next, self._next + 1
+        self._kept[job] = kept
+        return job
+
+    def __getitem__(self, job: int) -> Any:
+        return self._kept[job]
+
+    def pop(self, job: int) -> Any:
+        """What job `job` kept; the job is forgotten."""
+        return self._kept.pop(job)
+
+    def halve(self, job: int, work: RunScenes) -> list[tuple[int, RunScenes]]:
+        """A failed batch whose kept items are parallel to work.scenes, as the jobs of its
+        halves under new ids (`halves`); the old id is forgotten."""
+        return [(self.add(items), half) for items, half in halves(self.pop(job), work)]

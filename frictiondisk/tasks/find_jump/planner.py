@@ -33,7 +33,7 @@ from typing import Any
 
 from frictiondisk.tasks.find_jump.results import FindJumpResults
 from frictiondisk.tasks.in_order import feed_in_order
-from frictiondisk.tasks.jobs import Job, RunScenes, RunSearch, Sizing, halves
+from frictiondisk.tasks.jobs import Job, JobTable, RunScenes, RunSearch, Sizing, halves
 from frictiondisk.tasks.jump_search.bisection import BisectionResult, RunRequest, cold_run_count
 from frictiondisk.tasks.jump_search.bisection_settings import BisectionSettings
 from frictiondisk.tasks.jump_search.certify import CertifiedBisection
@@ -71,8 +71,7 @@ class JumpPlanner(Planner):
         self.out: dict[int, set[RunRequest]] = {}  # point -> its runs out in batches
         # point -> results back from a batch that its search does not take yet
         self.arrived: dict[int, dict[RunRequest, dict[str, Any]]] = {}
-        self._jobs: dict[int, tuple[str, Any]] = {}  # job -> ("chain", i) | ("runs", units)
-        self._next_job = 0
+        self._jobs = JobTable()  # job -> ("chain", i) | ("runs", units)
         self._canonicals: dict[tuple[int, RunRequest], dict] = {}  # the driver computed these
         row_order, self._tree = refinement(self.shape[-1])
         width = self.shape[-1]
@@ -148,7 +147,7 @@ class JumpPlanner(Planner):
                     canonical, self.task.horizon_factor, self.task.certify, self.task.parameter_key
                 )
                 job = RunSearch(self.bisections[i], scenes, budget)
-                out.append((self._new_job("chain", i), job))
+                out.append((self._jobs.add(("chain", i)), job))
             else:
                 pool += [(i, req) for req in ready]
         size = max(1, min(sizing.batch_runs, -(-len(pool) // max(1, sizing.workers))))
@@ -162,13 +161,8 @@ class JumpPlanner(Planner):
                 self._canonicals.pop((i, req), None) or self.config_for(i, req).canonical()
                 for i, req in units
             ]
-            out.append((self._new_job("runs", units), RunScenes(tuple(configs))))
+            out.append((self._jobs.add(("runs", units)), RunScenes(tuple(configs))))
         return out
-
-    def _new_job(self, kind: str, what: Any) -> int:
-        job, self._next_job = self._next_job, self._next_job + 1
-        self._jobs[job] = (kind, what)
-        return job
 
     def complete(self, job: int, value) -> list[tuple[int, RunRequest, dict[str, Any]]]:
         """Take a finished job back; returns the runs it made, for the journal."""
@@ -193,8 +187,8 @@ class JumpPlanner(Planner):
         kind, what = self._jobs[job]
         if kind != "runs":
             return None
-        del self._jobs[job]
-        return [(self._new_job("runs", units), half) for units, half in halves(what, work)]
+        self._jobs.pop(job)
+        return [(self._jobs.add(("runs", units)), half) for units, half in halves(what, work)]
 
     def fail(self, job: int, reason: str) -> None:
         """A job that never came back (its worker kept dying): its points fail with that

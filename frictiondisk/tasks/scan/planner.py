@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from frictiondisk.tasks.jobs import RunScenes, Sizing, halves
+from frictiondisk.tasks.jobs import JobTable, RunScenes, Sizing
 from frictiondisk.tasks.jump_search.runs import RunRequest
 from frictiondisk.tasks.protocol import Planner
 from frictiondisk.tasks.scan.results import ScanResults
@@ -26,8 +26,7 @@ class ScanPlanner(Planner):
         self.results: dict[int, dict[str, Any]] = {}
         self.busy: set[int] = set()
         self._cursor = 0  # every point below it is known or out on a worker
-        self._jobs: dict[int, tuple[int, ...]] = {}  # job id -> its points
-        self._next_job = 0
+        self._jobs = JobTable()  # job id -> its points
         self._listed = False  # new_requests has named every point
         self._canonicals: dict[int, dict] = {}  # point -> its canonical scene, until sent
         self._sent: dict[int, dict] = {}  # ... made for a job, until keyed (canonical_for)
@@ -108,8 +107,7 @@ class ScanPlanner(Planner):
                     batch.append(i)
             if not batch:
                 break
-            job, self._next_job = self._next_job, self._next_job + 1
-            self._jobs[job] = tuple(batch)
+            job = self._jobs.add(tuple(batch))
             self.busy.update(batch)
             scenes = tuple(self._scene(i) for i in batch)
             out.append((job, RunScenes(scenes)))
@@ -128,12 +126,7 @@ class ScanPlanner(Planner):
         return made
 
     def split(self, job: int, work: RunScenes) -> list[tuple[int, RunScenes]]:
-        parts = []
-        for points, half in halves(self._jobs.pop(job), work):
-            new, self._next_job = self._next_job, self._next_job + 1
-            self._jobs[new] = tuple(points)
-            parts.append((new, half))
-        return parts
+        return self._jobs.halve(job, work)
 
     def fail(self, job: int, reason: str) -> None:
         """Runs whose worker kept dying: reported `undetermined` with that reason (they are

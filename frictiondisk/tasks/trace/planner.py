@@ -21,7 +21,7 @@ import numpy as np
 
 from frictiondisk.model.varied import scene_value
 from frictiondisk.tasks.in_order import feed_in_order
-from frictiondisk.tasks.jobs import RunScenes, Sizing, halves
+from frictiondisk.tasks.jobs import JobTable, RunScenes, Sizing
 from frictiondisk.tasks.jump_search.prescan import default_stride
 from frictiondisk.tasks.jump_search.requests import run_config
 from frictiondisk.tasks.protocol import Planner
@@ -71,8 +71,7 @@ class TracePlanner(Planner):
         self.results: dict[int, Any] = {}
         self.out: set[PlaneRequest] = set()
         self.arrived: dict[PlaneRequest, dict[str, Any]] = {}  # back, not taken yet
-        self._jobs: dict[int, list[PlaneRequest]] = {}
-        self._next_job = 0
+        self._jobs = JobTable()  # job id -> its requests (PlaneRequest)
         self._scenes: dict[float, Any] = {}  # key value -> the base scene with it set
 
     def config_for(self, i: int, request: PlaneRequest):
@@ -130,8 +129,7 @@ class TracePlanner(Planner):
                 break
             batch = ready[start : start + size]
             self.out.update(batch)
-            job, self._next_job = self._next_job, self._next_job + 1
-            self._jobs[job] = batch
+            job = self._jobs.add(batch)
             configs = [self.config_for(0, request).canonical() for request in batch]
             out.append((job, RunScenes(tuple(configs))))
         return out
@@ -147,12 +145,7 @@ class TracePlanner(Planner):
         return made
 
     def split(self, job: int, work: RunScenes) -> list[tuple[int, RunScenes]]:
-        parts = []
-        for batch, half in halves(self._jobs.pop(job), work):
-            new, self._next_job = self._next_job, self._next_job + 1
-            self._jobs[new] = batch
-            parts.append((new, half))
-        return parts
+        return self._jobs.halve(job, work)
 
     def fail(self, job: int, reason: str) -> None:
         """A job that never came back (its worker kept dying): the trace ends with what
