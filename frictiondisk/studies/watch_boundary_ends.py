@@ -26,12 +26,15 @@ import numpy as np
 import xarray as xr
 import yaml
 
+from frictiondisk.model.search_settings import CERTIFICATION_FLAGS
 from frictiondisk.simulation import simulate as simulate_module
 from frictiondisk.tasks.campaign import campaign_from_text
 from frictiondisk.tasks.jump_search.sides import HIGH, LOW
 
-CERTIFIED = (1, 2)  # certification flags: certified, recertified
-UNCERTAIN = 3  # a bracket its certification could not confirm (watched with --uncertain)
+# certification flags (results.nc): certified or recertified, and a bracket its
+# certification could not confirm (watched with --uncertain)
+CERTIFIED = tuple(CERTIFICATION_FLAGS.index(name) for name in ("certified", "recertified"))
+UNCERTAIN = CERTIFICATION_FLAGS.index("uncertain")
 
 
 def watched_config(point_config, numerics: dict, key: str, value: float, factor: float):

@@ -24,10 +24,12 @@ import xarray as xr
 import yaml
 
 from frictiondisk.model.scene import scene_from_dict
+from frictiondisk.model.search_settings import CERTIFICATION_FLAGS
 from frictiondisk.simulation.simulate import simulate
 from frictiondisk.verdict.outcomes import STICK
 
-CERTIFIED = (1, 2)  # certification flags: certified, recertified
+# certification flags (results.nc) of a certified or recertified point
+CERTIFIED = tuple(CERTIFICATION_FLAGS.index(name) for name in ("certified", "recertified"))
 
 
 def not_stick_ends(results: xr.Dataset) -> list[tuple[float | None, float]]:
