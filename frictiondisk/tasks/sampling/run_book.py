@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from frictiondisk.tasks.canonical_scenes import CanonicalScenes
 from frictiondisk.tasks.jobs import RunScenes, Sizing, halves
 from frictiondisk.tasks.protocol import Planner
 from frictiondisk.tasks.sampling.draws import sample_values
@@ -43,8 +44,7 @@ class RunBook:
         self._configs: dict[Run, Any] = {}
         self._queue: collections.deque[Run] = collections.deque()  # wanted, in the order asked
         self._fresh: list[Run] = []  # wanted, not yet named by new_requests
-        self._canonicals: dict[Run, dict] = {}  # until sent to a worker
-        self._sent: dict[Run, dict] = {}  # made for a job, until keyed (canonical_for)
+        self._scenes = CanonicalScenes()  # a run's canonical scene, made once
         self.open_runs = 0  # runs wanted and not yet known (out on a worker or not)
 
     # ---- what is wanted -----------------------------------------------------------------
@@ -69,8 +69,7 @@ class RunBook:
         """Drop the scenes and draws of a finished point's runs 0 .. n-1."""
         for j in range(n):
             self._configs.pop((i, j), None)
-            self._canonicals.pop((i, j), None)
-            self._sent.pop((i, j), None)
+            self._scenes.forget((i, j))
         self._blocks.pop(i, None)
 
     # ---- a run's scene --------------------------------------------------------------------
@@ -100,19 +99,18 @@ class RunBook:
 
     def remember_canonical(self, i: int, request: SampleRequest, canonical: dict) -> None:
         if request.index in self.todo[i]:
-            self._canonicals[(i, request.index)] = canonical
+            self._scenes.remember((i, request.index), canonical)
 
     def canonical_for(self, i: int, request: SampleRequest) -> dict:
-        canonical = self._sent.pop((i, request.index), None)
-        return self.config_for(i, request).canonical() if canonical is None else canonical
+        return self._scenes.for_key(
+            (i, request.index), lambda: self.config_for(i, request).canonical()
+        )
 
     def _scene(self, i: int, j: int) -> dict:
-        """Run j of point i's canonical scene for its job: the driver's, or made now and
-        kept for its key."""
-        canonical = self._canonicals.pop((i, j), None)
-        if canonical is None:
-            canonical = self._sent[(i, j)] = self.config_for(i, SampleRequest(j)).canonical()
-        return canonical
+        """Run j of point i's canonical scene for its job (CanonicalScenes.for_job)."""
+        return self._scenes.for_job(
+            (i, j), lambda: self.config_for(i, SampleRequest(j)).canonical()
+        )
 
     def take(self, i: int, j: int, result: dict[str, Any]) -> bool:
         """Take a result from the journal; False (ignored) where the run is not wanted."""
@@ -176,7 +174,7 @@ class RunBook:
         self.open_runs -= len(items)
         for i, j in items:
             self.out[i] -= 1
-            self._sent.pop((i, j), None)  # not journaled: never keyed
+            self._scenes.forget((i, j))  # not journaled: never keyed
             self.known[i][j] = {"outcome": UNDETERMINED, "reason": reason}
             self.failed[i] = reason
         return sorted({i for i, _ in items})

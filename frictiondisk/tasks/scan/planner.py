@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from frictiondisk.tasks.canonical_scenes import CanonicalScenes
 from frictiondisk.tasks.jobs import JobTable, RunScenes, Sizing
 from frictiondisk.tasks.jump_search.runs import RunRequest
 from frictiondisk.tasks.protocol import Planner
@@ -28,8 +29,7 @@ class ScanPlanner(Planner):
         self._cursor = 0  # every point below it is known or out on a worker
         self._jobs = JobTable()  # job id -> its points
         self._listed = False  # new_requests has named every point
-        self._canonicals: dict[int, dict] = {}  # point -> its canonical scene, until sent
-        self._sent: dict[int, dict] = {}  # ... made for a job, until keyed (canonical_for)
+        self._scenes = CanonicalScenes()  # point -> its canonical scene, made once
 
     def config_for(self, i: int, request: RunRequest):
         return self.points[i].config
@@ -67,23 +67,14 @@ class ScanPlanner(Planner):
 
     def remember_canonical(self, i: int, request: RunRequest, canonical: dict) -> None:
         if i not in self.results:
-            self._canonicals[i] = canonical
+            self._scenes.remember(i, canonical)
 
     def canonical_for(self, i: int, request: RunRequest) -> dict:
-        canonical = self._sent.pop(i, None)
-        return self.points[i].config.canonical() if canonical is None else canonical
-
-    def _scene(self, i: int) -> dict:
-        """Point i's canonical scene for its job: the driver's, or made now and kept for
-        its key."""
-        canonical = self._canonicals.pop(i, None)
-        if canonical is None:
-            canonical = self._sent[i] = self.points[i].config.canonical()
-        return canonical
+        return self._scenes.for_key(i, self.points[i].config.canonical)
 
     def feed(self, i: int, request: RunRequest, result: dict[str, Any]) -> None:
         self.results.setdefault(i, result)
-        self._canonicals.pop(i, None)
+        self._scenes.forget(i)
 
     def jobs(self, sizing: Sizing | None = None) -> list[tuple[int, RunScenes]]:
         """Batches of points not yet known, in index order: sizing.batch_runs to a job, but
@@ -109,7 +100,7 @@ class ScanPlanner(Planner):
                 break
             job = self._jobs.add(tuple(batch))
             self.busy.update(batch)
-            scenes = tuple(self._scene(i) for i in batch)
+            scenes = tuple(self._scenes.for_job(i, self.points[i].config.canonical) for i in batch)
             out.append((job, RunScenes(scenes)))
         return out
 
@@ -133,5 +124,5 @@ class ScanPlanner(Planner):
         not journaled, so a resume tries again)."""
         for i in self._jobs.pop(job):
             self.busy.discard(i)
-            self._sent.pop(i, None)  # not journaled: never keyed
+            self._scenes.forget(i)  # not journaled: never keyed
             self.results[i] = {"outcome": UNDETERMINED, "reason": reason}
