@@ -132,10 +132,11 @@ class Campaign:
         axes = self._axes()
         fixed = self.task.point_overrides()
         points = []
-        values = {dim: [scene_value(dim, value) for value in axes[dim]] for dim in axes}
+        # each axis value as its scene field takes it, once per value, not once per point
+        as_scene = {dim: [scene_value(dim, value) for value in axes[dim]] for dim in axes}
         for index in itertools.product(*(range(len(values)) for values in axes.values())):
             coords = {dim: axes[dim][i] for dim, i in zip(axes, index, strict=True)}
-            overrides = {dim: values[dim][i] for dim, i in zip(axes, index, strict=True)}
+            overrides = {dim: as_scene[dim][i] for dim, i in zip(axes, index, strict=True)}
             config = self.base.with_overrides({**overrides, **fixed})
             points.append(Point(index=index, coords=coords, config=config))
         return points
